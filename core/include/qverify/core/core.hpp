@@ -1,0 +1,9 @@
+#pragma once
+/// \file core.hpp
+/// qverify core: projective geometry of quadric shadows and mirror images,
+/// generic over the scalar type, header-only, Eigen only.
+#include <qverify/core/scalar.hpp>
+#include <qverify/core/quadric.hpp>
+#include <qverify/core/projective.hpp>
+#include <qverify/core/shadow.hpp>
+#include <qverify/core/mirror.hpp>

@@ -1,0 +1,56 @@
+#pragma once
+/// \file mirror.hpp
+/// Mirror image of a quadric in a plane mirror, equations (7)-(11).
+///
+/// The mirror is the plane n.x + d = 0, given as (a, b, c, d) with any
+/// non-zero normal n = (a, b, c) (the paper's (7) writes the constant as 1 and
+/// its (9) assumes |n| = 1; neither is needed here). The reflection is
+///   y = x - 2 (n.x + d) n / (n.n),
+/// rational in n and d: no square root, exact for exact types.
+
+#include <qverify/core/quadric.hpp>
+#include <qverify/core/shadow.hpp>
+
+namespace qverify {
+
+/// Eq. (9), the mirror matrix, corrected for a non-unit normal:
+///   M = [[I - 2 n n^T / (n.n), -2 d n / (n.n)], [0 0 0 1]].
+/// M M = I (eq. (11)'s M = M^{-1}) and M fixes its plane pointwise.
+/// Precondition: n != 0.
+template <class S> Mat4<S> mirror_matrix(const Vec4<S>& plane) {
+  const Vec3<S> n = plane.template head<3>();
+  const S k = S(2) / n.squaredNorm();
+  Mat4<S> M = Mat4<S>::Identity();
+  M.template topLeftCorner<3, 3>() -= k * (n * n.transpose());
+  M.template topRightCorner<3, 1>() = -(k * plane(3)) * n;
+  return M;
+}
+
+/// Eq. (11), direct: B = M^T A M (using M = M^{-1}). A point x lies on A
+/// exactly when its mirror image M x lies on B.
+template <class S> Mat4<S> mirror_image(const Mat4<S>& A, const Mat4<S>& M) {
+  return M.transpose() * A * M;
+}
+
+/// Eq. (11), the paper's first form: B = (M^{-1})^T A M^{-1} with M^{-1}
+/// computed as an inverse (not assumed equal to M).
+template <class S> Mat4<S> mirror_image_paper(const Mat4<S>& A, const Mat4<S>& M) {
+  const Mat4<S> Minv = M.inverse();
+  return Minv.transpose() * A * Minv;
+}
+
+template <class S> struct ReflectionResult {
+  Mat4<S> B;
+  bool degenerate = false;  ///< rank A <= 2 (status degenerate-quadric)
+  const char* status() const { return degenerate ? "degenerate-quadric" : "ok"; }
+};
+
+/// Mirror image of A in the mirror with matrix M, by either route.
+template <class S> ReflectionResult<S> reflection(const Mat4<S>& A, const Mat4<S>& M, Method method) {
+  ReflectionResult<S> r;
+  r.degenerate = is_degenerate_quadric<S>(A);
+  r.B = method == Method::paper ? mirror_image_paper<S>(A, M) : mirror_image<S>(A, M);
+  return r;
+}
+
+}  // namespace qverify

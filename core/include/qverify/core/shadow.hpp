@@ -1,0 +1,252 @@
+#pragma once
+/// \file shadow.hpp
+/// Shadow volume of a quadric A lit by a light L, equations (2)-(6) of
+/// Hashimoto & Suenaga, "A study on the transformation of quadric surfaces".
+///
+/// The light is a homogeneous 4-vector: L = (p, 1) for a point light at p,
+/// L = (v, 0) for a light at infinity in direction v (a parallel light
+/// travelling along d has v = -d).
+///
+/// Two routes compute the same three results:
+///  - *direct* (projective formulas, defined for every light):
+///      P  = (L^T A L) A - (A L)(A L)^T              tangent cone from L
+///      pi = A L                                     polar plane of L
+///      R  = pi h^T + h pi^T                         plane pi read as a quadric
+///    with h the plane that the paper's frame sends to infinity
+///    (h = (0, 0, 1, -l_z) for a point light, the plane at infinity e4 for a
+///    parallel light);
+///  - *paper*: M, T, C (2), D (4), P (3), S (5), R (6) as the paper builds them.
+/// Both give P up to a positive factor (1/l_z^2), pi up to a positive factor
+/// (after orienting S) and R up to a non-zero factor.
+
+#include <qverify/core/quadric.hpp>
+
+namespace qverify {
+
+/// How a result was computed.
+enum class Method { direct, paper };
+
+// ---------------------------------------------------------------- direct route
+
+/// Polar plane of L with respect to A: pi = A L. Its intersection with A is the
+/// terminator (the points where rays from L graze A).
+template <class S> Vec4<S> polar_plane(const Mat4<S>& A, const Vec4<S>& L) { return A * L; }
+
+/// Tangent cone of A from L (the cone P of eq. (3), apex L):
+///   P = (L^T A L) A - (A L)(A L)^T.
+/// P L = 0 (L is its apex) and P agrees with A on the polar plane up to the
+/// factor L^T A L, so P contains the terminator.
+template <class S> Mat4<S> tangent_cone(const Mat4<S>& A, const Vec4<S>& L) {
+  const Vec4<S> AL = A * L;
+  return L.dot(AL) * A - AL * AL.transpose();
+}
+
+/// The plane that the paper's frame change N = T M sends to infinity (row 4 of
+/// N up to a factor): z = l_z for a point light, the plane at infinity for a
+/// parallel light.
+template <class S> Vec4<S> frame_plane(const Vec4<S>& L) {
+  if (L(3) == S(0)) return Vec4<S>(S(0), S(0), S(0), S(1));
+  return Vec4<S>(S(0), S(0), L(3), S(-L(2)));
+}
+
+/// The quadric R of eq. (6) by the direct route: the polar plane pi read as a
+/// quadric in the paper's way, pi h^T + h pi^T (the plane pair pi ∪ h).
+/// It contains the terminator A ∩ pi.
+template <class S> Mat4<S> terminator_quadric(const Mat4<S>& A, const Vec4<S>& L) {
+  return plane_pair<S>(polar_plane<S>(A, L), frame_plane<S>(L));
+}
+
+// ------------------------------------------------------------------ paper route
+
+/// The paper's normalising frame for a light L:
+///  M: translation by (-l_x, -l_y, 0) (for a parallel light, whose translation
+///     is not defined, the shear x -= (v_x/v_z) z, y -= (v_y/v_z) z, which
+///     carries the direction v to the z axis);
+///  T: perspective transformation along Z with vanishing point (0, 0, l_z):
+///     w' = w - z / l_z, sending the light to the point at infinity of the z
+///     axis (identity for a parallel light, already at infinity).
+/// `singular` when T (l_z = 0) or the shear (v_z = 0) does not exist; the
+/// matrices are then left as identities.
+template <class S> struct PaperFrame {
+  Mat4<S> M = Mat4<S>::Identity(), Minv = Mat4<S>::Identity();
+  Mat4<S> T = Mat4<S>::Identity(), Tinv = Mat4<S>::Identity();
+  bool singular = false;
+  /// (N L)_z where N = T M: the light sits at (N L)_z e3 in the frame of C.
+  S light_z = S(0);
+};
+
+template <class S> PaperFrame<S> paper_frame(const Vec4<S>& L) {
+  PaperFrame<S> f;
+  if (L(2) == S(0)) {
+    f.singular = true;
+    return f;
+  }
+  if (L(3) == S(0)) {  // parallel light: shear, T = I
+    const S sx = L(0) / L(2), sy = L(1) / L(2);
+    f.M(0, 2) = -sx;
+    f.M(1, 2) = -sy;
+    f.Minv(0, 2) = sx;
+    f.Minv(1, 2) = sy;
+    f.light_z = L(2);
+    return f;
+  }
+  const S lx = L(0) / L(3), ly = L(1) / L(3), lz = L(2) / L(3);
+  f.M(0, 3) = -lx;
+  f.M(1, 3) = -ly;
+  f.Minv(0, 3) = lx;
+  f.Minv(1, 3) = ly;
+  f.T(3, 2) = S(-1) / lz;
+  f.Tinv(3, 2) = S(1) / lz;
+  f.light_z = lz;  // T M (l, 1) = (0, 0, l_z, 0)
+  return f;
+}
+
+/// Eq. (2): C = (T^{-1})^T (M^{-1})^T A M^{-1} T^{-1}, the quadric in the frame
+/// where the light sits at infinity on the z axis.
+template <class S> Mat4<S> paper_C(const Mat4<S>& A, const PaperFrame<S>& f) {
+  const Mat4<S> Ninv = f.Minv * f.Tinv;
+  return Ninv.transpose() * A * Ninv;
+}
+
+/// Eq. (4): the elliptic cylinder D along Z through the outline of C (the curve
+/// of C where dC/dz = 0), entry by entry as printed, with
+/// C = [[a1 b1 b2 c1] [b1 a2 b3 c2] [b2 b3 a3 c3] [c1 c2 c3 d]].
+/// (Identically D = a3 C - (C e3)(C e3)^T: z is eliminated.)
+template <class S> Mat4<S> paper_D(const Mat4<S>& C) {
+  const S a1 = C(0, 0), a2 = C(1, 1), a3 = C(2, 2), d = C(3, 3);
+  const S b1 = C(0, 1), b2 = C(0, 2), b3 = C(1, 2);
+  const S c1 = C(0, 3), c2 = C(1, 3), c3 = C(2, 3);
+  Mat4<S> D = Mat4<S>::Zero();
+  D(0, 0) = a1 * a3 - b2 * b2;
+  D(0, 1) = D(1, 0) = a3 * b1 - b2 * b3;
+  D(0, 3) = D(3, 0) = a3 * c1 - b2 * c3;
+  D(1, 1) = a2 * a3 - b3 * b3;
+  D(1, 3) = D(3, 1) = a3 * c2 - b3 * c3;
+  D(3, 3) = a3 * d - c3 * c3;
+  return D;
+}
+
+/// Eq. (3): P = M^T T^T D T M, the cylinder D carried back to a cone with apex L.
+template <class S> Mat4<S> paper_P(const Mat4<S>& D, const PaperFrame<S>& f) {
+  const Mat4<S> N = f.T * f.M;
+  return N.transpose() * D * N;
+}
+
+/// Eq. (5): the plane S: b2 x + b3 y + a3 z + c3 = 0 (that is dC/dz = 0, the
+/// polar plane of the light e3 in the frame of C), as (b2, b3, a3, c3).
+template <class S> Vec4<S> paper_S(const Mat4<S>& C) { return C.col(2); }
+
+/// S carried back through T and M: the plane N^T S (= A L / (N L)_z), oriented
+/// by the sign of (N L)_z so that it is A L up to a *positive* factor.
+template <class S> Vec4<S> paper_polar_plane(const Vec4<S>& Splane, const PaperFrame<S>& f) {
+  const Mat4<S> N = f.T * f.M;
+  Vec4<S> pi = N.transpose() * Splane;
+  if (f.light_z < S(0)) pi = -pi;
+  return pi;
+}
+
+/// Eq. (6): R, the plane S carried back through T and M, read as a quadric:
+/// S is the quadric S e4^T + e4 S^T in the frame of C (the affine equation
+/// times w), and R = (T M)^T (S e4^T + e4 S^T) (T M). Section 2.2 of the
+/// paper. (The matrix printed as (6) is audited separately by `qverify paper`.)
+template <class S> Mat4<S> paper_R(const Vec4<S>& Splane, const PaperFrame<S>& f) {
+  const Mat4<S> N = f.T * f.M;
+  const Vec4<S> e4(S(0), S(0), S(0), S(1));
+  return N.transpose() * plane_pair<S>(Splane, e4) * N;
+}
+
+// --------------------------------------------------------------------- results
+
+/// Special cases of a shadow item, the status words of the CLI contract.
+enum class ShadowFlag : unsigned {
+  degenerate_quadric = 1u << 0,  ///< rank A <= 2
+  light_on_surface = 1u << 1,    ///< L^T A L = 0 (P collapses to -(AL)(AL)^T)
+  no_real_silhouette = 1u << 2,  ///< the terminator A ∩ pi has no real point
+  singular_frame = 1u << 3,      ///< method paper: T or M does not exist (l_z = 0)
+};
+
+/// Status words in priority order (the first flag set is an item's `status`).
+inline const char* flag_word(ShadowFlag f) {
+  switch (f) {
+    case ShadowFlag::degenerate_quadric: return "degenerate-quadric";
+    case ShadowFlag::light_on_surface: return "light-on-surface";
+    case ShadowFlag::no_real_silhouette: return "no-real-silhouette";
+    case ShadowFlag::singular_frame: return "singular-frame";
+  }
+  return "ok";
+}
+constexpr ShadowFlag kFlagOrder[] = {ShadowFlag::degenerate_quadric, ShadowFlag::light_on_surface,
+                                     ShadowFlag::no_real_silhouette, ShadowFlag::singular_frame};
+
+/// The paper route's intermediate matrices, kept for inspection.
+template <class S> struct PaperIntermediates {
+  PaperFrame<S> frame;
+  Mat4<S> C, D;
+  Vec4<S> S_plane;
+};
+
+template <class S> struct ShadowResult {
+  Mat4<S> P, R;
+  Vec4<S> polar_plane;
+  unsigned flags = 0;
+  /// Method paper with a singular frame: P, pi and R come from the direct formulas.
+  bool direct_fallback = false;
+  bool has_paper = false;
+  PaperIntermediates<S> paper;
+
+  bool has(ShadowFlag f) const { return flags & static_cast<unsigned>(f); }
+  /// The item's status word: "ok" or the highest-priority flag.
+  const char* status() const {
+    for (ShadowFlag f : kFlagOrder)
+      if (has(f)) return flag_word(f);
+    return "ok";
+  }
+};
+
+/// Geometric special cases of (A, L), decided exactly for exact types and
+/// with the core's relative tolerance (64 eps, scale-aware) for floating ones:
+///  - degenerate-quadric: |adj A| <= tol |A|^3;
+///  - light-on-surface: |L^T A L| <= tol |L|^T |A| |L|;
+///  - no-real-silhouette: the conic of A on the polar plane is definite.
+template <class S> unsigned shadow_flags(const Mat4<S>& A, const Vec4<S>& L) {
+  unsigned flags = 0;
+  if (is_degenerate_quadric<S>(A)) flags |= static_cast<unsigned>(ShadowFlag::degenerate_quadric);
+  const Vec4<S> AL = A * L;
+  const Vec4<S> absL = L.unaryExpr([](const S& x) { return abs_of<S>(x); });
+  const Mat4<S> absA = A.unaryExpr([](const S& x) { return abs_of<S>(x); });
+  const S s = L.dot(AL), scale = absL.dot(absA * absL);
+  if (negligible<S>(s, scale)) {
+    flags |= static_cast<unsigned>(ShadowFlag::light_on_surface);
+  } else if (conic_is_empty<S>(conic_on_plane<S>(A, AL))) {
+    flags |= static_cast<unsigned>(ShadowFlag::no_real_silhouette);
+  }
+  return flags;
+}
+
+/// Shadow volume of A under L by either route (see the file comment).
+template <class S> ShadowResult<S> shadow(const Mat4<S>& A, const Vec4<S>& L, Method method) {
+  ShadowResult<S> r;
+  r.flags = shadow_flags<S>(A, L);
+  if (method == Method::paper) {
+    r.paper.frame = paper_frame<S>(L);
+    if (r.paper.frame.singular) {
+      r.flags |= static_cast<unsigned>(ShadowFlag::singular_frame);
+      r.direct_fallback = true;
+    } else {
+      r.has_paper = true;
+      r.paper.C = paper_C<S>(A, r.paper.frame);
+      r.paper.D = paper_D<S>(r.paper.C);
+      r.paper.S_plane = paper_S<S>(r.paper.C);
+      r.P = paper_P<S>(r.paper.D, r.paper.frame);
+      r.polar_plane = paper_polar_plane<S>(r.paper.S_plane, r.paper.frame);
+      r.R = paper_R<S>(r.paper.S_plane, r.paper.frame);
+      return r;
+    }
+  }
+  r.P = tangent_cone<S>(A, L);
+  r.polar_plane = polar_plane<S>(A, L);
+  r.R = terminator_quadric<S>(A, L);
+  return r;
+}
+
+}  // namespace qverify

@@ -1,0 +1,112 @@
+// Must precede every inclusion of mpfr.h (Boost's headers include it too).
+#define MPFR_WANT_FLOAT128 1
+#include <mpfr.h>
+
+#include <qverify/exact/rounding.hpp>
+
+namespace qverify {
+namespace {
+
+/// Rounds q to nearest in a binary format with `prec` bits of significand and
+/// MPFR exponent range [emin, emax] (significand in [1/2, 1)), subnormals
+/// included. Returns the MPFR value (caller clears it) via `out`.
+void round_in_format(mpfr_t out, const Rational& q, mpfr_prec_t prec, mpfr_exp_t emin, mpfr_exp_t emax,
+                     RoundingReport& rep) {
+  const mpfr_exp_t old_min = mpfr_get_emin(), old_max = mpfr_get_emax();
+  mpfr_set_emin(emin);
+  mpfr_set_emax(emax);
+  mpfr_init2(out, prec);
+  int inex = mpfr_set_q(out, q.backend().data(), MPFR_RNDN);
+  inex = mpfr_check_range(out, inex, MPFR_RNDN);
+  inex = mpfr_subnormalize(out, inex, MPFR_RNDN);
+  rep.inexact = rep.inexact || inex != 0;
+  if (mpfr_inf_p(out)) rep.overflow = true;
+  if (q != 0 && (mpfr_zero_p(out) || mpfr_get_exp(out) < emin + prec - 1)) rep.underflow = true;
+  mpfr_set_emin(old_min);
+  mpfr_set_emax(old_max);
+}
+
+template <class F> Rational binary_to_rational(F x) {
+  // Every finite binary float is m * 2^e with integer m: read it exactly through MPFR.
+  mpfr_t t;
+  mpfr_init2(t, 128);
+  if constexpr (std::is_same_v<F, float> || std::is_same_v<F, double>) mpfr_set_d(t, static_cast<double>(x), MPFR_RNDN);
+  else mpfr_set_ld(t, x, MPFR_RNDN);
+  mpq_t r;
+  mpq_init(r);
+  mpfr_get_q(r, t);
+  Rational out{r};
+  mpq_clear(r);
+  mpfr_clear(t);
+  return out;
+}
+
+}  // namespace
+
+template <> float round_rational<float>(const Rational& q, RoundingReport& rep) {
+  mpfr_t t;
+  round_in_format(t, q, 24, -148, 128, rep);
+  const float f = mpfr_get_flt(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return f;
+}
+
+template <> double round_rational<double>(const Rational& q, RoundingReport& rep) {
+  mpfr_t t;
+  round_in_format(t, q, 53, -1073, 1024, rep);
+  const double d = mpfr_get_d(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return d;
+}
+
+template <> long double round_rational<long double>(const Rational& q, RoundingReport& rep) {
+  static_assert(std::numeric_limits<long double>::digits == 64, "x87 extended long double expected");
+  mpfr_t t;
+  round_in_format(t, q, 64, -16444, 16384, rep);
+  const long double d = mpfr_get_ld(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return d;
+}
+
+template <> Float128 round_rational<Float128>(const Rational& q, RoundingReport& rep) {
+  mpfr_t t;
+  round_in_format(t, q, 113, -16493, 16384, rep);
+  const __float128 d = mpfr_get_float128(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return Float128(d);
+}
+
+template <> Mpfr round_rational<Mpfr>(const Rational& q, RoundingReport& rep) {
+  Mpfr x;  // current default precision
+  const int inex = mpfr_set_q(x.backend().data(), q.backend().data(), MPFR_RNDN);
+  rep.inexact = rep.inexact || inex != 0;
+  return x;
+}
+
+Rational to_rational(float x) { return binary_to_rational(x); }
+Rational to_rational(double x) { return binary_to_rational(x); }
+Rational to_rational(long double x) { return binary_to_rational(x); }
+
+Rational to_rational(const Float128& x) {
+  mpfr_t t;
+  mpfr_init2(t, 113);
+  mpfr_set_float128(t, x.backend().value(), MPFR_RNDN);
+  mpq_t r;
+  mpq_init(r);
+  mpfr_get_q(r, t);
+  Rational out{r};
+  mpq_clear(r);
+  mpfr_clear(t);
+  return out;
+}
+
+Rational to_rational(const Mpfr& x) {
+  mpq_t r;
+  mpq_init(r);
+  mpfr_get_q(r, x.backend().data());
+  Rational out{r};
+  mpq_clear(r);
+  return out;
+}
+
+}  // namespace qverify

@@ -1,0 +1,12 @@
+#pragma once
+/// \file instantiate.hpp
+/// Explicit instantiation (QVERIFY_INSTANTIATE) and suppression of implicit
+/// instantiation (QVERIFY_EXTERN) of the generic pipeline for a scalar type.
+#include <qverify/verify/eval.hpp>
+#include <qverify/verify/scalar_list.hpp>
+
+#define QVERIFY_INSTANTIATE(T) \
+  template nlohmann::json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);
+
+#define QVERIFY_EXTERN(T) \
+  extern template nlohmann::json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);

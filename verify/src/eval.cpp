@@ -1,0 +1,24 @@
+#include <qverify/verify/instantiate.hpp>
+
+QVERIFY_FOR_EACH_SCALAR(QVERIFY_EXTERN)
+
+namespace qverify {
+
+nlohmann::json skipped_json(const Scene& sc) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Pair& p : sc.skipped_shadows())
+    out.push_back({{"quadric", sc.quadrics[p.quadric].id},
+                   {"light", sc.lights[p.other].id},
+                   {"reason", "not requested (requests.shadows)"}});
+  for (const Pair& p : sc.skipped_reflections())
+    out.push_back({{"quadric", sc.quadrics[p.quadric].id},
+                   {"mirror", sc.mirrors[p.other].id},
+                   {"reason", "not requested (requests.reflections)"}});
+  return out;
+}
+
+nlohmann::json eval_document(const Scene& sc, const Precision& prec, Method method) {
+  return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method); });
+}
+
+}  // namespace qverify

@@ -1,0 +1,170 @@
+#include <qverify/verify/json_tree.hpp>
+#include <qverify/verify/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+namespace qverify {
+
+const char* JsonNode::kind_name() const {
+  switch (kind) {
+    case Kind::null: return "null";
+    case Kind::boolean: return "a boolean";
+    case Kind::number: return "a number";
+    case Kind::string: return "a string";
+    case Kind::array: return "an array";
+    case Kind::object: return "an object";
+  }
+  return "?";
+}
+
+namespace {
+
+using nlohmann::json;
+
+/// SAX handler building a JsonNode tree; tracks the JSON path for messages.
+class TreeBuilder : public nlohmann::json_sax<json> {
+ public:
+  TreeBuilder(std::string file, const JsonLimits& limits) : file_(std::move(file)), limits_(limits) {}
+
+  JsonNode root;
+
+  bool null() override { return put(JsonNode{}); }
+  bool boolean(bool b) override {
+    JsonNode n;
+    n.kind = JsonNode::Kind::boolean;
+    n.boolean = b;
+    return put(std::move(n));
+  }
+  bool number_integer(number_integer_t v) override { return number(std::to_string(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return number(std::to_string(v)); }
+  bool number_float(number_float_t, const string_t& s) override { return number(s); }
+  bool string(string_t& s) override {
+    JsonNode n;
+    n.kind = JsonNode::Kind::string;
+    n.text = s;
+    return put(std::move(n));
+  }
+  bool binary(binary_t&) override { throw InputError(file_, path(), "binary values are not JSON"); }
+  bool start_object(std::size_t) override {
+    JsonNode n;
+    n.kind = JsonNode::Kind::object;
+    return open(std::move(n));
+  }
+  bool key(string_t& k) override {
+    JsonNode* top = stack_.back();
+    for (const auto& m : top->members)
+      if (m.first == k) throw InputError(file_, path() + (path().empty() ? "" : ".") + k, "duplicate key");
+    key_ = k;
+    have_key_ = true;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override {
+    JsonNode n;
+    n.kind = JsonNode::Kind::array;
+    return open(std::move(n));
+  }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t pos, const std::string&, const nlohmann::detail::exception& ex) override {
+    std::string msg = ex.what();
+    // nlohmann's messages start with "[json.exception.parse_error.101] "; keep the rest.
+    const auto b = msg.find("] ");
+    if (b != std::string::npos) msg = msg.substr(b + 2);
+    throw InputError(file_, path(), "invalid JSON at byte " + std::to_string(pos) + ": " + msg);
+  }
+
+ private:
+  std::string file_;
+  JsonLimits limits_;
+  std::vector<JsonNode*> stack_;
+  std::string key_;
+  bool have_key_ = false;
+  bool have_root_ = false;
+
+  std::string path() const {
+    std::string p;
+    const JsonNode* parent = nullptr;
+    for (const JsonNode* n : stack_) {
+      if (parent) {
+        if (parent->kind == JsonNode::Kind::array) p += "[" + std::to_string(parent->items.size() - 1) + "]";
+        else p += (p.empty() ? "" : ".") + parent->members.back().first;
+      }
+      parent = n;
+    }
+    if (parent && parent->kind == JsonNode::Kind::object && have_key_) p += (p.empty() ? "" : ".") + key_;
+    if (parent && parent->kind == JsonNode::Kind::array) p += "[" + std::to_string(parent->items.size()) + "]";
+    return p;
+  }
+
+  bool number(const std::string& s) {
+    JsonNode n;
+    n.kind = JsonNode::Kind::number;
+    n.text = s;
+    return put(std::move(n));
+  }
+
+  JsonNode* put_ptr(JsonNode&& n) {
+    if (stack_.empty()) {
+      root = std::move(n);
+      have_root_ = true;
+      return &root;
+    }
+    JsonNode* top = stack_.back();
+    if (top->kind == JsonNode::Kind::array) {
+      top->items.push_back(std::move(n));
+      return &top->items.back();
+    }
+    top->members.emplace_back(key_, std::move(n));
+    have_key_ = false;
+    return &top->members.back().second;
+  }
+  bool put(JsonNode&& n) {
+    put_ptr(std::move(n));
+    return true;
+  }
+  bool open(JsonNode&& n) {
+    if (stack_.size() >= limits_.max_depth)
+      throw InputError(file_, path(), "nesting deeper than " + std::to_string(limits_.max_depth) + " levels");
+    JsonNode* p = put_ptr(std::move(n));
+    stack_.push_back(p);
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    have_key_ = false;
+    return true;
+  }
+};
+
+}  // namespace
+
+JsonNode parse_json_tree(const std::string& text, const std::string& file, const JsonLimits& limits) {
+  if (text.size() > limits.max_bytes)
+    throw InputError(file, "", "file is larger than " + std::to_string(limits.max_bytes) + " bytes");
+  TreeBuilder b(file, limits);
+  json::sax_parse(text, &b, json::input_format_t::json, true, false);
+  return std::move(b.root);
+}
+
+std::string read_text_file(const std::string& file, std::size_t max_bytes) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "", "cannot open file");
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size < 0) throw InputError(file, "", "cannot read file (not a regular file?)");
+  if (static_cast<std::size_t>(size) > max_bytes)
+    throw InputError(file, "", "file is larger than " + std::to_string(max_bytes) + " bytes");
+  in.seekg(0);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+JsonNode read_json_file(const std::string& file, const JsonLimits& limits) {
+  return parse_json_tree(read_text_file(file, limits.max_bytes), file, limits);
+}
+
+}  // namespace qverify
