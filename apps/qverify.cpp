@@ -8,7 +8,7 @@
 
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 using namespace qverify;
 
 constexpr int kOk = 0, kUsage = 2, kInternal = 3;

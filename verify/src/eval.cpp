@@ -4,8 +4,8 @@ QVERIFY_FOR_EACH_SCALAR(QVERIFY_EXTERN)
 
 namespace qverify {
 
-nlohmann::json skipped_json(const Scene& sc) {
-  nlohmann::json out = nlohmann::json::array();
+nlohmann::ordered_json skipped_json(const Scene& sc) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const Pair& p : sc.skipped_shadows())
     out.push_back({{"quadric", sc.quadrics[p.quadric].id},
                    {"light", sc.lights[p.other].id},
@@ -17,7 +17,7 @@ nlohmann::json skipped_json(const Scene& sc) {
   return out;
 }
 
-nlohmann::json eval_document(const Scene& sc, const Precision& prec, Method method) {
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method) {
   return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method); });
 }
 

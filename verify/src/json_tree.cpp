@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <string_view>
 #include <sstream>
 
 namespace qverify {
@@ -24,10 +25,68 @@ namespace {
 
 using nlohmann::json;
 
+/// True when t is a JSON number: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+bool json_number_grammar(std::string_view t) {
+  std::size_t i = 0;
+  auto digits = [&] {
+    const std::size_t b = i;
+    while (i < t.size() && t[i] >= '0' && t[i] <= '9') ++i;
+    return i > b;
+  };
+  if (i < t.size() && t[i] == '-') ++i;
+  if (i < t.size() && t[i] == '0') ++i;
+  else if (!digits()) return false;
+  if (i < t.size() && t[i] == '.') {
+    ++i;
+    if (!digits()) return false;
+  }
+  if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+    ++i;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == t.size();
+}
+
+/// nlohmann converts every number literal to a double on the way and refuses
+/// literals beyond the double range (1e400), although an exact scene may hold
+/// them. So each well-formed number literal is taken out first: its text is
+/// recorded (document order) and it is overwritten by "0" padded with spaces
+/// (byte offsets stay the same). The SAX callbacks take the texts back in order.
+std::vector<std::string> take_out_numbers(std::string& text) {
+  std::vector<std::string> numbers;
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  while (i < n) {
+    const char c = text[i];
+    if (c == '"') {  // skip a string, honouring escapes
+      ++i;
+      while (i < n && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
+      ++i;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      std::size_t j = i;
+      while (j < n && (text[j] == '-' || text[j] == '+' || text[j] == '.' || text[j] == 'e' || text[j] == 'E' ||
+                       (text[j] >= '0' && text[j] <= '9')))
+        ++j;
+      const std::string_view tok(text.data() + i, j - i);
+      if (json_number_grammar(tok)) {
+        numbers.emplace_back(tok);
+        text[i] = '0';
+        for (std::size_t k = i + 1; k < j; ++k) text[k] = ' ';
+      }
+      i = j;
+    } else {
+      ++i;
+    }
+  }
+  return numbers;
+}
+
 /// SAX handler building a JsonNode tree; tracks the JSON path for messages.
 class TreeBuilder : public nlohmann::json_sax<json> {
  public:
-  TreeBuilder(std::string file, const JsonLimits& limits) : file_(std::move(file)), limits_(limits) {}
+  TreeBuilder(std::string file, const JsonLimits& limits, std::vector<std::string> numbers)
+      : file_(std::move(file)), limits_(limits), numbers_(std::move(numbers)) {}
 
   JsonNode root;
 
@@ -38,9 +97,10 @@ class TreeBuilder : public nlohmann::json_sax<json> {
     n.boolean = b;
     return put(std::move(n));
   }
-  bool number_integer(number_integer_t v) override { return number(std::to_string(v)); }
-  bool number_unsigned(number_unsigned_t v) override { return number(std::to_string(v)); }
-  bool number_float(number_float_t, const string_t& s) override { return number(s); }
+  // Every literal was replaced by 0 (see take_out_numbers): take the next recorded text.
+  bool number_integer(number_integer_t) override { return number(); }
+  bool number_unsigned(number_unsigned_t) override { return number(); }
+  bool number_float(number_float_t, const string_t&) override { return number(); }
   bool string(string_t& s) override {
     JsonNode n;
     n.kind = JsonNode::Kind::string;
@@ -79,6 +139,8 @@ class TreeBuilder : public nlohmann::json_sax<json> {
  private:
   std::string file_;
   JsonLimits limits_;
+  std::vector<std::string> numbers_;
+  std::size_t next_number_ = 0;
   std::vector<JsonNode*> stack_;
   std::string key_;
   bool have_key_ = false;
@@ -99,10 +161,11 @@ class TreeBuilder : public nlohmann::json_sax<json> {
     return p;
   }
 
-  bool number(const std::string& s) {
+  bool number() {
+    if (next_number_ >= numbers_.size()) throw InputError(file_, path(), "internal: number literals out of step");
     JsonNode n;
     n.kind = JsonNode::Kind::number;
-    n.text = s;
+    n.text = std::move(numbers_[next_number_++]);
     return put(std::move(n));
   }
 
@@ -144,8 +207,10 @@ class TreeBuilder : public nlohmann::json_sax<json> {
 JsonNode parse_json_tree(const std::string& text, const std::string& file, const JsonLimits& limits) {
   if (text.size() > limits.max_bytes)
     throw InputError(file, "", "file is larger than " + std::to_string(limits.max_bytes) + " bytes");
-  TreeBuilder b(file, limits);
-  json::sax_parse(text, &b, json::input_format_t::json, true, false);
+  std::string masked = text;
+  std::vector<std::string> numbers = take_out_numbers(masked);
+  TreeBuilder b(file, limits, std::move(numbers));
+  json::sax_parse(masked, &b, json::input_format_t::json, true, false);
   return std::move(b.root);
 }
 

@@ -7,32 +7,32 @@
 
 namespace qverify {
 
-nlohmann::json scalar_json(float x) {
+nlohmann::ordered_json scalar_json(float x) {
   if (!std::isfinite(x)) return nullptr;
   return static_cast<double>(x);  // exact widening; the shortest double text reads back to x
 }
-nlohmann::json scalar_json(double x) {
+nlohmann::ordered_json scalar_json(double x) {
   if (!std::isfinite(x)) return nullptr;
   return x;  // nlohmann writes the shortest round-trip representation
 }
-nlohmann::json scalar_json(long double x) {
+nlohmann::ordered_json scalar_json(long double x) {
   if (!std::isfinite(x)) return nullptr;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*Lg", std::numeric_limits<long double>::max_digits10, x);
   return std::string(buf);
 }
-nlohmann::json scalar_json(const Float128& x) {
+nlohmann::ordered_json scalar_json(const Float128& x) {
   if (!boost::multiprecision::isfinite(x)) return nullptr;
   return x.str(std::numeric_limits<Float128>::max_digits10, std::ios_base::fmtflags(0));
 }
-nlohmann::json scalar_json(const Mpfr& x) {
+nlohmann::ordered_json scalar_json(const Mpfr& x) {
   if (!boost::multiprecision::isfinite(x)) return nullptr;
   // p bits round-trip with ceil(p log10 2) + 1 significant digits.
   const auto bits = mpfr_get_prec(x.backend().data());
   const auto digits = static_cast<std::streamsize>(std::ceil(static_cast<double>(bits) * 0.30102999566398120)) + 1;
   return x.str(digits, std::ios_base::fmtflags(0));
 }
-nlohmann::json scalar_json(const Rational& x) { return x.str(); }
+nlohmann::ordered_json scalar_json(const Rational& x) { return x.str(); }
 
 std::string Precision::name() const {
   switch (kind) {

@@ -73,7 +73,7 @@ class Reader {
     else if (n.kind == Kind::string) v = parse_rational(n.text, err);
     else fail(path, std::string("expected a number (or a \"p/q\" string), found ") + n.kind_name());
     if (!v) fail(path, err);
-    return Num{*v, path};
+    return Num{*v, path, n.text};
   }
 
   std::vector<Num> numbers(const JsonNode& n, const std::string& path, std::size_t count) const {
@@ -148,7 +148,7 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
       r.keys(*body, bp, {"xx", "yy", "zz", "xy", "xz", "yz", "x", "y", "z", "c"});
       for (const char* nm : names) {
         const JsonNode* c = body->find(nm);
-        q.params.push_back(c ? r.number(*c, join(bp, nm)) : Num{Rational(0), join(bp, nm)});
+        q.params.push_back(c ? r.number(*c, join(bp, nm)) : Num{Rational(0), join(bp, nm), ""});
       }
       break;
     }
@@ -176,7 +176,7 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
         if (G.determinant() == 0) r.fail(join(bp, "axes"), "axes matrix is singular (its columns must be independent)");
       } else {
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) axes.push_back(Num{Rational(i == j ? 1 : 0), join(bp, "axes")});
+          for (int j = 0; j < 3; ++j) axes.push_back(Num{Rational(i == j ? 1 : 0), join(bp, "axes"), ""});
       }
       q.params.insert(q.params.end(), axes.begin(), axes.end());
       break;
@@ -326,9 +326,9 @@ Scene parse_scene(const std::string& text, const std::string& file) {
       c.eye = r.numbers(r.required(*cam, p, "eye"), "camera.eye", 3);
       c.look_at = r.numbers(r.required(*cam, p, "look_at"), "camera.look_at", 3);
       if (const JsonNode* up = cam->find("up")) c.up = r.numbers(*up, "camera.up", 3);
-      else c.up = {Num{0, "camera.up"}, Num{0, "camera.up"}, Num{1, "camera.up"}};
+      else c.up = {Num{0, "camera.up", ""}, Num{0, "camera.up", ""}, Num{1, "camera.up", ""}};
       if (const JsonNode* f = cam->find("fov_y_deg")) c.fov_y_deg = r.number(*f, "camera.fov_y_deg");
-      else c.fov_y_deg = Num{40, "camera.fov_y_deg"};
+      else c.fov_y_deg = Num{40, "camera.fov_y_deg", ""};
       if (!(c.fov_y_deg.value > 0 && c.fov_y_deg.value < 180)) r.fail("camera.fov_y_deg", "must be in (0, 180) degrees");
       auto pixels = [&](const char* key, long dflt) {
         const JsonNode* n = cam->find(key);

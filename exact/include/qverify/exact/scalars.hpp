@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <type_traits>
 
 namespace qverify {
 
@@ -34,6 +35,17 @@ inline unsigned set_mpfr_bits(unsigned bits) {
   while (boost::multiprecision::detail::digits10_2_2(d10) < bits) ++d10;
   Mpfr::default_precision(d10);
   return static_cast<unsigned>(boost::multiprecision::detail::digits10_2_2(d10));
+}
+
+/// Human-readable name of a scalar type of the ladder.
+template <class S> const char* scalar_name() {
+  if constexpr (std::is_same_v<S, float>) return "float";
+  else if constexpr (std::is_same_v<S, double>) return "double";
+  else if constexpr (std::is_same_v<S, long double>) return "long double";
+  else if constexpr (std::is_same_v<S, Float128>) return "float128";
+  else if constexpr (std::is_same_v<S, Mpfr>) return "mpfr";
+  else if constexpr (std::is_same_v<S, Rational>) return "exact rationals";
+  else return "this precision";
 }
 
 /// Bits of precision of a newly created Mpfr value.

@@ -50,8 +50,8 @@ inline const char* method_name(Method m) { return m == Method::paper ? "paper" :
 /// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
 /// (every special case that applies), `fallback` and the paper route's
 /// intermediates (`paper`: M, T, C, D, S).
-template <class S> nlohmann::json shadow_json(const Scene& sc, const ShadowItem<S>& it) {
-  nlohmann::json j;
+template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it) {
+  nlohmann::ordered_json j;
   j["quadric"] = sc.quadrics[it.pair.quadric].id;
   j["light"] = sc.lights[it.pair.other].id;
   const ShadowResult<S>& r = it.result;
@@ -60,7 +60,7 @@ template <class S> nlohmann::json shadow_json(const Scene& sc, const ShadowItem<
   j["P"] = matrix_json(r.P);
   j["polar_plane"] = matrix_json(r.polar_plane);
   j["R"] = matrix_json(r.R);
-  nlohmann::json flags = nlohmann::json::array();
+  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
   for (ShadowFlag f : kFlagOrder)
     if (r.has(f)) flags.push_back(flag_word(f));
   if (!finite) flags.push_back("non-finite");
@@ -76,8 +76,8 @@ template <class S> nlohmann::json shadow_json(const Scene& sc, const ShadowItem<
   return j;
 }
 
-template <class S> nlohmann::json reflection_json(const Scene& sc, const ReflectionItem<S>& it) {
-  nlohmann::json j;
+template <class S> nlohmann::ordered_json reflection_json(const Scene& sc, const ReflectionItem<S>& it) {
+  nlohmann::ordered_json j;
   j["quadric"] = sc.quadrics[it.pair.quadric].id;
   j["mirror"] = sc.mirrors[it.pair.other].id;
   const bool finite = all_finite(it.M) && all_finite(it.result.B);
@@ -88,21 +88,21 @@ template <class S> nlohmann::json reflection_json(const Scene& sc, const Reflect
 }
 
 /// The `skipped` list: every pair that was not requested, with the reason.
-nlohmann::json skipped_json(const Scene& sc);
+nlohmann::ordered_json skipped_json(const Scene& sc);
 
 /// The whole `qverify-eval/1` document.
 template <class S>
-nlohmann::json eval_document(const Scene& sc, const Precision& prec, Method method) {
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method) {
   const Evaluation<S> ev = evaluate<S>(sc, method);
-  nlohmann::json doc;
+  nlohmann::ordered_json doc;
   doc["format"] = "qverify-eval/1";
   doc["scene"] = sc.name;
   doc["precision"] = prec.name();
   doc["method"] = method_name(method);
   if (prec.kind == Precision::Kind::mpfr) doc["working_bits"] = mpfr_working_bits();
-  doc["shadows"] = nlohmann::json::array();
+  doc["shadows"] = nlohmann::ordered_json::array();
   for (const auto& it : ev.shadows) doc["shadows"].push_back(shadow_json(sc, it));
-  doc["reflections"] = nlohmann::json::array();
+  doc["reflections"] = nlohmann::ordered_json::array();
   for (const auto& it : ev.reflections) doc["reflections"].push_back(reflection_json(sc, it));
   doc["skipped"] = skipped_json(sc);
   doc["inputs_rounded"] = ev.scene.rounded_inputs;
@@ -111,6 +111,6 @@ nlohmann::json eval_document(const Scene& sc, const Precision& prec, Method meth
 
 /// eval_document for a run-time precision (one explicit instantiation per
 /// scalar type, each in its own translation unit).
-nlohmann::json eval_document(const Scene& sc, const Precision& prec, Method method);
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method);
 
 }  // namespace qverify

@@ -6,7 +6,7 @@
 #include <qverify/verify/scalar_list.hpp>
 
 #define QVERIFY_INSTANTIATE(T) \
-  template nlohmann::json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);
+  template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);
 
 #define QVERIFY_EXTERN(T) \
-  extern template nlohmann::json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);
+  extern template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);

@@ -13,21 +13,21 @@
 
 namespace qverify {
 
-nlohmann::json scalar_json(float x);
-nlohmann::json scalar_json(double x);
-nlohmann::json scalar_json(long double x);
-nlohmann::json scalar_json(const Float128& x);
-nlohmann::json scalar_json(const Mpfr& x);
-nlohmann::json scalar_json(const Rational& x);
+nlohmann::ordered_json scalar_json(float x);
+nlohmann::ordered_json scalar_json(double x);
+nlohmann::ordered_json scalar_json(long double x);
+nlohmann::ordered_json scalar_json(const Float128& x);
+nlohmann::ordered_json scalar_json(const Mpfr& x);
+nlohmann::ordered_json scalar_json(const Rational& x);
 
-template <class Derived> nlohmann::json matrix_json(const Eigen::MatrixBase<Derived>& m) {
-  nlohmann::json out = nlohmann::json::array();
+template <class Derived> nlohmann::ordered_json matrix_json(const Eigen::MatrixBase<Derived>& m) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
   if (m.cols() == 1) {
     for (Eigen::Index i = 0; i < m.rows(); ++i) out.push_back(scalar_json(m(i)));
     return out;
   }
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    nlohmann::json row = nlohmann::json::array();
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
     for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(scalar_json(m(i, j)));
     out.push_back(std::move(row));
   }

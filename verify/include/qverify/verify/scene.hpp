@@ -28,6 +28,7 @@ struct InputError : std::runtime_error {
 struct Num {
   Rational value;
   std::string path;
+  std::string text;  ///< the literal as written (for messages)
 };
 
 enum class Shape { matrix, coefficients, sphere, ellipsoid, cylinder, cone };
@@ -99,7 +100,9 @@ template <class S> struct TypedScene {
 template <class S> S typed_number(const Num& n, const std::string& file, TypedScene<S>& ts) {
   RoundingReport rep;
   S v = round_rational<S>(n.value, rep);
-  if (rep.overflow) throw InputError(file, n.path, "value " + n.value.str().substr(0, 40) + " is out of range for this precision");
+  if (rep.overflow)
+    throw InputError(file, n.path, "value " + (n.text.empty() ? n.value.str() : n.text).substr(0, 60) +
+                                       " is out of range for " + scalar_name<S>() + " (use --precision exact or mpfr)");
   if (rep.inexact) ts.rounded_inputs.push_back(n.path);
   return v;
 }

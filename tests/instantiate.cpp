@@ -1,0 +1,55 @@
+// Explicit instantiation of every core template for double and for the exact
+// rational: every member must compile for both (the generic code has one body).
+#include <qverify/core/core.hpp>
+#include <qverify/exact/scalars.hpp>
+
+#define QVERIFY_INSTANTIATE_CORE(S)                                                                          \
+  namespace qverify {                                                                                        \
+  template bool is_exact<S>();                                                                               \
+  template S abs_of<S>(const S&);                                                                            \
+  template int sign_of<S>(const S&);                                                                         \
+  template S status_tolerance<S>();                                                                          \
+  template bool negligible<S>(const S&, const S&);                                                           \
+  template Mat4<S> plane_pair<S>(const Vec4<S>&, const Vec4<S>&);                                            \
+  template Mat4<S> centred_quadric<S>(const Mat3<S>&, const Vec3<S>&, const S&);                             \
+  template Mat4<S> quadric_from_coefficients<S>(const S&, const S&, const S&, const S&, const S&, const S&,   \
+                                                const S&, const S&, const S&, const S&);                     \
+  template Mat4<S> sphere_quadric<S>(const Vec3<S>&, const S&);                                              \
+  template Mat3<S> adjugate3<S>(const Mat3<S>&);                                                             \
+  template Mat4<S> ellipsoid_quadric<S>(const Vec3<S>&, const Vec3<S>&, const Mat3<S>&);                     \
+  template Mat4<S> cylinder_quadric<S>(const Vec3<S>&, const Vec3<S>&, const S&);                            \
+  template Mat4<S> cone_quadric<S>(const Vec3<S>&, const Vec3<S>&, const S&);                                \
+  template S minor3<S>(const Mat4<S>&, const int[3], const int[3]);                                          \
+  template Mat4<S> adjugate4<S>(const Mat4<S>&);                                                             \
+  template bool is_degenerate_quadric<S>(const Mat4<S>&);                                                    \
+  template Mat3<S> conic_on_plane<S>(const Mat4<S>&, const Vec4<S>&);                                        \
+  template bool conic_is_empty<S>(const Mat3<S>&);                                                           \
+  template bool is_symmetric<S>(const Mat4<S>&, const S&);                                                   \
+  template Vec4<S> polar_plane<S>(const Mat4<S>&, const Vec4<S>&);                                           \
+  template Mat4<S> tangent_cone<S>(const Mat4<S>&, const Vec4<S>&);                                          \
+  template Vec4<S> frame_plane<S>(const Vec4<S>&);                                                           \
+  template Mat4<S> terminator_quadric<S>(const Mat4<S>&, const Vec4<S>&);                                    \
+  template struct PaperFrame<S>;                                                                             \
+  template PaperFrame<S> paper_frame<S>(const Vec4<S>&);                                                     \
+  template Mat4<S> paper_C<S>(const Mat4<S>&, const PaperFrame<S>&);                                         \
+  template Mat4<S> paper_D<S>(const Mat4<S>&);                                                               \
+  template Mat4<S> paper_P<S>(const Mat4<S>&, const PaperFrame<S>&);                                         \
+  template Vec4<S> paper_S<S>(const Mat4<S>&);                                                               \
+  template Vec4<S> paper_polar_plane<S>(const Vec4<S>&, const PaperFrame<S>&);                               \
+  template Mat4<S> paper_R<S>(const Vec4<S>&, const PaperFrame<S>&);                                         \
+  template struct PaperIntermediates<S>;                                                                     \
+  template struct ShadowResult<S>;                                                                           \
+  template unsigned shadow_flags<S>(const Mat4<S>&, const Vec4<S>&);                                         \
+  template ShadowResult<S> shadow<S>(const Mat4<S>&, const Vec4<S>&, Method);                                \
+  template Mat4<S> mirror_matrix<S>(const Vec4<S>&);                                                         \
+  template Mat4<S> mirror_image<S>(const Mat4<S>&, const Mat4<S>&);                                          \
+  template Mat4<S> mirror_image_paper<S>(const Mat4<S>&, const Mat4<S>&);                                    \
+  template struct ReflectionResult<S>;                                                                       \
+  template ReflectionResult<S> reflection<S>(const Mat4<S>&, const Mat4<S>&, Method);                        \
+  template S cross_residual(const Eigen::MatrixBase<Mat4<S>>&, const Eigen::MatrixBase<Mat4<S>>&);           \
+  template bool proportional(const Eigen::MatrixBase<Mat4<S>>&, const Eigen::MatrixBase<Mat4<S>>&, Factor,   \
+                             const S&);                                                                      \
+  }
+
+QVERIFY_INSTANTIATE_CORE(double)
+QVERIFY_INSTANTIATE_CORE(qverify::Rational)
