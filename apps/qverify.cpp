@@ -1,10 +1,14 @@
 // qverify command line: see shared/spec/cli.md for the contract.
 #include <qverify/verify/eval.hpp>
+#include <qverify/verify/paper_audit.hpp>
+#include <qverify/verify/verifier.hpp>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
+#include <sstream>
 
 namespace {
 
@@ -79,6 +83,63 @@ void print_eval(const json& doc) {
                doc["inputs_rounded"].size(), doc["precision"].get<std::string>());
 }
 
+void print_verify(const json& doc) {
+  fmt::print("scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}\n\n",
+             doc["scene"].get<std::string>(), doc["precision"].get<std::string>(), doc["method"].get<std::string>(),
+             doc["source"].get<std::string>(), doc["samples"].get<int>(), doc["seed"].get<std::uint64_t>());
+  fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>10} {:>11} {:>11} {:>11} {:>8}\n", "kind", "quadric", "with", "status",
+             "points", "tolerance", "max resid.", "max dist.", "proved", "");
+  for (const auto& c : doc["checks"]) {
+    const std::string other = c.contains("light") ? c["light"].get<std::string>() : c["mirror"].get<std::string>();
+    double res = 0, dist = 0;
+    for (const char* k : {"on_A", "on_P", "on_R", "on_B"})
+      if (c.contains(k)) {
+        res = std::max(res, c[k]["max_residual"].get<double>());
+        dist = std::max(dist, c[k]["max_distance"].get<double>());
+      }
+    fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>10.2e} {:>11.2e} {:>11.2e} {:>11}\n", c["kind"].get<std::string>(),
+               c["quadric"].get<std::string>(), other, c["status"].get<std::string>(),
+               c.contains("points") ? c["points"].get<int>() : 0, c.contains("tolerance") ? c["tolerance"].get<double>() : 0.0,
+               res, dist, c.contains("proved_exactly") ? std::to_string(c["proved_exactly"].get<int>()) : "-");
+    if (c.contains("reason")) fmt::print("            {}\n", c["reason"].get<std::string>());
+  }
+  fmt::print("\n{} passed, {} failed, {} skipped\n", doc["passed"].get<int>(), doc["failed"].get<int>(),
+             doc["skipped"].get<int>());
+}
+
+/// Wraps text at `width` columns with an indent.
+std::string wrap_text(const std::string& text, std::size_t width, const std::string& indent) {
+  std::string out, line;
+  std::istringstream words(text);
+  std::string w;
+  while (words >> w) {
+    if (!line.empty() && line.size() + 1 + w.size() > width) {
+      out += indent + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  if (!line.empty()) out += indent + line + "\n";
+  return out;
+}
+
+void print_paper(const std::vector<AuditEntry>& entries) {
+  fmt::print("Audit of Hashimoto & Suenaga, 'A study on the transformation of quadric surfaces' (exact arithmetic)\n\n");
+  fmt::print("{:<6} {:<20} {}\n", "eq.", "verdict", "claim");
+  fmt::print("{:-<6} {:-<20} {:-<70}\n", "", "", "");
+  for (const auto& e : entries)
+    fmt::print("{:<6} {:<20} {}\n", e.id, e.verdict + (e.factor.empty() ? "" : " (" + e.factor.substr(0, e.factor.find(' ')) + ")"),
+               e.claim.substr(0, 70) + (e.claim.size() > 70 ? "..." : ""));
+  for (const auto& e : entries) {
+    fmt::print("\n{} {}\n", e.id, e.verdict);
+    fmt::print("  claim:\n{}", wrap_text(e.claim, 96, "    "));
+    if (!e.reading.empty()) fmt::print("  reading:\n{}", wrap_text(e.reading, 96, "    "));
+    if (!e.factor.empty()) fmt::print("  factor:   {}\n", e.factor);
+    fmt::print("  evidence:\n{}", wrap_text(e.evidence, 96, "    "));
+    if (!e.corrected.empty()) fmt::print("  corrected:\n{}", wrap_text(e.corrected, 96, "    "));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -102,6 +163,22 @@ int main(int argc, char** argv) {
   CLI::App* eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
   add_common(eval);
 
+  CLI::App* verify = app.add_subcommand("verify",
+                                        "Check results on exact sample points: terminator points on A, P and R, "
+                                        "reflected points on B (a proof in exact arithmetic)");
+  add_common(verify);
+  int samples = 64;
+  std::uint64_t seed = 1;
+  std::string candidate;
+  verify->add_option("--samples", samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
+  verify->add_option("--seed", seed, "Seed of the deterministic sampler")->capture_default_str();
+  verify->add_option("--candidate", candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
+
+  CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
+  bool strict = false;
+  paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
+  paper->add_flag("--strict", strict, "Exit 1 when a printed formula fails its definition (errata found)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -122,6 +199,24 @@ int main(int argc, char** argv) {
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_eval(doc);
       return kOk;
+    }
+    if (verify->parsed()) {
+      const Precision prec = precision_of(precision_text);
+      const Method method = method_of(method_text);
+      const Scene sc = load_scene(scene_file);
+      const ResultSet rs = candidate.empty() ? computed_results(sc, prec, method) : candidate_results(sc, candidate, prec);
+      int failed = 0;
+      const json doc = verify_document(sc, rs, VerifyOptions{samples, seed}, failed);
+      if (as_json) std::cout << doc.dump(2) << "\n";
+      else print_verify(doc);
+      return failed > 0 ? 1 : kOk;
+    }
+    if (paper->parsed()) {
+      const auto entries = audit_paper();
+      if (as_json) std::cout << audit_json(entries).dump(2) << "\n";
+      else print_paper(entries);
+      const bool errata = std::any_of(entries.begin(), entries.end(), [](const AuditEntry& e) { return e.verdict == "fails"; });
+      return strict && errata ? 1 : kOk;
     }
   } catch (const UsageError& e) {
     std::cerr << "qverify: " << e.what() << "\n";

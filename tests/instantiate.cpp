@@ -22,6 +22,7 @@
   template S minor3<S>(const Mat4<S>&, const int[3], const int[3]);                                          \
   template Mat4<S> adjugate4<S>(const Mat4<S>&);                                                             \
   template bool is_degenerate_quadric<S>(const Mat4<S>&);                                                    \
+  template Eigen::Matrix<S, 4, 3> plane_basis<S>(const Vec4<S>&);                                           \
   template Mat3<S> conic_on_plane<S>(const Mat4<S>&, const Vec4<S>&);                                        \
   template bool conic_is_empty<S>(const Mat3<S>&);                                                           \
   template bool is_symmetric<S>(const Mat4<S>&, const S&);                                                   \

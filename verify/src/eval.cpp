@@ -21,4 +21,8 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
   return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method); });
 }
 
+ResultSet computed_results(const Scene& sc, const Precision& prec, Method method) {
+  return with_scalar(prec, [&](auto tag) { return computed_results<decltype(tag)>(sc, prec, method); });
+}
+
 }  // namespace qverify

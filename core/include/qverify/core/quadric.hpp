@@ -118,10 +118,11 @@ template <class S> bool is_degenerate_quadric(const Mat4<S>& A) {
   return negligible<S>(max_abs(adjugate4<S>(A)), S(s * s * s));
 }
 
-/// Restriction of the quadric A to the plane pi (pi^T x = 0): the 3x3 conic
-/// K = E^T A E, where the columns of E span the plane. E is division-free:
-/// with k the index of the largest |pi_k|, the columns are pi_k e_j - pi_j e_k (j != k).
-template <class S> Mat3<S> conic_on_plane(const Mat4<S>& A, const Vec4<S>& pi) {
+/// A basis of the plane pi^T x = 0 (a 3-dimensional subspace of homogeneous
+/// 4-vectors), division-free: with k the index of the largest |pi_k|, the
+/// columns are pi_k e_j - pi_j e_k (j != k). x = E s maps plane coordinates s
+/// to points of the plane.
+template <class S> Eigen::Matrix<S, 4, 3> plane_basis(const Vec4<S>& pi) {
   int k = 0;
   for (int i = 1; i < 4; ++i)
     if (abs_of<S>(pi(k)) < abs_of<S>(pi(i))) k = i;
@@ -132,6 +133,13 @@ template <class S> Mat3<S> conic_on_plane(const Mat4<S>& A, const Vec4<S>& pi) {
     E(k, col) = -pi(j);
     ++col;
   }
+  return E;
+}
+
+/// Restriction of the quadric A to the plane pi: the 3x3 conic K = E^T A E
+/// with E = plane_basis(pi).
+template <class S> Mat3<S> conic_on_plane(const Mat4<S>& A, const Vec4<S>& pi) {
+  const Eigen::Matrix<S, 4, 3> E = plane_basis<S>(pi);
   return E.transpose() * A * E;
 }
 

@@ -1,0 +1,69 @@
+#pragma once
+/// \file root_point.hpp
+/// Exact points with coordinates in a quadratic field Q(sqrt(delta)).
+///
+/// A rational line meets a quadric where a rational quadratic vanishes, so
+/// its two intersection points are x = p +- sqrt(delta) q with p, q rational:
+/// all four coordinates live in the *one* field Q(sqrt(delta)). Arithmetic in
+/// that field is CGAL's `Sqrt_extension` (exact zero tests and signs).
+///
+/// CGAL's precondition that two operands share the same root is checked only
+/// in debug builds (with NDEBUG a mixed root silently gives a wrong value,
+/// shared/notes/toolchain.md). A RootPoint therefore keeps one delta, and
+/// every value it produces is checked against it, in release builds too.
+
+#include <qverify/core/scalar.hpp>
+#include <qverify/exact/scalars.hpp>
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Sqrt_extension.h>
+
+#include <stdexcept>
+
+namespace qverify {
+
+using Gmpq = CGAL::Gmpq;
+/// a0 + a1 sqrt(root), exact.
+using RootNumber = CGAL::Sqrt_extension<Gmpq, Gmpq, CGAL::Tag_true, CGAL::Tag_true>;
+
+/// High precision (80 decimal digits) for *measuring* errors: independent of
+/// the working precision chosen with --precision.
+using Measure =
+    boost::multiprecision::number<boost::multiprecision::mpfr_float_backend<80>, boost::multiprecision::et_off>;
+
+Gmpq to_gmpq(const Rational& q);
+Rational to_rational(const Gmpq& q);
+Measure to_measure(const Rational& q);
+/// The real value of a0 + a1 sqrt(r) to 80 digits, without cancellation:
+/// where a0 and a1 sqrt(r) have opposite signs it is (a0^2 - a1^2 r) / (a0 - a1 sqrt(r)).
+Measure to_measure(const RootNumber& v);
+
+class RootPoint {
+ public:
+  /// x = p + sqrt(delta) q, delta >= 0 (normalised to an integer: sqrt(n/d) = sqrt(n d)/d).
+  RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta);
+
+  const Vec4<Rational>& p() const { return p_; }
+  const Vec4<Rational>& q() const { return q_; }
+  const Rational& delta() const { return delta_; }
+  /// Coordinates as field elements (all with root delta, or rational).
+  std::array<RootNumber, 4> coords() const;
+  /// The point M x (a rational linear map keeps the field).
+  RootPoint mapped(const Mat4<Rational>& M) const { return RootPoint(M * p_, M * q_, delta_, normalised{}); }
+  /// x^T Q x, computed in Q(sqrt(delta)) with CGAL's arithmetic.
+  RootNumber form(const Mat4<Rational>& Q) const;
+  /// pi . x.
+  RootNumber linear(const Vec4<Rational>& pi) const;
+  /// Approximate Cartesian coordinates (x/w), to 80 digits; requires w != 0.
+  Vec3<double> approx_cartesian() const;
+
+ private:
+  struct normalised {};
+  RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta, normalised)
+      : p_(p), q_(q), delta_(delta) {}
+  void check_root(const RootNumber& v) const;
+  Vec4<Rational> p_, q_;
+  Rational delta_;
+};
+
+}  // namespace qverify
