@@ -4,6 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <cstdio>
 #include <sys/wait.h>
 
@@ -108,4 +111,128 @@ TEST_CASE("bad input and usage exit 2 with nothing on stdout", "[cli]") {
   }
   CHECK(run("--help").code == 0);
   CHECK(run("eval --help").code == 0);
+}
+
+namespace {
+std::string temp_file(const std::string& name, const std::string& content) {
+  const auto dir = std::filesystem::temp_directory_path() / ("qverify-tests-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << content;
+  return path.string();
+}
+}  // namespace
+
+TEST_CASE("verify --precision exact proves every sampled point of the examples", "[cli][verify]") {
+  for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {
+    INFO(name);
+    const Run r = run("verify " + scene(name) + " --precision exact --json --samples 16 --seed 3");
+    REQUIRE(r.code == 0);
+    const auto doc = nlohmann::json::parse(r.out);
+    CHECK(doc["format"] == "qverify-verify/1");
+    CHECK(doc["samples"] == 16);
+    CHECK(doc["seed"] == 3);
+    CHECK(doc["failed"] == 0);
+    for (const auto& c : doc["checks"]) {
+      CHECK(c["status"] == "pass");
+      CHECK(c["proved_exactly"] == c["points"]);
+      CHECK(c["points"].get<int>() >= 1);
+      for (const char* k : {"on_A", "on_P", "on_R", "on_B"})
+        if (c.contains(k)) CHECK(c[k]["max_residual"] == 0);
+    }
+  }
+  // deterministic for a given seed
+  const Run a = run("verify " + scene("egg-sun-wall.json") + " --json --seed 9");
+  const Run b = run("verify " + scene("egg-sun-wall.json") + " --json --seed 9");
+  CHECK(a.out == b.out);
+}
+
+TEST_CASE("verify in floating precisions measures small residuals within tolerance", "[cli][verify]") {
+  for (const char* p : {"float", "double", "long-double", "float128", "mpfr:200"})
+    for (const char* m : {"direct", "paper"}) {
+      INFO(p << " " << m);
+      const Run r = run(std::string("verify ") + scene("mixed-requests.json") + " --json --samples 16 --precision " + p +
+                        " --method " + m);
+      REQUIRE(r.code == 0);
+      const auto doc = nlohmann::json::parse(r.out);
+      CHECK(doc["passed"] == 6);
+      for (const auto& c : doc["checks"]) {
+        CHECK_FALSE(c.contains("proved_exactly"));
+        CHECK(c["tolerance"].get<double>() > 0);
+      }
+    }
+}
+
+TEST_CASE("verify with a candidate catches wrong matrices and passes right ones", "[cli][verify][candidate]") {
+  const Run good = run("eval " + scene("mixed-requests.json") + " --json");
+  REQUIRE(good.code == 0);
+  const auto doc = nlohmann::json::parse(good.out);
+  auto verdict = [&](const nlohmann::json& cand, const std::string& name) {
+    const std::string f = temp_file(name + ".json", cand.dump());
+    return run("verify " + scene("mixed-requests.json") + " --json --candidate " + f);
+  };
+  CHECK(verdict(doc, "good").code == 0);
+  const Run exact = run("eval " + scene("mixed-requests.json") + " --json --precision exact --method paper");
+  const Run exact_check = verdict(nlohmann::json::parse(exact.out), "exact");
+  CHECK(exact_check.code == 0);
+  CHECK(nlohmann::json::parse(exact_check.out)["checks"][0]["proved_exactly"] == 64);
+
+  auto fails_with = [&](nlohmann::json cand, const std::string& name, const std::string& reason) {
+    const Run r = verdict(cand, name);
+    CHECK(r.code == 1);
+    const auto out = nlohmann::json::parse(r.out);
+    bool found = false;
+    for (const auto& c : out["checks"])
+      if (c["status"] == "fail" && c["reason"].get<std::string>().find(reason) != std::string::npos) found = true;
+    CHECK(found);
+  };
+  {  // P changed by one part in a million
+    auto c = doc;
+    for (auto& row : c["shadows"][2]["P"])
+      for (auto& x : row) x = x.get<double>() * (1 + 1e-6 * ((&x - &row[0]) % 2));
+    fails_with(c, "p-ppm", "on_P");
+  }
+  {  // R that does not contain the terminator
+    auto c = doc;
+    c["shadows"][0]["R"][3][3] = c["shadows"][0]["R"][3][3].get<double>() + 1.0;
+    fails_with(c, "r-off", "on_R");
+  }
+  {  // B with a wrong translation: reflect in z = -2.9 instead of z = -3
+    auto c = doc;
+    c["reflections"][1]["B"][2][3] = c["reflections"][1]["B"][2][3].get<double>() + 0.1;
+    c["reflections"][1]["B"][3][2] = c["reflections"][1]["B"][3][2].get<double>() + 0.1;
+    fails_with(c, "b-trans", "on_B");
+  }
+  {  // the contract's sign of P
+    auto c = doc;
+    for (auto& row : c["shadows"][1]["P"])
+      for (auto& x : row) x = -x.get<double>();
+    fails_with(c, "p-neg", "wrong sign");
+  }
+  {  // a missing item
+    auto c = doc;
+    c["reflections"].erase(0);
+    fails_with(c, "missing", "missing");
+  }
+  {  // malformed: exit 2, nothing on stdout
+    auto c = doc;
+    c["shadows"][0]["P"][0][1] = "abc";
+    const Run r = verdict(c, "malformed");
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+  }
+}
+
+TEST_CASE("paper --json lists every equation with a verdict", "[cli][paper]") {
+  const Run r = run("paper --json");
+  REQUIRE(r.code == 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  CHECK(doc["format"] == "qverify-paper/1");
+  REQUIRE(doc["equations"].size() == 11);
+  for (const auto& e : doc["equations"]) {
+    for (const char* k : {"id", "claim", "reading", "verdict", "evidence"}) CHECK(e.contains(k));
+    const std::string v = e["verdict"];
+    CHECK((v == "holds" || v == "holds-up-to-factor" || v == "fails" || v == "definition"));
+  }
+  CHECK(run("paper --strict --json").code == 1);  // the paper has errata
 }

@@ -1,0 +1,153 @@
+// The exact twin: Q(sqrt d) points, exact sampling, symbolic scalar, paper audit verdicts,
+// and the double core against the exact one on random rational data.
+#include "laws.hpp"
+
+#include <qverify/exact/polynomial.hpp>
+#include <qverify/exact/root_point.hpp>
+#include <qverify/exact/sampling.hpp>
+#include <qverify/verify/paper_audit.hpp>
+
+using namespace qverify;
+using Q = Rational;
+
+TEST_CASE("Q(sqrt d) arithmetic agrees with the closed form of a quadratic form", "[exact][root]") {
+  test::RandomRationals rng(7);
+  for (int k = 0; k < 30; ++k) {
+    const Mat4<Q> A = rng.symmetric();
+    const Vec4<Q> p = rng.vec4(), q = rng.vec4();
+    const Q delta = Q(1 + k * 3, 1 + k % 4);
+    const RootPoint x(p, q, delta);
+    const RootNumber f = x.form(A);
+    // x^T A x = p^T A p + delta q^T A q + 2 sqrt(delta) p^T A q, with q rescaled by the normalisation
+    const Q a0 = p.dot(A * p) + delta * q.dot(A * q);
+    const Q a1 = 2 * p.dot(A * q);
+    // compare numerically to 60 digits and exactly through the sign of the difference
+    const Measure expect = to_measure(a0) + to_measure(a1) * sqrt(to_measure(delta));
+    CHECK(abs(to_measure(f) - expect) <= Measure("1e-60") * (1 + abs(expect)));
+  }
+}
+
+TEST_CASE("values that leave the point's field are refused, in release builds too", "[exact][root]") {
+  // A point whose q is zero is rational; mapping keeps the field; a forged mix cannot be built through the API,
+  // so check the guard directly through a non-integer delta normalisation.
+  const RootPoint x(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 0, 0, 0), Q(2, 3));
+  CHECK(x.delta() == 6);  // sqrt(2/3) = sqrt(6)/3
+  CHECK(x.q()(0) == Q(1, 3));
+  CHECK_NOTHROW(x.form(Mat4<Q>::Identity()));
+}
+
+TEST_CASE("exact samples lie exactly on the terminator and on the quadric; same seed, same points", "[exact][sampling]") {
+  const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(Q(3, 2), Q(-1, 2), 3), Vec3<Q>(1, 2, Q(3, 4)), Mat3<Q>::Identity());
+  const Vec4<Q> L(1, -2, 9, 1);
+  const Vec4<Q> pi = A * L;
+  const SampleReport s = sample_section(A, pi, 32, 5);
+  REQUIRE(s.points.size() == 32);
+  for (const RootPoint& x : s.points) {
+    CHECK(CGAL::is_zero(x.form(A)));
+    CHECK(CGAL::is_zero(x.linear(pi)));
+    CHECK(CGAL::is_zero(x.form(tangent_cone<Q>(A, L))));
+    CHECK(CGAL::is_zero(x.form(terminator_quadric<Q>(A, L))));
+    CHECK(!CGAL::is_zero(x.coords()[3]));
+  }
+  const SampleReport again = sample_section(A, pi, 32, 5);
+  CHECK(again.points[7].p() == s.points[7].p());
+  const SampleReport other = sample_section(A, pi, 32, 6);
+  CHECK(!(other.points[7].p() == s.points[7].p() && other.points[7].q() == s.points[7].q()));
+  const SampleReport onA = sample_quadric(A, 16, 3);
+  REQUIRE(onA.points.size() == 16);
+  const Mat4<Q> M = mirror_matrix<Q>(Vec4<Q>(1, 1, 0, -10));
+  const Mat4<Q> B = mirror_image<Q>(A, M);
+  for (const RootPoint& x : onA.points) {
+    CHECK(CGAL::is_zero(x.form(A)));
+    CHECK(CGAL::is_zero(x.mapped(M).form(B)));
+  }
+}
+
+TEST_CASE("no real terminator: nothing is sampled; a single real point is found exactly", "[exact][sampling]") {
+  const Mat4<Q> S = sphere_quadric<Q>(Vec3<Q>::Zero(), Q(1));
+  const Vec4<Q> inside(0, Q(1, 2), 0, 1);
+  CHECK(sample_section(S, Vec4<Q>(S * inside), 8, 1).points.empty());
+  // cone lit along its axis from infinity: the terminator is the apex alone
+  const Mat4<Q> cone = cone_quadric<Q>(Vec3<Q>(2, 2, 0), Vec3<Q>(0, 0, 1), Q(1, 3));
+  const Vec4<Q> sun(0, 0, 1, 0);
+  const SampleReport s = sample_section(cone, Vec4<Q>(cone * sun), 8, 1);
+  REQUIRE(s.points.size() == 1);
+  CHECK(s.points[0].p() == Vec4<Q>(2, 2, 0, 1));
+}
+
+TEST_CASE("symbolic scalar: Laurent polynomials through the generic core", "[exact][poly]") {
+  const Poly x = Poly::var(0), y = Poly::var(1);
+  CHECK((x + y) * (x - y) == x * x - y * y);
+  CHECK((x * y) / y == x);
+  CHECK(Poly(1) / x * x == Poly(1));
+  CHECK_THROWS_AS(x / (x + y), std::domain_error);
+  CHECK_THROWS_AS((void)(x < y), std::domain_error);
+  CHECK((x * x * y).derivative(0) == Poly(2) * x * y);
+  // the tangent cone through the generic core: P L = 0 identically
+  Mat4<Poly> A;
+  int k = 2;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j) A(i, j) = A(j, i) = Poly::var(k++);
+  const Vec4<Poly> L(x, y, Poly(1), Poly(1));
+  const Vec4<Poly> PL = tangent_cone<Poly>(A, L) * L;
+  for (int i = 0; i < 4; ++i) CHECK(PL(i) == Poly(0));
+}
+
+TEST_CASE("paper audit verdicts", "[exact][paper]") {
+  const auto entries = audit_paper();
+  std::map<std::string, std::string> verdict;
+  for (const auto& e : entries) {
+    verdict[e.id] = e.verdict;
+    CHECK(!e.evidence.empty());
+    CHECK(e.evidence.find("FAILS") == std::string::npos);  // every symbolic sub-check came out as stated
+    if (e.verdict == "fails") CHECK(!e.corrected.empty());
+  }
+  CHECK(verdict.size() == 11);
+  CHECK(verdict["(1)"] == "definition");
+  CHECK(verdict["(2)"] == "holds");
+  CHECK(verdict["(3)"] == "holds-up-to-factor");
+  CHECK(verdict["(4)"] == "holds");
+  CHECK(verdict["(5)"] == "holds");
+  CHECK(verdict["(6)"] == "fails");
+  CHECK(verdict["(7)"] == "definition");
+  CHECK(verdict["(8)"] == "definition");
+  CHECK(verdict["(9)"] == "fails");
+  CHECK(verdict["(10)"] == "definition");
+  CHECK(verdict["(11)"] == "holds");
+}
+
+TEST_CASE("the double core is within a rounding-error bound of the exact twin", "[exact][twin]") {
+  test::RandomRationals rng(99);
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int k = 0; k < 200; ++k) {
+    const Mat4<Q> A = rng.symmetric();
+    Vec4<Q> L = rng.vec4();
+    L(3) = k % 4 == 0 ? 0 : 1;
+    if (L(2) == 0) L(2) = 1;
+    const Vec4<Q> plane = rng.vec4() + Vec4<Q>(0, 0, 1, 0) * Q(1, 7);
+    for (Method m : {Method::direct, Method::paper}) {
+      const auto e = shadow<Q>(A, L, m);
+      const auto d = shadow<double>(test::to_scalar<double>(A), test::to_scalar<double>(L), m);
+      // bound: 64 eps times the absolute-value evaluation of the formula over |P|
+      const Mat4<Q> aA = A.cwiseAbs();
+      const Vec4<Q> aL = L.cwiseAbs();
+      const Mat4<Q> Pabs = aL.dot(aA * aL) * aA + (aA * aL) * (aA * aL).transpose();
+      const double kappa = CGAL::to_double(to_gmpq(max_abs(Pabs))) / CGAL::to_double(to_gmpq(max_abs(e.P)));
+      // the paper route goes through N = T M (1/l_z): its rounding is amplified by cond_inf(N)^2
+      double frame = 1;
+      if (m == Method::paper) {
+        const PaperFrame<Q> f = paper_frame<Q>(L);
+        auto inf = [](const Mat4<Q>& X) { return CGAL::to_double(to_gmpq(Q(X.cwiseAbs().rowwise().sum().maxCoeff()))); };
+        const double cond = inf(Mat4<Q>(f.T * f.M)) * inf(Mat4<Q>(f.Minv * f.Tinv));
+        frame = cond * cond;
+      }
+      INFO("case " << k);
+      const Mat4<Q> dP = d.P.unaryExpr([](double v) { return to_rational(v); });
+      CHECK(to_measure(cross_residual(dP, e.P)) <= Measure(64 * eps * kappa * frame));
+    }
+    const Mat4<Q> M = mirror_matrix<Q>(plane);
+    const Mat4<double> Md = mirror_matrix<double>(test::to_scalar<double>(plane));
+    CHECK(to_measure(cross_residual(Mat4<Q>(Md.unaryExpr([](double v) { return to_rational(v); })), M)) <=
+          Measure(64 * eps * 10));
+  }
+}
