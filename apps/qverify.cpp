@@ -1,12 +1,14 @@
 // qverify command line: see shared/spec/cli.md for the contract.
 #include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
+#include <qverify/verify/audit.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <sstream>
 
@@ -107,6 +109,23 @@ void print_verify(const json& doc) {
              doc["skipped"].get<int>());
 }
 
+void print_audit(const json& doc, const std::string& dir) {
+  fmt::print("precision audit of {} (reference: exact)\n\n", doc["scene"].get<std::string>());
+  fmt::print("{:<12} {:<7} {:>12} {:>14} {:>14} {:>8}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
+             "bits", "pareto");
+  std::vector<std::string> front;
+  for (const auto& p : doc["pareto"]) front.push_back(p.get<std::string>());
+  for (const auto& r : doc["rows"]) {
+    const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
+    auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.3g}", v.get<double>()); };
+    fmt::print("{:<12} {:<7} {:>12.1f} {:>14} {:>14} {:>8}  {}\n", r["precision"].get<std::string>(),
+               r["method"].get<std::string>(), r["ns_per_item"].get<double>(), num(r["max_rel_error"]),
+               num(r["median_rel_error"]), r["correct_bits"].is_null() ? std::string("exact") : num(r["correct_bits"]),
+               std::find(front.begin(), front.end(), key) != front.end() ? "*" : "");
+  }
+  fmt::print("\nwrote {0}/report.json, {0}/report.html, {0}/error-vs-time.svg\n", dir);
+}
+
 /// Wraps text at `width` columns with an indent.
 std::string wrap_text(const std::string& text, std::size_t width, const std::string& indent) {
   std::string out, line;
@@ -174,6 +193,18 @@ int main(int argc, char** argv) {
   verify->add_option("--seed", seed, "Seed of the deterministic sampler")->capture_default_str();
   verify->add_option("--candidate", candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
 
+  CLI::App* audit = app.add_subcommand("audit", "Precision audit of one scene: error against run time over the whole "
+                                                "precision ladder, both methods; writes report.json, report.html, "
+                                                "error-vs-time.svg");
+  audit->add_option("SCENE", scene_file, "Scene file (qverify-scene/1)")->required();
+  std::string out_dir;
+  double batch_ms = 20;
+  audit->add_option("--out", out_dir, "Output directory")->required();
+  audit->add_option("--batch-ms", batch_ms, "Minimum duration of one timed batch (7 batches, median)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 10000.0));
+  audit->add_flag("--json", as_json, "Also print report.json on stdout");
+
   CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
   bool strict = false;
   paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
@@ -210,6 +241,20 @@ int main(int argc, char** argv) {
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_verify(doc);
       return failed > 0 ? 1 : kOk;
+    }
+    if (audit->parsed()) {
+      const Scene sc = load_scene(scene_file);
+      AuditOptions opt;
+      opt.out_dir = out_dir;
+      opt.batch_seconds = batch_ms / 1000;
+      const auto start = std::chrono::steady_clock::now();
+      opt.progress = [&](const std::string& line) {
+        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
+      };
+      const json doc = run_audit(sc, opt);
+      if (as_json) std::cout << doc.dump(2) << "\n";
+      else print_audit(doc, out_dir);
+      return kOk;
     }
     if (paper->parsed()) {
       const auto entries = audit_paper();

@@ -13,7 +13,7 @@ Mat4<Q> unit_sphere() { return sphere_quadric<Q>(Vec3<Q>::Zero(), Q(1)); }
 Vec4<Q> point(const Q& x, const Q& y, const Q& z) { return Vec4<Q>(x, y, z, Q(1)); }
 }  // namespace
 
-TEST_CASE("unit sphere lit from (0,0,d): cone half-angle asin(1/d), terminator plane z = 1/d", "[analytic][exact]") {
+TEST_CASE("unit sphere lit from (0 0 d): cone half-angle asin(1/d) - terminator plane z = 1/d", "[analytic][exact]") {
   const Q d(5, 3);  // sin(half angle) = 3/5, cos = 4/5: every point below is rational
   const Vec4<Q> L = point(0, 0, d);
   for (Method m : {Method::direct, Method::paper}) {
@@ -37,7 +37,7 @@ TEST_CASE("unit sphere lit from (0,0,d): cone half-angle asin(1/d), terminator p
   }
 }
 
-TEST_CASE("unit sphere lit from (0,0,2) in double: half-angle 30 degrees", "[analytic][double]") {
+TEST_CASE("unit sphere lit from (0 0 2) in double: half-angle 30 degrees", "[analytic][double]") {
   const Mat4<double> A = sphere_quadric<double>(Vec3<double>::Zero(), 1.0);
   const Vec4<double> L(0, 0, 2, 1);
   const double half = std::asin(1.0 / 2.0);
@@ -78,7 +78,7 @@ TEST_CASE("mirror image of a sphere is the sphere about the reflected centre", "
   CHECK((M * M).isIdentity(Q(0)));
 }
 
-TEST_CASE("mirror matrix: involution and fixed plane, double", "[analytic][double]") {
+TEST_CASE("mirror matrix: involution and fixed plane - double", "[analytic][double]") {
   const Vec4<double> plane(1, 1, 0, -10);
   const Mat4<double> M = mirror_matrix<double>(plane);
   CHECK((M * M - Mat4<double>::Identity()).cwiseAbs().maxCoeff() < 1e-15);

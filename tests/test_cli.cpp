@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -235,4 +236,36 @@ TEST_CASE("paper --json lists every equation with a verdict", "[cli][paper]") {
     CHECK((v == "holds" || v == "holds-up-to-factor" || v == "fails" || v == "definition"));
   }
   CHECK(run("paper --strict --json").code == 1);  // the paper has errata
+}
+
+TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audit]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("qverify-audit-" + std::to_string(::getpid()));
+  const Run r = run("audit " + scene("mixed-requests.json") + " --out " + dir.string() + " --batch-ms 2 --json");
+  REQUIRE(r.code == 0);
+  for (const char* f : {"report.json", "report.html", "error-vs-time.svg"}) CHECK(std::filesystem::file_size(dir / f) > 100);
+  const auto doc = nlohmann::json::parse(r.out);
+  CHECK(doc["format"] == "qverify-audit/1");
+  CHECK(doc["reference"] == "exact");
+  std::map<std::string, nlohmann::json> row;
+  for (const auto& x : doc["rows"]) row[x["precision"].get<std::string>() + "/" + x["method"].get<std::string>()] = x;
+  CHECK(row.size() == 14);  // float, double, long-double, float128, mpfr:128, mpfr:256, exact x 2 methods
+  for (const char* m : {"direct", "paper"}) {
+    const std::string M = m;
+    CHECK(row["exact/" + M]["max_rel_error"] == 0);
+    CHECK(row["float/" + M]["max_rel_error"].get<double>() > 100 * row["double/" + M]["max_rel_error"].get<double>());
+    CHECK(row["double/" + M]["max_rel_error"].get<double>() > 0);
+    CHECK(row["exact/" + M]["ns_per_item"].get<double>() > 10 * row["double/" + M]["ns_per_item"].get<double>());
+    CHECK(row["double/" + M]["correct_bits"].get<double>() > 48);
+  }
+  CHECK(doc["items"].size() == 6);  // only the requested pairs
+  CHECK(doc["skipped"].size() == 14);
+  CHECK(!doc["pareto"].empty());
+  std::ifstream html(dir / "report.html");
+  const std::string text((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  CHECK(text.find("<svg") != std::string::npos);
+  // self-contained: nothing loaded from elsewhere (the SVG's xmlns is a name, not a resource)
+  CHECK(text.find("src=") == std::string::npos);
+  CHECK(text.find("<link") == std::string::npos);
+  CHECK(text.find("@import") == std::string::npos);
+  CHECK(text.find("<figure id=\"plot\">") != std::string::npos);
 }

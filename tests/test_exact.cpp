@@ -27,7 +27,7 @@ TEST_CASE("Q(sqrt d) arithmetic agrees with the closed form of a quadratic form"
   }
 }
 
-TEST_CASE("values that leave the point's field are refused, in release builds too", "[exact][root]") {
+TEST_CASE("values that leave the point's field are refused - in release builds too", "[exact][root]") {
   // A point whose q is zero is rational; mapping keeps the field; a forged mix cannot be built through the API,
   // so check the guard directly through a non-integer delta normalisation.
   const RootPoint x(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 0, 0, 0), Q(2, 3));
@@ -36,7 +36,7 @@ TEST_CASE("values that leave the point's field are refused, in release builds to
   CHECK_NOTHROW(x.form(Mat4<Q>::Identity()));
 }
 
-TEST_CASE("exact samples lie exactly on the terminator and on the quadric; same seed, same points", "[exact][sampling]") {
+TEST_CASE("exact samples lie exactly on the terminator and on the quadric - same seed - same points", "[exact][sampling]") {
   const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(Q(3, 2), Q(-1, 2), 3), Vec3<Q>(1, 2, Q(3, 4)), Mat3<Q>::Identity());
   const Vec4<Q> L(1, -2, 9, 1);
   const Vec4<Q> pi = A * L;
@@ -63,7 +63,7 @@ TEST_CASE("exact samples lie exactly on the terminator and on the quadric; same 
   }
 }
 
-TEST_CASE("no real terminator: nothing is sampled; a single real point is found exactly", "[exact][sampling]") {
+TEST_CASE("no real terminator: nothing is sampled - a single real point is found exactly", "[exact][sampling]") {
   const Mat4<Q> S = sphere_quadric<Q>(Vec3<Q>::Zero(), Q(1));
   const Vec4<Q> inside(0, Q(1, 2), 0, 1);
   CHECK(sample_section(S, Vec4<Q>(S * inside), 8, 1).points.empty());

@@ -103,7 +103,7 @@ TEST_CASE("every shape becomes its matrix", "[scene][shapes]") {
   CHECK(!td.rounded_inputs.empty());
 }
 
-TEST_CASE("requests select pairs; the rest is reported as skipped", "[scene][requests]") {
+TEST_CASE("requests select pairs - the rest is reported as skipped", "[scene][requests]") {
   const Scene sc = parse_scene(wrap(R"({"id": "a", "sphere": {"center": [0,0,0], "radius": 1}},
                                        {"id": "b", "sphere": {"center": [5,0,0], "radius": 1}})",
                                     R"(, "lights": [{"id": "l", "position": [0,0,9]}], "mirrors": [{"id": "m", "plane": [0,0,1,0]}],
@@ -116,7 +116,7 @@ TEST_CASE("requests select pairs; the rest is reported as skipped", "[scene][req
   CHECK(sc.skipped_reflections().size() == 2);
 }
 
-TEST_CASE("every rule of the scene format is enforced, with the JSON path", "[scene][errors]") {
+TEST_CASE("every rule of the scene format is enforced - with the JSON path", "[scene][errors]") {
   const std::string sphere = R"({"id": "s", "sphere": {"center": [0, 0, 0], "radius": 1}})";
   struct Case {
     std::string text, path;
@@ -179,7 +179,7 @@ TEST_CASE("every rule of the scene format is enforced, with the JSON path", "[sc
   }
 }
 
-TEST_CASE("x- keys are kept for the user; nesting depth is limited", "[scene][errors]") {
+TEST_CASE("x- keys are kept for the user - nesting depth is limited", "[scene][errors]") {
   CHECK_NOTHROW(parse_scene(wrap(R"({"id": "s", "x-colour": [1, 2], "sphere": {"center": [0, 0, 0], "radius": 1}})",
                                  R"(, "x-anything": {"deep": [1]})"),
                             "t.json"));

@@ -25,4 +25,8 @@ ResultSet computed_results(const Scene& sc, const Precision& prec, Method method
   return with_scalar(prec, [&](auto tag) { return computed_results<decltype(tag)>(sc, prec, method); });
 }
 
+TimedResult timed_results(const Scene& sc, const Precision& prec, Method method, double batch_seconds, int batches) {
+  return with_scalar(prec, [&](auto tag) { return timed_results<decltype(tag)>(sc, prec, method, batch_seconds, batches); });
+}
+
 }  // namespace qverify

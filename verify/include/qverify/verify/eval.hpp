@@ -30,10 +30,11 @@ template <class S> struct Evaluation {
   std::vector<ReflectionItem<S>> reflections;
 };
 
-/// Computes every requested item of `sc` in scalar type S by `method`.
-template <class S> Evaluation<S> evaluate(const Scene& sc, Method method) {
-  Evaluation<S> ev;
-  ev.scene = typed_scene<S>(sc);
+/// Computes every requested item of `sc` from its typed scene by `method`
+/// (the timed part of an audit: the inputs are already in S).
+template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
+  ev.shadows.clear();
+  ev.reflections.clear();
   for (const Pair& p : sc.shadows)
     ev.shadows.push_back({p, shadow<S>(ev.scene.A[p.quadric], ev.scene.L[p.other], method)});
   std::vector<std::optional<Mat4<S>>> mirrors(sc.mirrors.size());
@@ -42,6 +43,13 @@ template <class S> Evaluation<S> evaluate(const Scene& sc, Method method) {
     if (!M) M = mirror_matrix<S>(ev.scene.planes[p.other]);
     ev.reflections.push_back({p, *M, reflection<S>(ev.scene.A[p.quadric], *M, method)});
   }
+}
+
+/// Computes every requested item of `sc` in scalar type S by `method`.
+template <class S> Evaluation<S> evaluate(const Scene& sc, Method method) {
+  Evaluation<S> ev;
+  ev.scene = typed_scene<S>(sc);
+  evaluate_items<S>(sc, method, ev);
   return ev;
 }
 

@@ -3,16 +3,20 @@
 /// Explicit instantiation (QVERIFY_INSTANTIATE) and suppression of implicit
 /// instantiation (QVERIFY_EXTERN) of the generic pipeline for a scalar type.
 #include <qverify/verify/eval.hpp>
-#include <qverify/verify/verifier.hpp>
+#include <qverify/verify/audit.hpp>
 #include <qverify/verify/scalar_list.hpp>
 
 #define QVERIFY_INSTANTIATE(T)                                                                                     \
   template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,          \
                                                             qverify::Method);                                         \
-  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method);
+  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method); \
+  template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,            \
+                                                          qverify::Method, double, int);
 
 #define QVERIFY_EXTERN(T)                                                                                          \
   extern template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,   \
                                                                    qverify::Method);                                  \
   extern template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,    \
-                                                                  qverify::Method);
+                                                                  qverify::Method);                                  \
+  extern template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,     \
+                                                                 qverify::Method, double, int);

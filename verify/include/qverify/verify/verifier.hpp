@@ -51,13 +51,13 @@ template <class S, int R, int C> Eigen::Matrix<Rational, R, C> exact_matrix(cons
   return out;
 }
 
-/// Computes the scene in S by `method` and converts the results exactly.
-template <class S> ResultSet computed_results(const Scene& sc, const Precision& prec, Method method) {
+/// Converts an evaluation exactly to rationals.
+template <class S>
+ResultSet result_set(const Scene& sc, const Evaluation<S>& ev, const Precision& prec, Method method) {
   ResultSet rs;
   rs.precision = prec;
   rs.method = method_name(method);
   rs.source = "computed";
-  const Evaluation<S> ev = evaluate<S>(sc, method);
   for (const auto& A : ev.scene.A) {
     if (!all_finite(A)) throw InputError(sc.file, "", "a quadric matrix is not finite in this precision");
     rs.A.push_back(exact_matrix(A));
@@ -88,6 +88,11 @@ template <class S> ResultSet computed_results(const Scene& sc, const Precision& 
     rs.reflections.push_back(std::move(m));
   }
   return rs;
+}
+
+/// Computes the scene in S by `method` and converts the results exactly.
+template <class S> ResultSet computed_results(const Scene& sc, const Precision& prec, Method method) {
+  return result_set<S>(sc, evaluate<S>(sc, method), prec, method);
 }
 
 /// computed_results for a run-time precision (instantiated per scalar type).

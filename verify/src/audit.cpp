@@ -1,0 +1,197 @@
+#include <qverify/exact/root_point.hpp>
+#include <qverify/verify/audit.hpp>
+#include <qverify/verify/plot.hpp>
+#include <qverify/verify/report.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace qverify {
+
+using json = nlohmann::ordered_json;
+using Q = Rational;
+
+namespace {
+template <int R, int C> double projective_error_impl(const Eigen::Matrix<Q, R, C>& X, const Eigen::Matrix<Q, R, C>& Y,
+                                                      bool positive) {
+  if (positive && !Y.isZero()) {
+    const Eigen::Index p = pivot_index(Y);
+    if (sign_of<Q>(X(p)) != sign_of<Q>(Y(p))) return 2;
+  }
+  return to_measure(cross_residual(X, Y)).template convert_to<double>();
+}
+}  // namespace
+
+double projective_error(const Mat4<Q>& X, const Mat4<Q>& Y, bool positive) { return projective_error_impl(X, Y, positive); }
+double projective_error(const Vec4<Q>& X, const Vec4<Q>& Y, bool positive) { return projective_error_impl(X, Y, positive); }
+
+std::vector<Precision> default_ladder() {
+  std::vector<Precision> out;
+  for (const char* p : {"float", "double", "long-double", "float128", "mpfr:128", "mpfr:256", "exact"})
+    out.push_back(*parse_precision(p));
+  return out;
+}
+
+namespace {
+
+/// Per item error of a result set against the exact evaluation (infinity when missing or not finite).
+std::vector<double> item_errors(const ResultSet& rs, const Evaluation<Q>& ref) {
+  std::vector<double> out;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < ref.shadows.size(); ++k) {
+    const ShadowMatrices& g = rs.shadows[k];
+    const ShadowResult<Q>& w = ref.shadows[k].result;
+    if (!g.present) {
+      out.push_back(inf);
+      continue;
+    }
+    out.push_back(std::max({projective_error(g.P, w.P, true), projective_error(g.polar, w.polar_plane, true),
+                            projective_error(g.R, w.R, false)}));
+  }
+  for (std::size_t k = 0; k < ref.reflections.size(); ++k) {
+    const ReflectionMatrices& g = rs.reflections[k];
+    if (!g.present) {
+      out.push_back(inf);
+      continue;
+    }
+    const Mat4<Q>& Me = ref.reflections[k].M;
+    const double m_err =
+        (to_measure(max_abs(Mat4<Q>(g.M - Me))) / to_measure(std::max(Q(1), max_abs(Me)))).convert_to<double>();
+    out.push_back(std::max(projective_error(g.B, ref.reflections[k].result.B, true), m_err));
+  }
+  return out;
+}
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string row_key(const json& r) { return r["precision"].get<std::string>() + "/" + r["method"].get<std::string>(); }
+
+}  // namespace
+
+json run_audit(const Scene& sc, const AuditOptions& opt) {
+  const auto ladder = opt.ladder.empty() ? default_ladder() : opt.ladder;
+  const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
+  const std::size_t n_items = sc.shadows.size() + sc.reflections.size();
+
+  json rows = json::array();
+  std::vector<std::vector<double>> errors;  // per row, per item
+  const std::size_t total = ladder.size() * 2;
+  std::size_t done = 0;
+  for (const Precision& prec : ladder)
+    for (Method m : {Method::direct, Method::paper}) {
+      if (opt.progress)
+        opt.progress("audit: [" + std::to_string(++done) + "/" + std::to_string(total) + "] " + prec.name() + "/" +
+                     method_name(m));
+      const TimedResult tr = timed_results(sc, prec, m, opt.batch_seconds, opt.batches);
+      std::vector<double> e = item_errors(tr.results, ref);
+      std::vector<double> sorted = e;
+      std::sort(sorted.begin(), sorted.end());
+      const double maxe = sorted.empty() ? 0 : sorted.back();
+      const double mede = sorted.empty() ? 0 : sorted[sorted.size() / 2];
+      json r;
+      r["precision"] = prec.name();
+      r["method"] = method_name(m);
+      r["ns_per_item"] = tr.ns_per_item;
+      r["max_rel_error"] = number_or_null(maxe);
+      r["median_rel_error"] = number_or_null(mede);
+      // correct bits = -log2(error); infinite (null) for an exact zero
+      r["correct_bits"] = maxe > 0 ? number_or_null(-std::log2(maxe)) : json(nullptr);
+      if (maxe == 0) r["exact_match"] = true;
+      r["items"] = n_items;
+      r["reps_per_batch"] = tr.reps_per_batch;
+      r["batches"] = tr.batches;
+      r["inputs_rounded"] = tr.inputs_rounded;
+      if (prec.kind == Precision::Kind::mpfr) r["working_bits"] = set_mpfr_bits(prec.bits);
+      rows.push_back(r);
+      errors.push_back(std::move(e));
+    }
+
+  // Pareto front: not dominated in (time, error).
+  json pareto = json::array();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double ti = rows[i]["ns_per_item"].get<double>();
+    const double ei = rows[i]["max_rel_error"].is_null() ? INFINITY : rows[i]["max_rel_error"].get<double>();
+    bool dominated = false;
+    for (std::size_t j = 0; j < rows.size() && !dominated; ++j) {
+      if (i == j) continue;
+      const double tj = rows[j]["ns_per_item"].get<double>();
+      const double ej = rows[j]["max_rel_error"].is_null() ? INFINITY : rows[j]["max_rel_error"].get<double>();
+      dominated = tj <= ti && ej <= ei && (tj < ti || ej < ei);
+    }
+    if (!dominated) pareto.push_back(row_key(rows[i]));
+  }
+
+  json items = json::array();
+  std::size_t k = 0;
+  auto add_item = [&](json it) {
+    json errs;
+    for (std::size_t r = 0; r < rows.size(); ++r) errs[row_key(rows[r])] = number_or_null(errors[r][k]);
+    it["errors"] = errs;
+    items.push_back(it);
+    ++k;
+  };
+  for (const auto& it : ref.shadows)
+    add_item({{"kind", "shadow"},
+              {"quadric", sc.quadrics[it.pair.quadric].id},
+              {"light", sc.lights[it.pair.other].id},
+              {"exact_status", it.result.status()}});
+  for (const auto& it : ref.reflections)
+    add_item({{"kind", "reflection"},
+              {"quadric", sc.quadrics[it.pair.quadric].id},
+              {"mirror", sc.mirrors[it.pair.other].id},
+              {"exact_status", it.result.status()}});
+
+  json doc;
+  doc["format"] = "qverify-audit/1";
+  doc["scene"] = sc.name;
+  doc["reference"] = "exact";
+  doc["scale_removal"] =
+      "each result X is compared with the exact Y as a projective object: max_i |X_i Y_p - Y_i X_p| / (|X|_max |Y_p|), "
+      "p the largest entry of Y (cross-multiplication, no division by an entry; zero exactly when X = lambda Y). P, the "
+      "polar plane and B must have the contract's positive factor (a sign error counts as 2); R is free up to any "
+      "non-zero factor; M is compared entry by entry (relative to max(1, |M|_max)). An item's error is the largest of "
+      "its matrices'; errors are computed exactly from the results converted to rationals.";
+  doc["timing"] = "ns_per_item: median over " + std::to_string(opt.batches) +
+                  " batches of the evaluation of all requested items from inputs already in the precision (each batch "
+                  "repeated until it lasts >= " +
+                  std::to_string(static_cast<int>(opt.batch_seconds * 1000)) +
+                  " ms; results kept behind a compiler barrier), single thread";
+  doc["rows"] = rows;
+  doc["pareto"] = pareto;
+  doc["items"] = items;
+  doc["skipped"] = skipped_json(sc);
+
+  // ---- files
+  std::filesystem::create_directories(opt.out_dir);
+  Plot plot;
+  plot.title = "error against run time: " + sc.name;
+  plot.x_label = "ns per item (median, single thread)";
+  plot.y_label = "max relative error as quadrics";
+  PlotSeries direct{"direct", "#1f77b4", {}, false, true, false, {}}, paper{"paper", "#ff7f0e", {}, false, true, false, {}},
+      front{"Pareto front", "#2ca02c", {}, true, false, true, {}};
+  for (const auto& r : rows) {
+    const double t = r["ns_per_item"].get<double>();
+    const double e = r["max_rel_error"].is_null() ? NAN : r["max_rel_error"].get<double>();
+    PlotSeries& s = r["method"] == "direct" ? direct : paper;
+    s.points.emplace_back(t, e);
+    s.labels.push_back(r["precision"].get<std::string>());
+  }
+  std::vector<std::pair<double, double>> fpts;
+  for (const auto& r : rows)
+    for (const auto& key : pareto)
+      if (row_key(r) == key.get<std::string>() && !r["max_rel_error"].is_null())
+        fpts.emplace_back(r["ns_per_item"].get<double>(), r["max_rel_error"].get<double>());
+  std::sort(fpts.begin(), fpts.end());
+  front.points = fpts;
+  paper.labels_below = true;
+  plot.series = {direct, paper, front};
+  const std::string svg = render_svg(plot);
+  std::ofstream(std::filesystem::path(opt.out_dir) / "error-vs-time.svg") << svg;
+  std::ofstream(std::filesystem::path(opt.out_dir) / "report.json") << doc.dump(2) << "\n";
+  std::ofstream(std::filesystem::path(opt.out_dir) / "report.html") << audit_html(doc, svg);
+  return doc;
+}
+
+}  // namespace qverify
