@@ -32,6 +32,8 @@ std::optional<Rational> parse_integer(std::string_view s, std::string& error, co
     error = "not an integer";
     return std::nullopt;
   }
+  // Leading zeros are decimal here: GMP would read "010" as octal (and throw on "09").
+  while (s.size() > 1 && s[0] == '0') s.remove_prefix(1);
   if (static_cast<long>(s.size()) > limits.max_digits) {
     error = "integer has " + std::to_string(s.size()) + " digits (limit " + std::to_string(limits.max_digits) + ")";
     return std::nullopt;

@@ -1,5 +1,8 @@
 // Must precede every inclusion of mpfr.h (Boost's headers include it too).
 #define MPFR_WANT_FLOAT128 1
+#if defined(__clang__) && __clang_major__ < 15
+#define _Float128 __float128  // clang 14 spells the binary128 type only as __float128
+#endif
 #include <mpfr.h>
 
 #include <qverify/exact/rounding.hpp>

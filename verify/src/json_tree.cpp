@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <string_view>
 #include <sstream>
@@ -133,6 +134,13 @@ class TreeBuilder : public nlohmann::json_sax<json> {
     // nlohmann's messages start with "[json.exception.parse_error.101] "; keep the rest.
     const auto b = msg.find("] ");
     if (b != std::string::npos) msg = msg.substr(b + 2);
+    // The "last read: '...'" excerpt shows the text with its number literals masked: drop it
+    // (line, column and byte locate the problem).
+    const auto lr = msg.find("; last read: '");
+    if (lr != std::string::npos) {
+      const auto end = msg.find('\'', lr + 14);
+      msg.erase(lr, end == std::string::npos ? std::string::npos : end + 1 - lr);
+    }
     throw InputError(file_, path(), "invalid JSON at byte " + std::to_string(pos) + ": " + msg);
   }
 
@@ -215,6 +223,9 @@ JsonNode parse_json_tree(const std::string& text, const std::string& file, const
 }
 
 std::string read_text_file(const std::string& file, std::size_t max_bytes) {
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw InputError(file, "", "not a regular file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, "", "cannot open file");
   in.seekg(0, std::ios::end);

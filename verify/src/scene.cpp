@@ -206,13 +206,19 @@ std::vector<Pair> read_requests(const Reader& r, const JsonNode* n, const std::s
                                 const std::map<std::string, std::size_t>& quadrics,
                                 const std::map<std::string, std::size_t>& others, const char* other_kind) {
   std::vector<Pair> out;
+  constexpr std::size_t kMaxPairs = 1000000;  // bounded work: refuse instead of exhausting memory
   if (!n || (n->kind == Kind::string && n->text == "all")) {
+    if (quadrics.size() * std::max<std::size_t>(others.size(), 1) > kMaxPairs && !others.empty())
+      r.fail(path, "\"all\" asks for " + std::to_string(quadrics.size() * others.size()) + " pairs (limit " +
+                       std::to_string(kMaxPairs) + "); list the wanted pairs instead");
     for (std::size_t q = 0; q < quadrics.size(); ++q)
       for (std::size_t o = 0; o < others.size(); ++o) out.push_back({q, o});
     return out;
   }
   if (n->kind == Kind::string) r.fail(path, "expected \"all\" or an array of requests, found \"" + n->text + "\"");
   r.array(*n, path);
+  if (n->items.size() > kMaxPairs)
+    r.fail(path, std::to_string(n->items.size()) + " pairs requested (limit " + std::to_string(kMaxPairs) + ")");
   std::set<std::pair<std::size_t, std::size_t>> seen;
   for (std::size_t i = 0; i < n->items.size(); ++i) {
     const std::string ip = at(path, i);

@@ -191,12 +191,13 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     }
     const Measure tol = 64 * eps * kappa;
     Metric onA, onP, onR, onPi;
-    const Measure nA = frobenius(rs.A[pr.quadric]), nP = frobenius(got.P), nR = frobenius(got.R);
+    const Mat4<Q>& Aused = got.A ? *got.A : rs.A[pr.quadric];
+    const Measure nA = frobenius(Aused), nP = frobenius(got.P), nR = frobenius(got.R);
     int proved = 0;
     for (const RootPoint& x : samples.points) {
       const Measure x2 = point_norm2(x);
       bool zero = true;
-      measure_quadric(onA, x, rs.A[pr.quadric], nA, x2, zero);
+      measure_quadric(onA, x, Aused, nA, x2, zero);
       measure_quadric(onP, x, got.P, nP, x2, zero);
       measure_quadric(onR, x, got.R, nR, x2, zero);
       bool pzero = true;
@@ -228,6 +229,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     if (exact) c["proved_exactly"] = proved;
     c["kappa"] = to_d(kappa);
     c["item_status"] = got.status.empty() ? want.result.status() : got.status;
+    if (got.origin) c["origin"] = origin_json(*got.origin);
     if (samples.exhausted)
       c["note"] = "only " + std::to_string(samples.points.size()) + " real point(s) found on this terminator";
     if (!problems.empty()) {
@@ -388,7 +390,12 @@ class CandidateReader {
 }  // namespace
 
 ResultSet candidate_results(const Scene& sc, const std::string& file, const Precision& fallback) {
-  const JsonNode root = read_json_file(file);
+  return candidate_results_text(sc, read_text_file(file, JsonLimits{}.max_bytes), file, fallback);
+}
+
+ResultSet candidate_results_text(const Scene& sc, const std::string& text, const std::string& file,
+                                 const Precision& fallback) {
+  const JsonNode root = parse_json_tree(text, file);
   CandidateReader r(file);
   if (root.kind != JsonNode::Kind::object) r.fail("", "expected a qverify-eval/1 object");
   const JsonNode* format = root.find("format");
@@ -442,6 +449,18 @@ ResultSet candidate_results(const Scene& sc, const std::string& file, const Prec
         rs.notes.push_back(path + " (" + qid + ", " + oid + ") is not requested by the scene: ignored");
         continue;
       }
+      std::optional<Vec3<Q>> origin;
+      if (const JsonNode* o = it.find("origin")) {
+        if (o->kind != JsonNode::Kind::array || o->items.size() != 3) r.fail(path + ".origin", "expected 3 numbers");
+        Vec3<Q> v;
+        for (int i = 0; i < 3; ++i) {
+          auto x = r.entry(o->items[static_cast<std::size_t>(i)], path + ".origin[" + std::to_string(i) + "]");
+          if (!x) r.fail(path + ".origin", "origin must be finite");
+          v(i) = *x;
+        }
+        origin = v;
+      }
+      const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
       const JsonNode* st = it.find("status");
       const std::string status = st && st->kind == JsonNode::Kind::string ? st->text : "";
       if (shadow) {
@@ -453,9 +472,10 @@ ResultSet candidate_results(const Scene& sc, const std::string& file, const Prec
         auto pi = r.vec4(it.find("polar_plane"), path + ".polar_plane");
         if (P && R && pi) {
           m.present = true;
-          m.P = *P;
-          m.R = *R;
-          m.polar = *pi;
+          m.origin = origin;
+          m.P = quadric_from_local(*P, o);
+          m.R = quadric_from_local(*R, o);
+          m.polar = plane_from_local(*pi, o);
         } else m.problem = "P, R or polar_plane missing or not finite in the candidate";
       } else {
         ReflectionMatrices& m = rs.reflections[static_cast<std::size_t>(slot)];
@@ -465,8 +485,9 @@ ResultSet candidate_results(const Scene& sc, const std::string& file, const Prec
         auto B = r.mat4(it.find("B"), path + ".B");
         if (M && B) {
           m.present = true;
-          m.M = *M;
-          m.B = *B;
+          m.origin = origin;
+          m.M = map_from_local(*M, o);
+          m.B = quadric_from_local(*B, o);
         } else m.problem = "M or B missing or not finite in the candidate";
       }
     }

@@ -35,6 +35,7 @@ TimedResult timed_results(const Scene& sc, const Precision& prec, Method method,
   TimedResult tr;
   Evaluation<S> ev;
   ev.scene = typed_scene<S>(sc);
+  prepare<S>(sc, Frame::world, ev);  // the ladder compares precisions in the world frame
   tr.inputs_rounded = ev.scene.rounded_inputs.size();
   const std::size_t items = sc.shadows.size() + sc.reflections.size();
   auto batch = [&](long reps) {

@@ -6,54 +6,215 @@
 
 #include <qverify/verify/precision.hpp>
 #include <qverify/verify/scalar_json.hpp>
+#include <qverify/verify/frames.hpp>
 #include <qverify/verify/scene.hpp>
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <optional>
+#include <type_traits>
 
 namespace qverify {
+
+/// Which frame floating results are computed in: `world`, or `local` (the
+/// robust default: per-object origin, exact change of frame, power-of-two
+/// normalisation; see frames.hpp).
+enum class Frame { world, local };
+
+/// The default frame: local for floating types with the direct method (the
+/// paper's route is defined in world coordinates: T depends on l_z).
+template <class S> Frame default_frame(Method method) {
+  return !is_exact<S>() && method == Method::direct ? Frame::local : Frame::world;
+}
+
+/// Scales a matrix by an exact power of two so that its largest entry lies in
+/// [2^-64, 2^64]: projective results change by a positive power of two only,
+/// and entries of 1e+-150 neither overflow nor underflow. No-op for types with
+/// a wide exponent range.
+template <class S, int R, int C> void normalise_pow2(Eigen::Matrix<S, R, C>& m) {
+  if constexpr (std::is_floating_point_v<S>) {
+    const S big = max_abs(m);
+    if (!(big > S(0)) || !std::isfinite(big)) return;
+    const int e = std::ilogb(big);
+    if (e > 64 || e < -64) m *= std::ldexp(S(1), -e);
+  }
+}
+
+/// Rounds an exact matrix to S, after an exact power-of-two scaling that keeps
+/// its largest entry near 1 (builtin floating types only).
+template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Matrix<Rational, R, C> m) {
+  if constexpr (std::is_floating_point_v<S>) {
+    const Rational big = max_abs(m);
+    if (big != 0) {
+      const long e = floor_log2(big);
+      if (e > 64 || e < -64) {
+        const Rational f = e > 0 ? Rational(1) / Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e))
+                                 : Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(-e));
+        m *= f;
+      }
+    }
+  }
+  Eigen::Matrix<S, R, C> out;
+  RoundingReport rep;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = round_rational<S>(m(i), rep);
+  return out;
+}
+
+/// Inputs of one shadow item, in its frame.
+template <class S> struct PreparedShadow {
+  Pair pair;
+  Mat4<S> A;
+  Vec4<S> L;
+  std::optional<Vec3<Rational>> origin;
+};
+
+/// Inputs of one reflection item: A in the quadric's frame; in the local path
+/// G maps the image's frame into A's (B = G^T A G) and M is output in the
+/// image's frame.
+template <class S> struct PreparedReflection {
+  Pair pair;
+  Mat4<S> A;
+  bool local = false;
+  Mat4<S> G, M;
+  std::optional<Vec3<Rational>> origin;
+};
 
 template <class S> struct ShadowItem {
   Pair pair;
   ShadowResult<S> result;
+  std::optional<Vec3<Rational>> origin;  ///< results in local coordinates x - origin
+  Mat4<S> A;                             ///< the quadric as used (same frame)
 };
 template <class S> struct ReflectionItem {
   Pair pair;
   Mat4<S> M;
   ReflectionResult<S> result;
+  std::optional<Vec3<Rational>> origin;
 };
 
 template <class S> struct Evaluation {
-  TypedScene<S> scene;
+  TypedScene<S> scene;  ///< world frame, each input rounded once (range checks)
+  Frame frame = Frame::world;
+  std::vector<PreparedShadow<S>> prepared_shadows;
+  std::vector<PreparedReflection<S>> prepared_reflections;
   std::vector<ShadowItem<S>> shadows;
   std::vector<ReflectionItem<S>> reflections;
 };
 
-/// Computes every requested item of `sc` from its typed scene by `method`
-/// (the timed part of an audit: the inputs are already in S).
-template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
-  ev.shadows.clear();
-  ev.reflections.clear();
-  for (const Pair& p : sc.shadows)
-    ev.shadows.push_back({p, shadow<S>(ev.scene.A[p.quadric], ev.scene.L[p.other], method)});
-  std::vector<std::optional<Mat4<S>>> mirrors(sc.mirrors.size());
+/// Prepares the inputs of every requested item (not timed by the audit).
+template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev) {
+  ev.frame = frame;
+  ev.prepared_shadows.clear();
+  ev.prepared_reflections.clear();
+  if (frame == Frame::world) {
+    for (const Pair& p : sc.shadows) {
+      PreparedShadow<S> ps{p, ev.scene.A[p.quadric], ev.scene.L[p.other], std::nullopt};
+      normalise_pow2(ps.A);
+      normalise_pow2(ps.L);
+      ev.prepared_shadows.push_back(ps);
+    }
+    for (const Pair& p : sc.reflections) {
+      PreparedReflection<S> pr;
+      pr.pair = p;
+      pr.A = ev.scene.A[p.quadric];
+      normalise_pow2(pr.A);
+      ev.prepared_reflections.push_back(pr);
+    }
+    return;
+  }
+  // Local frames: exact change of frame, then one rounding.
+  using Q = Rational;
+  std::vector<Mat4<Q>> A_exact;
+  std::vector<std::optional<Vec3<Q>>> origin, center;
+  std::vector<Q> size2;
+  for (const QuadricSpec& q : sc.quadrics) {
+    std::vector<Q> params;
+    for (const Num& n : q.params) params.push_back(n.value);
+    const Mat4<Q> A = build_quadric<Q>(q, params);
+    A_exact.push_back(A);
+    const auto c = natural_center(q, A);
+    center.push_back(c);
+    const Q s2 = c ? size_squared(quadric_to_local(A, *c)) : Q(1);
+    size2.push_back(s2);
+    origin.push_back(c && wants_local_frame(*c, s2) ? std::optional<Vec3<Q>>(rounded_to_double(*c)) : std::nullopt);
+  }
+  std::vector<Vec4<Q>> L_exact, planes_exact;
+  for (const LightSpec& l : sc.lights)
+    L_exact.push_back(homogeneous_light<Q>(l.parallel, Vec3<Q>(l.xyz[0].value, l.xyz[1].value, l.xyz[2].value)));
+  for (const MirrorSpec& m : sc.mirrors)
+    planes_exact.push_back(Vec4<Q>(m.plane[0].value, m.plane[1].value, m.plane[2].value, m.plane[3].value));
+  auto local_A = [&](std::size_t q) {
+    return origin[q] ? quadric_to_local(A_exact[q], *origin[q]) : A_exact[q];
+  };
+  for (const Pair& p : sc.shadows) {
+    PreparedShadow<S> ps;
+    ps.pair = p;
+    ps.origin = origin[p.quadric];
+    ps.A = rounded_scaled<S>(local_A(p.quadric));
+    ps.L = rounded_scaled<S>(ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other]);
+    ev.prepared_shadows.push_back(ps);
+  }
   for (const Pair& p : sc.reflections) {
-    auto& M = mirrors[p.other];
-    if (!M) M = mirror_matrix<S>(ev.scene.planes[p.other]);
-    ev.reflections.push_back({p, *M, reflection<S>(ev.scene.A[p.quadric], *M, method)});
+    PreparedReflection<S> pr;
+    pr.pair = p;
+    pr.local = true;
+    pr.A = rounded_scaled<S>(local_A(p.quadric));
+    const Mat4<Q> M = mirror_matrix<Q>(planes_exact[p.other]);  // exact, rational in n and d
+    const Vec3<Q> oA = origin[p.quadric] ? *origin[p.quadric] : Vec3<Q>::Zero();
+    std::optional<Vec3<Q>> oB;
+    if (center[p.quadric]) {
+      const Vec4<Q> c(center[p.quadric]->x(), center[p.quadric]->y(), center[p.quadric]->z(), Q(1));
+      const Vec3<Q> mc = (M * c).template head<3>();
+      if (wants_local_frame(mc, size2[p.quadric])) oB = rounded_to_double(mc);
+    }
+    const Vec3<Q> ob = oB ? *oB : Vec3<Q>::Zero();
+    // G: image frame -> A's frame, x_A = M (u + o_B) - o_A; M_local = T_B^-1 M T_B.
+    const Mat4<Q> G = translation<Q>(Vec3<Q>(-oA)) * M * translation<Q>(ob);
+    pr.G = rounded_scaled<S>(G);
+    pr.M = rounded_scaled<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
+    pr.origin = oB;
+    ev.prepared_reflections.push_back(pr);
   }
 }
 
-/// Computes every requested item of `sc` in scalar type S by `method`.
-template <class S> Evaluation<S> evaluate(const Scene& sc, Method method) {
+/// Computes every prepared item by `method` (the timed part of an audit).
+template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
+  ev.shadows.clear();
+  ev.reflections.clear();
+  for (const PreparedShadow<S>& ps : ev.prepared_shadows)
+    ev.shadows.push_back({ps.pair, shadow<S>(ps.A, ps.L, method), ps.origin, ps.A});
+  std::vector<std::optional<Mat4<S>>> mirrors(sc.mirrors.size());
+  for (const PreparedReflection<S>& pr : ev.prepared_reflections) {
+    if (pr.local) {
+      ReflectionResult<S> r;
+      r.degenerate = is_degenerate_quadric<S>(pr.A);
+      r.B = mirror_image<S>(pr.A, pr.G);  // G^T A G
+      ev.reflections.push_back({pr.pair, pr.M, r, pr.origin});
+      continue;
+    }
+    auto& M = mirrors[pr.pair.other];
+    if (!M) M = mirror_matrix<S>(ev.scene.planes[pr.pair.other]);
+    ev.reflections.push_back({pr.pair, *M, reflection<S>(pr.A, *M, method), std::nullopt});
+  }
+}
+
+/// Computes every requested item of `sc` in scalar type S by `method`, in
+/// `frame` (default: see default_frame).
+template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::optional<Frame> frame = std::nullopt) {
   Evaluation<S> ev;
   ev.scene = typed_scene<S>(sc);
+  prepare<S>(sc, frame ? *frame : default_frame<S>(method), ev);
   evaluate_items<S>(sc, method, ev);
   return ev;
 }
 
 inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
+
+/// An origin (exact doubles) as three JSON numbers.
+inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
+  return {o(0).convert_to<double>(), o(1).convert_to<double>(), o(2).convert_to<double>()};
+}
 
 /// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
 /// (every special case that applies), `fallback` and the paper route's
@@ -65,6 +226,7 @@ template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const Sha
   const ShadowResult<S>& r = it.result;
   bool finite = all_finite(r.P) && all_finite(r.polar_plane) && all_finite(r.R);
   j["status"] = finite ? r.status() : "non-finite";
+  if (it.origin) j["origin"] = origin_json(*it.origin);
   j["P"] = matrix_json(r.P);
   j["polar_plane"] = matrix_json(r.polar_plane);
   j["R"] = matrix_json(r.R);
@@ -90,6 +252,7 @@ template <class S> nlohmann::ordered_json reflection_json(const Scene& sc, const
   j["mirror"] = sc.mirrors[it.pair.other].id;
   const bool finite = all_finite(it.M) && all_finite(it.result.B);
   j["status"] = finite ? it.result.status() : "non-finite";
+  if (it.origin) j["origin"] = origin_json(*it.origin);
   j["M"] = matrix_json(it.M);
   j["B"] = matrix_json(it.result.B);
   return j;

@@ -20,14 +20,17 @@ namespace qverify {
 struct ShadowMatrices {
   bool present = false;
   std::string status, problem;  ///< problem: why the item cannot be checked (missing, non-finite ...)
-  Mat4<Rational> P, R;
+  Mat4<Rational> P, R;          ///< world coordinates (converted back from a local frame, exactly)
   Vec4<Rational> polar;
+  std::optional<Mat4<Rational>> A;  ///< the quadric as this item used it (world), when known
+  std::optional<Vec3<Rational>> origin;
 };
 
 struct ReflectionMatrices {
   bool present = false;
   std::string status, problem;
-  Mat4<Rational> M, B;
+  Mat4<Rational> M, B;  ///< world coordinates
+  std::optional<Vec3<Rational>> origin;
 };
 
 /// Results to verify, aligned with the scene's requested pairs.
@@ -53,23 +56,24 @@ template <class S, int R, int C> Eigen::Matrix<Rational, R, C> exact_matrix(cons
 
 /// Converts an evaluation exactly to rationals.
 template <class S>
-ResultSet result_set(const Scene& sc, const Evaluation<S>& ev, const Precision& prec, Method method) {
+ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, const Precision& prec, Method method) {
   ResultSet rs;
   rs.precision = prec;
   rs.method = method_name(method);
   rs.source = "computed";
-  for (const auto& A : ev.scene.A) {
-    if (!all_finite(A)) throw InputError(sc.file, "", "a quadric matrix is not finite in this precision");
-    rs.A.push_back(exact_matrix(A));
-  }
+  for (const auto& A : ev.scene.A)
+    rs.A.push_back(all_finite(A) ? exact_matrix(A) : Mat4<Rational>(Mat4<Rational>::Zero()));
   for (const auto& it : ev.shadows) {
     ShadowMatrices m;
     m.status = it.result.status();
-    if (all_finite(it.result.P) && all_finite(it.result.R) && all_finite(it.result.polar_plane)) {
+    if (all_finite(it.result.P) && all_finite(it.result.R) && all_finite(it.result.polar_plane) && all_finite(it.A)) {
       m.present = true;
-      m.P = exact_matrix(it.result.P);
-      m.R = exact_matrix(it.result.R);
-      m.polar = exact_matrix(it.result.polar_plane);
+      m.origin = it.origin;
+      const Vec3<Rational> o = it.origin ? *it.origin : Vec3<Rational>::Zero();
+      m.P = quadric_from_local(exact_matrix(it.result.P), o);
+      m.R = quadric_from_local(exact_matrix(it.result.R), o);
+      m.polar = plane_from_local(exact_matrix(it.result.polar_plane), o);
+      m.A = quadric_from_local(exact_matrix(it.A), o);
     } else {
       m.problem = "non-finite entries in the computed result";
     }
@@ -80,8 +84,10 @@ ResultSet result_set(const Scene& sc, const Evaluation<S>& ev, const Precision& 
     m.status = it.result.status();
     if (all_finite(it.M) && all_finite(it.result.B)) {
       m.present = true;
-      m.M = exact_matrix(it.M);
-      m.B = exact_matrix(it.result.B);
+      m.origin = it.origin;
+      const Vec3<Rational> o = it.origin ? *it.origin : Vec3<Rational>::Zero();
+      m.M = map_from_local(exact_matrix(it.M), o);
+      m.B = quadric_from_local(exact_matrix(it.result.B), o);
     } else {
       m.problem = "non-finite entries in the computed result";
     }
@@ -104,6 +110,9 @@ ResultSet computed_results(const Scene& sc, const Precision& prec, Method method
 /// InputErrors (file, JSON path); requested items it lacks are reported by the
 /// verifier as failures.
 ResultSet candidate_results(const Scene& sc, const std::string& file, const Precision& fallback);
+/// The same from text (`file` names it in messages).
+ResultSet candidate_results_text(const Scene& sc, const std::string& text, const std::string& file,
+                                 const Precision& fallback);
 
 struct VerifyOptions {
   int samples = 64;

@@ -1,0 +1,27 @@
+// libFuzzer target: the scene parser and loader, then evaluation in double and
+// (for small inputs) exact arithmetic. A rejected scene must be an InputError;
+// any other exception, crash, leak or sanitizer report is a finding.
+#include <qverify/verify/eval.hpp>
+
+#include <cstdint>
+#include <string>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  qverify::Scene sc;
+  try {
+    sc = qverify::parse_scene(text, "fuzz.json");
+  } catch (const qverify::InputError&) {
+    return 0;
+  }
+  if (sc.shadows.size() + sc.reflections.size() > 16) return 0;
+  for (const char* p : {"double", "float"}) {
+    try {
+      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::direct);
+      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::paper);
+    } catch (const qverify::InputError&) {  // a value out of range for the precision
+    }
+  }
+  if (size < 1024) (void)qverify::eval_document(sc, *qverify::parse_precision("exact"), qverify::Method::paper);
+  return 0;
+}
