@@ -34,6 +34,13 @@ Precision precision_of(const std::string& text) {
   return *p;
 }
 
+std::optional<Frame> frame_of(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  if (text == "local") return Frame::local;
+  if (text == "world") return Frame::world;
+  throw UsageError("--frame: unknown frame \"" + text + "\" (expected local or world)");
+}
+
 Method method_of(const std::string& text) {
   if (text == "direct") return Method::direct;
   if (text == "paper") return Method::paper;
@@ -166,7 +173,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every command");
 
-  std::string scene_file, precision_text = "double", method_text = "direct";
+  std::string scene_file, precision_text = "double", method_text = "direct", frame_text;
   bool as_json = false;
 
   auto add_common = [&](CLI::App* sub) {
@@ -177,6 +184,8 @@ int main(int argc, char** argv) {
     sub->add_option("--method", method_text, "direct (projective formulas) | paper (equations (2)-(6))")
         ->capture_default_str();
     sub->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
+    sub->add_option("--frame", frame_text,
+                    "local (default for floating precisions, method direct: per-object origin) | world");
   };
 
   CLI::App* eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
@@ -226,7 +235,7 @@ int main(int argc, char** argv) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);
       const Scene sc = load_scene(scene_file);
-      const json doc = eval_document(sc, prec, method);
+      const json doc = eval_document(sc, prec, method, frame_of(frame_text));
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_eval(doc);
       return kOk;
@@ -235,7 +244,7 @@ int main(int argc, char** argv) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);
       const Scene sc = load_scene(scene_file);
-      const ResultSet rs = candidate.empty() ? computed_results(sc, prec, method) : candidate_results(sc, candidate, prec);
+      const ResultSet rs = candidate.empty() ? computed_results(sc, prec, method, frame_of(frame_text)) : candidate_results(sc, candidate, prec);
       int failed = 0;
       const json doc = verify_document(sc, rs, VerifyOptions{samples, seed}, failed);
       if (as_json) std::cout << doc.dump(2) << "\n";

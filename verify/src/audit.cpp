@@ -47,8 +47,10 @@ std::vector<double> item_errors(const ResultSet& rs, const Evaluation<Q>& ref) {
       out.push_back(inf);
       continue;
     }
-    out.push_back(std::max({projective_error(g.P, w.P, true), projective_error(g.polar, w.polar_plane, true),
-                            projective_error(g.R, w.R, false)}));
+    const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();  // compare in world coordinates
+    out.push_back(std::max({projective_error(quadric_from_local(g.P, o), w.P, true),
+                            projective_error(plane_from_local(g.polar, o), w.polar_plane, true),
+                            projective_error(quadric_from_local(g.R, o), w.R, false)}));
   }
   for (std::size_t k = 0; k < ref.reflections.size(); ++k) {
     const ReflectionMatrices& g = rs.reflections[k];
@@ -56,10 +58,11 @@ std::vector<double> item_errors(const ResultSet& rs, const Evaluation<Q>& ref) {
       out.push_back(inf);
       continue;
     }
-    const Mat4<Q>& Me = ref.reflections[k].M;
+    const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();
+    const Mat4<Q> Me = translation<Q>(Vec3<Q>(-o)) * ref.reflections[k].M * translation<Q>(o);  // M in g's frame
     const double m_err =
         (to_measure(max_abs(Mat4<Q>(g.M - Me))) / to_measure(std::max(Q(1), max_abs(Me)))).convert_to<double>();
-    out.push_back(std::max(projective_error(g.B, ref.reflections[k].result.B, true), m_err));
+    out.push_back(std::max(projective_error(quadric_from_local(g.B, o), ref.reflections[k].result.B, true), m_err));
   }
   return out;
 }

@@ -1,6 +1,7 @@
 #include <qverify/exact/number_text.hpp>
 #include <qverify/exact/sampling.hpp>
 #include <qverify/verify/json_tree.hpp>
+#include <qverify/verify/frames.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <limits>
@@ -150,9 +151,14 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     const Pair& pr = sc.shadows[k];
     json c = check_header("shadow", sc.quadrics[pr.quadric].id, "light", sc.lights[pr.other].id);
     const ShadowMatrices& got = rs.shadows[k];
-    const ShadowItem<Q>& want = ref.shadows[k];
-    const Mat4<Q>& Ae = ref.scene.A[pr.quadric];
-    const Vec4<Q>& Le = ref.scene.L[pr.other];
+    const Mat4<Q>& Aw = ref.scene.A[pr.quadric];
+    const Vec4<Q>& Lw = ref.scene.L[pr.other];
+    // Everything is judged in the frame the result is given in (local when it has an origin).
+    const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
+    const Mat4<Q> Ae = quadric_to_local(Aw, o);
+    const Vec4<Q> Le = point_to_local(Lw, o);
+    const Mat4<Q> to_frame = translation<Q>(Vec3<Q>(-o));
+    ShadowItem<Q> want{pr, shadow<Q>(Ae, Le, Method::direct), std::nullopt, Ae};
     if (!got.present) {
       c["status"] = "fail";
       c["reason"] = got.problem.empty() ? "missing" : got.problem;
@@ -160,7 +166,9 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
       checks.push_back(c);
       continue;
     }
-    const SampleReport samples = sample_section(Ae, want.result.polar_plane, opt.samples, item_seed(opt.seed, 1, k));
+    // The same world points for every frame: sampled on the world terminator, then moved exactly.
+    SampleReport samples = sample_section(Aw, Vec4<Q>(Aw * Lw), opt.samples, item_seed(opt.seed, 1, k));
+    for (RootPoint& x : samples.points) x = x.mapped(to_frame);
     if (samples.points.empty()) {
       c["status"] = "skipped";
       c["reason"] = std::string("the terminator has no real point to sample (exact status: ") + want.result.status() + ")";
@@ -182,7 +190,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
       if (nR > 0) kappa = max(kappa, Measure(frobenius(Rabs) / nR));
       if (nPi > 0) kappa = max(kappa, Measure(frobenius(absAL) / nPi));
       if (paper) {
-        const PaperFrame<Q> f = paper_frame<Q>(Le);
+        const PaperFrame<Q> f = paper_frame<Q>(Lw);
         if (!f.singular) {
           const Measure cond = inf_norm(Mat4<Q>(f.T * f.M)) * inf_norm(Mat4<Q>(f.Minv * f.Tinv));
           kappa *= cond * cond;
@@ -191,7 +199,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     }
     const Measure tol = 64 * eps * kappa;
     Metric onA, onP, onR, onPi;
-    const Mat4<Q>& Aused = got.A ? *got.A : rs.A[pr.quadric];
+    const Mat4<Q> Aused = got.A ? *got.A : quadric_to_local(rs.A[pr.quadric], o);
     const Measure nA = frobenius(Aused), nP = frobenius(got.P), nR = frobenius(got.R);
     int proved = 0;
     for (const RootPoint& x : samples.points) {
@@ -245,8 +253,16 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     const Pair& pr = sc.reflections[k];
     json c = check_header("reflection", sc.quadrics[pr.quadric].id, "mirror", sc.mirrors[pr.other].id);
     const ReflectionMatrices& got = rs.reflections[k];
-    const ReflectionItem<Q>& want = ref.reflections[k];
     const Mat4<Q>& Ae = ref.scene.A[pr.quadric];
+    const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
+    const Mat4<Q> Mw = ref.reflections[k].M;
+    // The exact M and B in the result's frame: M_local = T^-1 M T, B_local = T^T B T.
+    struct {
+      Mat4<Q> M;
+      ReflectionResult<Q> result;
+    } want{translation<Q>(Vec3<Q>(-o)) * Mw * translation<Q>(o), {}};
+    want.result.B = quadric_to_local(ref.reflections[k].result.B, o);
+    want.result.degenerate = ref.reflections[k].result.degenerate;
     if (!got.present) {
       c["status"] = "fail";
       c["reason"] = got.problem.empty() ? "missing" : got.problem;
@@ -264,10 +280,16 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     }
     Measure kappa = 1;
     if (!exact) {
-      const Mat4<Q> absM = abs_matrix(want.M);
+      // Conditioning of B in its own frame: B_local = G^T A_c G with A_c the quadric in the frame of its
+      // own centre c (when it has one) and G = T_c^-1 M T_o mapping the image frame into it.
+      std::optional<Vec3<Q>> c = natural_center(sc.quadrics[pr.quadric], Ae);
+      const Vec3<Q> cc = c ? *c : Vec3<Q>::Zero();
+      const Mat4<Q> G = translation<Q>(Vec3<Q>(-cc)) * Mw * translation<Q>(o);
+      const Mat4<Q> absG = abs_matrix(G);
       const Measure nB = frobenius(want.result.B);
-      if (nB > 0) kappa = max(kappa, Measure(frobenius(Mat4<Q>(absM.transpose() * abs_matrix(Ae) * absM)) / nB));
-      const Measure m = inf_norm(want.M);
+      if (nB > 0)
+        kappa = max(kappa, Measure(frobenius(Mat4<Q>(absG.transpose() * abs_matrix(quadric_to_local(Ae, cc)) * absG)) / nB));
+      const Measure m = inf_norm(G);
       kappa *= paper ? m * m * m * m : m * m;
     }
     const Measure tol = 64 * eps * kappa;
@@ -275,7 +297,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     const Measure nB = frobenius(got.B);
     int proved = 0;
     for (const RootPoint& x : samples.points) {
-      const RootPoint y = x.mapped(want.M);  // the exact reflection of an exact point of A
+      const RootPoint y = x.mapped(Mat4<Q>(translation<Q>(Vec3<Q>(-o)) * Mw));  // exact image, in the result's frame
       bool zero = true;
       measure_quadric(onB, y, got.B, nB, point_norm2(y), zero);
       if (zero) ++proved;
@@ -294,6 +316,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     c["on_B"] = onB.to_json();
     if (exact) c["proved_exactly"] = proved;
     c["M_error"] = to_d(m_err);
+    if (got.origin) c["origin"] = origin_json(*got.origin);
     c["kappa"] = to_d(kappa);
     c["item_status"] = got.status.empty() ? want.result.status() : got.status;
     if (!problems.empty()) {
@@ -460,7 +483,6 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
         }
         origin = v;
       }
-      const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
       const JsonNode* st = it.find("status");
       const std::string status = st && st->kind == JsonNode::Kind::string ? st->text : "";
       if (shadow) {
@@ -473,9 +495,9 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
         if (P && R && pi) {
           m.present = true;
           m.origin = origin;
-          m.P = quadric_from_local(*P, o);
-          m.R = quadric_from_local(*R, o);
-          m.polar = plane_from_local(*pi, o);
+          m.P = *P;
+          m.R = *R;
+          m.polar = *pi;
         } else m.problem = "P, R or polar_plane missing or not finite in the candidate";
       } else {
         ReflectionMatrices& m = rs.reflections[static_cast<std::size_t>(slot)];
@@ -486,8 +508,8 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
         if (M && B) {
           m.present = true;
           m.origin = origin;
-          m.M = map_from_local(*M, o);
-          m.B = quadric_from_local(*B, o);
+          m.M = *M;
+          m.B = *B;
         } else m.problem = "M or B missing or not finite in the candidate";
       }
     }

@@ -263,13 +263,14 @@ nlohmann::ordered_json skipped_json(const Scene& sc);
 
 /// The whole `qverify-eval/1` document.
 template <class S>
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method) {
-  const Evaluation<S> ev = evaluate<S>(sc, method);
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
+  const Evaluation<S> ev = evaluate<S>(sc, method, frame);
   nlohmann::ordered_json doc;
   doc["format"] = "qverify-eval/1";
   doc["scene"] = sc.name;
   doc["precision"] = prec.name();
   doc["method"] = method_name(method);
+  doc["frame"] = ev.frame == Frame::local ? "local" : "world";
   if (prec.kind == Precision::Kind::mpfr) doc["working_bits"] = mpfr_working_bits();
   doc["shadows"] = nlohmann::ordered_json::array();
   for (const auto& it : ev.shadows) doc["shadows"].push_back(shadow_json(sc, it));
@@ -282,6 +283,7 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
 
 /// eval_document for a run-time precision (one explicit instantiation per
 /// scalar type, each in its own translation unit).
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method);
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method,
+                                     std::optional<Frame> frame = std::nullopt);
 
 }  // namespace qverify

@@ -8,15 +8,16 @@
 
 #define QVERIFY_INSTANTIATE(T)                                                                                     \
   template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,          \
-                                                            qverify::Method);                                         \
-  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&, qverify::Method); \
+                                                            qverify::Method, std::optional<qverify::Frame>);                                         \
+  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,            \
+                                                          qverify::Method, std::optional<qverify::Frame>); \
   template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,            \
                                                           qverify::Method, double, int);
 
 #define QVERIFY_EXTERN(T)                                                                                          \
   extern template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,   \
-                                                                   qverify::Method);                                  \
+                                                                   qverify::Method, std::optional<qverify::Frame>);                                  \
   extern template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,    \
-                                                                  qverify::Method);                                  \
+                                                                  qverify::Method, std::optional<qverify::Frame>);                                  \
   extern template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,     \
                                                                  qverify::Method, double, int);

@@ -20,16 +20,16 @@ namespace qverify {
 struct ShadowMatrices {
   bool present = false;
   std::string status, problem;  ///< problem: why the item cannot be checked (missing, non-finite ...)
-  Mat4<Rational> P, R;          ///< world coordinates (converted back from a local frame, exactly)
+  Mat4<Rational> P, R;          ///< in the item's frame (local coordinates x - origin when origin is set)
   Vec4<Rational> polar;
-  std::optional<Mat4<Rational>> A;  ///< the quadric as this item used it (world), when known
+  std::optional<Mat4<Rational>> A;  ///< the quadric as this item used it (same frame), when known
   std::optional<Vec3<Rational>> origin;
 };
 
 struct ReflectionMatrices {
   bool present = false;
   std::string status, problem;
-  Mat4<Rational> M, B;  ///< world coordinates
+  Mat4<Rational> M, B;  ///< in the item's frame
   std::optional<Vec3<Rational>> origin;
 };
 
@@ -69,11 +69,10 @@ ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, 
     if (all_finite(it.result.P) && all_finite(it.result.R) && all_finite(it.result.polar_plane) && all_finite(it.A)) {
       m.present = true;
       m.origin = it.origin;
-      const Vec3<Rational> o = it.origin ? *it.origin : Vec3<Rational>::Zero();
-      m.P = quadric_from_local(exact_matrix(it.result.P), o);
-      m.R = quadric_from_local(exact_matrix(it.result.R), o);
-      m.polar = plane_from_local(exact_matrix(it.result.polar_plane), o);
-      m.A = quadric_from_local(exact_matrix(it.A), o);
+      m.P = exact_matrix(it.result.P);
+      m.R = exact_matrix(it.result.R);
+      m.polar = exact_matrix(it.result.polar_plane);
+      m.A = exact_matrix(it.A);
     } else {
       m.problem = "non-finite entries in the computed result";
     }
@@ -85,9 +84,8 @@ ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, 
     if (all_finite(it.M) && all_finite(it.result.B)) {
       m.present = true;
       m.origin = it.origin;
-      const Vec3<Rational> o = it.origin ? *it.origin : Vec3<Rational>::Zero();
-      m.M = map_from_local(exact_matrix(it.M), o);
-      m.B = quadric_from_local(exact_matrix(it.result.B), o);
+      m.M = exact_matrix(it.M);
+      m.B = exact_matrix(it.result.B);
     } else {
       m.problem = "non-finite entries in the computed result";
     }
@@ -97,12 +95,14 @@ ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, 
 }
 
 /// Computes the scene in S by `method` and converts the results exactly.
-template <class S> ResultSet computed_results(const Scene& sc, const Precision& prec, Method method) {
-  return result_set<S>(sc, evaluate<S>(sc, method), prec, method);
+template <class S>
+ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
+  return result_set<S>(sc, evaluate<S>(sc, method, frame), prec, method);
 }
 
 /// computed_results for a run-time precision (instantiated per scalar type).
-ResultSet computed_results(const Scene& sc, const Precision& prec, Method method);
+ResultSet computed_results(const Scene& sc, const Precision& prec, Method method,
+                           std::optional<Frame> frame = std::nullopt);
 
 /// Reads a `qverify-eval/1` document made by any program. Numbers are read
 /// exactly from their text (JSON numbers, "p/q" or decimal strings, and
