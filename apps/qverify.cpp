@@ -2,6 +2,7 @@
 #include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
 #include <qverify/verify/audit.hpp>
+#include <qverify/verify/stress.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <CLI/CLI.hpp>
@@ -133,6 +134,27 @@ void print_audit(const json& doc, const std::string& dir) {
   fmt::print("\nwrote {0}/report.json, {0}/report.html, {0}/error-vs-time.svg\n", dir);
 }
 
+void print_stress(const json& doc, const std::string& dir) {
+  for (const auto& f : doc["families"]) {
+    fmt::print("\n{} ({}): geometric error of {} / object size; default double meets the target: {}\n",
+               f["name"].get<std::string>(), f["parameter"].get<std::string>(), f["item"].get<std::string>(),
+               f["default_meets_target"].get<bool>() ? "yes" : "NO");
+    fmt::print("{:>10} {:>10} {:>10}", f["parameter"].get<std::string>(), "eps*kappa", "rounded");
+    for (const auto& r : f["points"][0]["runs"]) {
+      std::string label = r["run"].get<std::string>();
+      fmt::print(" {:>12}", label.substr(0, label.find(' ')).substr(0, 12));
+    }
+    fmt::print("\n");
+    auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.2e}", v.get<double>()); };
+    for (const auto& p : f["points"]) {
+      fmt::print("{:>10} {:>10} {:>10}", num(p["param"]), num(p["predicted_double_error"]), num(p["rounded_exact_error"]));
+      for (const auto& r : p["runs"]) fmt::print(" {:>12}", num(r["geometric_error"]));
+      fmt::print("\n");
+    }
+  }
+  fmt::print("\nwrote {0}/report.json, {0}/report.html and one SVG per family\n", dir);
+}
+
 /// Wraps text at `width` columns with an indent.
 std::string wrap_text(const std::string& text, std::size_t width, const std::string& indent) {
   std::string out, line;
@@ -214,6 +236,19 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 10000.0));
   audit->add_flag("--json", as_json, "Also print report.json on stdout");
 
+  CLI::App* stress = app.add_subcommand("stress", "Stability sweeps of stiff and extreme cases (families: --list); "
+                                                  "writes report.json, report.html and one SVG per family");
+  std::vector<std::string> families;
+  bool list_families = false;
+  int stress_samples = 8;
+  stress->add_option("--family", families, "A family to sweep (repeatable; default: all)");
+  stress->add_flag("--list", list_families, "List the families and exit");
+  stress->add_option("--out", out_dir, "Output directory");
+  stress->add_option("--samples", stress_samples, "Exact points per item for the geometric error")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  stress->add_flag("--json", as_json, "Also print report.json on stdout");
+
   CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
   bool strict = false;
   paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
@@ -263,6 +298,33 @@ int main(int argc, char** argv) {
       const json doc = run_audit(sc, opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_audit(doc, out_dir);
+      return kOk;
+    }
+    if (stress->parsed()) {
+      if (list_families) {
+        json list = json::array();
+        for (const auto& f : stress_families()) {
+          if (!as_json) fmt::print("{:<20} {}\n", f.name, f.description);
+          list.push_back({{"name", f.name}, {"parameter", f.parameter}, {"description", f.description}});
+        }
+        if (as_json) std::cout << json{{"families", list}}.dump(2) << "\n";
+        return kOk;
+      }
+      if (out_dir.empty()) throw UsageError("stress: --out DIR is required (or --list)");
+      for (const auto& f : families)
+        if (std::none_of(stress_families().begin(), stress_families().end(), [&](const auto& g) { return g.name == f; }))
+          throw UsageError("stress: unknown family \"" + f + "\" (see qverify stress --list)");
+      StressOptions opt;
+      opt.out_dir = out_dir;
+      opt.families = families;
+      opt.samples = stress_samples;
+      const auto start = std::chrono::steady_clock::now();
+      opt.progress = [&](const std::string& line) {
+        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
+      };
+      const json doc = run_stress(opt);
+      if (as_json) std::cout << doc.dump(2) << "\n";
+      else print_stress(doc, out_dir);
       return kOk;
     }
     if (paper->parsed()) {

@@ -81,4 +81,45 @@ std::string audit_html(const json& doc, const std::string& svg) {
   return html_page("qverify precision audit", b);
 }
 
+std::string stress_html(const json& doc, const std::vector<std::pair<std::string, std::string>>& svgs) {
+  std::string b = "<p>Sweeps of stiff and extreme cases: each family pushes one parameter over many decades towards a "
+                  "breaking point. Every point is computed in float, double, long double and float128 by both methods "
+                  "(double also in the naive world frame) and compared with exact arithmetic.</p>\n<p class=\"note\">"
+                  "<b>Geometric error.</b> " + html_escape(doc["geometric_error"].get<std::string>()) +
+                  ".</p>\n<p class=\"note\"><b>Matrix error.</b> " + html_escape(doc["matrix_error"].get<std::string>()) +
+                  ".</p>\n<ul>";
+  for (const auto& f : doc["families"]) b += "<li><a href=\"#" + sci(f["name"]) + "\">" + sci(f["name"]) + "</a></li>";
+  b += "</ul>\n";
+  std::size_t k = 0;
+  for (const auto& f : doc["families"]) {
+    const std::string name = f["name"].get<std::string>();
+    b += "<h2 id=\"" + html_escape(name) + "\">" + html_escape(name) + "</h2>\n<p>" + sci(f["description"]) +
+         ". Item: " + sci(f["item"]) + ".</p>\n";
+    for (; k < svgs.size(); ++k)
+      if (svgs[k].first == name) {
+        b += "<figure class=\"plot\" id=\"plot-" + html_escape(name) + "\">\n" + svgs[k].second + "</figure>\n";
+        break;
+      }
+    b += std::string("<p><b>Default double path meets the target at every point: ") +
+         (f["default_meets_target"].get<bool>() ? "yes" : "NO") + "</b> (target: " + sci(f["geometric_target"]) + ").</p>\n";
+    b += "<table><tr><th>" + sci(f["parameter"]) + "</th><th>exact status</th><th>eps*kappa</th><th>rounded exact</th>";
+    for (const auto& r : f["points"][0]["runs"]) b += "<th>" + sci(r["run"]) + "</th>";
+    b += "</tr>\n";
+    for (const auto& p : f["points"]) {
+      b += "<tr><td>" + sci(p["param"]) + "</td><td class=\"l\">" + sci(p["exact_status"]) + "</td><td>" +
+           sci(p["predicted_double_error"]) + "</td><td>" + sci(p["rounded_exact_error"]) + "</td>";
+      for (const auto& r : p["runs"]) b += "<td title=\"" + sci(r["status"]) + "\">" + sci(r["geometric_error"]) + "</td>";
+      b += "</tr>\n";
+    }
+    b += "</table>\n<p class=\"note\">Slopes (log-log, least squares) of the geometric error against " +
+         sci(f["parameter"]) + ": ";
+    for (const auto& [run, sl] : f["slopes"].items())
+      b += html_escape(run) + " " + (sl.is_object() ? sci(sl["geometric_error"]) : sci(sl)) + "; ";
+    b += "</p>\n<p class=\"note\">First parameter value where the geometric error exceeds 1e-9 of the object size: ";
+    for (const auto& [run, at] : f["breakdown"].items()) b += html_escape(run) + " " + (at.is_null() ? "never" : sci(at)) + "; ";
+    b += "</p>\n";
+  }
+  return html_page("qverify stability sweeps", b);
+}
+
 }  // namespace qverify

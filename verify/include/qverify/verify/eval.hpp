@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <optional>
+#include <limits>
 #include <type_traits>
 
 namespace qverify {
@@ -61,13 +62,47 @@ template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Ma
   return out;
 }
 
-/// Inputs of one shadow item, in its frame.
+/// Inputs of one shadow item, in its frame (and, in the robust path, their
+/// exact values for escalation).
 template <class S> struct PreparedShadow {
   Pair pair;
   Mat4<S> A;
   Vec4<S> L;
   std::optional<Vec3<Rational>> origin;
+  std::optional<std::pair<Mat4<Rational>, Vec4<Rational>>> exact;
 };
+
+/// Entrywise cancellation of P = s A - pi pi^T: the largest
+/// (|s| |A_ij| + |pi_i| |pi_j|) / |P_ij| (infinite when P_ij vanishes by
+/// cancellation). Small entries of P computed with large cancellation carry
+/// absolute, not relative, errors: the geometry of the cone is in them.
+template <class S> S cone_cancellation(const Mat4<S>& A, const Vec4<S>& L, const Mat4<S>& P) {
+  const Vec4<S> pi = A * L;
+  const S s = abs_of<S>(S(L.dot(pi)));
+  S worst(0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j) {
+      const S terms = s * abs_of<S>(A(i, j)) + abs_of<S>(pi(i)) * abs_of<S>(pi(j));
+      if (terms == S(0)) continue;
+      const S p = abs_of<S>(P(i, j));
+      if (p == S(0)) return S(std::numeric_limits<double>::infinity());
+      if (worst < terms / p) worst = terms / p;
+    }
+  return worst;
+}
+
+/// Escalation threshold of the robust path: 2^16 (16 of the 53 bits of a double lost).
+inline double escalation_threshold() { return 65536.0; }
+
+/// Conditioning of the quadric's quadratic part K (3x3): |K|_max^3 / |det K|,
+/// infinite for a singular K. Rounding A to S perturbs its geometry by about
+/// eps times this (the small eigenvalues of K carry the shape).
+template <class S> S quadric_conditioning(const Mat4<S>& A) {
+  const Mat3<S> K = A.template topLeftCorner<3, 3>();
+  const S k = max_abs(K), d = abs_of<S>(S(K.determinant()));
+  if (d == S(0)) return S(std::numeric_limits<double>::infinity());
+  return k * k * k / d;
+}
 
 /// Inputs of one reflection item: A in the quadric's frame; in the local path
 /// G maps the image's frame into A's (B = G^T A G) and M is output in the
@@ -78,6 +113,7 @@ template <class S> struct PreparedReflection {
   bool local = false;
   Mat4<S> G, M;
   std::optional<Vec3<Rational>> origin;
+  std::optional<std::pair<Mat4<Rational>, Mat4<Rational>>> exact;  ///< A and G, exactly (robust path)
 };
 
 template <class S> struct ShadowItem {
@@ -85,12 +121,14 @@ template <class S> struct ShadowItem {
   ShadowResult<S> result;
   std::optional<Vec3<Rational>> origin;  ///< results in local coordinates x - origin
   Mat4<S> A;                             ///< the quadric as used (same frame)
+  const char* escalated = nullptr;       ///< wider type the item was recomputed in, if any
 };
 template <class S> struct ReflectionItem {
   Pair pair;
   Mat4<S> M;
   ReflectionResult<S> result;
   std::optional<Vec3<Rational>> origin;
+  const char* escalated = nullptr;
 };
 
 template <class S> struct Evaluation {
@@ -109,7 +147,7 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev)
   ev.prepared_reflections.clear();
   if (frame == Frame::world) {
     for (const Pair& p : sc.shadows) {
-      PreparedShadow<S> ps{p, ev.scene.A[p.quadric], ev.scene.L[p.other], std::nullopt};
+      PreparedShadow<S> ps{p, ev.scene.A[p.quadric], ev.scene.L[p.other], std::nullopt, std::nullopt};
       normalise_pow2(ps.A);
       normalise_pow2(ps.L);
       ev.prepared_shadows.push_back(ps);
@@ -151,8 +189,11 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev)
     PreparedShadow<S> ps;
     ps.pair = p;
     ps.origin = origin[p.quadric];
-    ps.A = rounded_scaled<S>(local_A(p.quadric));
-    ps.L = rounded_scaled<S>(ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other]);
+    const Mat4<Q> Al = local_A(p.quadric);
+    const Vec4<Q> Ll = ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other];
+    ps.A = rounded_scaled<S>(Al);
+    ps.L = rounded_scaled<S>(Ll);
+    if constexpr (std::is_floating_point_v<S>) ps.exact = std::make_pair(Al, Ll);
     ev.prepared_shadows.push_back(ps);
   }
   for (const Pair& p : sc.reflections) {
@@ -172,25 +213,50 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev)
     // G: image frame -> A's frame, x_A = M (u + o_B) - o_A; M_local = T_B^-1 M T_B.
     const Mat4<Q> G = translation<Q>(Vec3<Q>(-oA)) * M * translation<Q>(ob);
     pr.G = rounded_scaled<S>(G);
+    if constexpr (std::is_floating_point_v<S>) pr.exact = std::make_pair(local_A(p.quadric), G);
     pr.M = rounded_scaled<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
     pr.origin = oB;
     ev.prepared_reflections.push_back(pr);
   }
 }
 
+/// The item recomputed in binary128 from its exact inputs, rounded once to S.
+/// (Defined in escalate.cpp for float, double and long double.)
+template <class S> ShadowItem<S> escalated_shadow(const PreparedShadow<S>& ps);
+extern template ShadowItem<float> escalated_shadow<float>(const PreparedShadow<float>&);
+extern template ShadowItem<double> escalated_shadow<double>(const PreparedShadow<double>&);
+extern template ShadowItem<long double> escalated_shadow<long double>(const PreparedShadow<long double>&);
+template <class S> ReflectionItem<S> escalated_reflection(const PreparedReflection<S>& pr);
+extern template ReflectionItem<float> escalated_reflection<float>(const PreparedReflection<float>&);
+extern template ReflectionItem<double> escalated_reflection<double>(const PreparedReflection<double>&);
+extern template ReflectionItem<long double> escalated_reflection<long double>(const PreparedReflection<long double>&);
+
 /// Computes every prepared item by `method` (the timed part of an audit).
 template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
   ev.shadows.clear();
   ev.reflections.clear();
-  for (const PreparedShadow<S>& ps : ev.prepared_shadows)
-    ev.shadows.push_back({ps.pair, shadow<S>(ps.A, ps.L, method), ps.origin, ps.A});
+  for (const PreparedShadow<S>& ps : ev.prepared_shadows) {
+    ShadowItem<S> item{ps.pair, shadow<S>(ps.A, ps.L, method), ps.origin, ps.A};
+    if constexpr (std::is_floating_point_v<S>) {
+      // Robust path: where P's entries come out of heavy cancellation, recompute the item in
+      // binary128 from the exact inputs and round the results once.
+      if (ps.exact && method == Method::direct &&
+          (!(cone_cancellation<S>(ps.A, ps.L, item.result.P) <= S(escalation_threshold())) ||
+           !(quadric_conditioning<S>(ps.A) <= S(1 << 20))))
+        item = escalated_shadow<S>(ps);
+    }
+    ev.shadows.push_back(std::move(item));
+  }
   std::vector<std::optional<Mat4<S>>> mirrors(sc.mirrors.size());
   for (const PreparedReflection<S>& pr : ev.prepared_reflections) {
     if (pr.local) {
       ReflectionResult<S> r;
       r.degenerate = is_degenerate_quadric<S>(pr.A);
       r.B = mirror_image<S>(pr.A, pr.G);  // G^T A G
-      ev.reflections.push_back({pr.pair, pr.M, r, pr.origin});
+      ReflectionItem<S> item{pr.pair, pr.M, r, pr.origin};
+      if constexpr (std::is_floating_point_v<S>)
+        if (pr.exact && !(quadric_conditioning<S>(pr.A) <= S(1 << 20))) item = escalated_reflection<S>(pr);
+      ev.reflections.push_back(item);
       continue;
     }
     auto& M = mirrors[pr.pair.other];
@@ -227,6 +293,7 @@ template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const Sha
   bool finite = all_finite(r.P) && all_finite(r.polar_plane) && all_finite(r.R);
   j["status"] = finite ? r.status() : "non-finite";
   if (it.origin) j["origin"] = origin_json(*it.origin);
+  if (it.escalated) j["escalated"] = it.escalated;
   j["P"] = matrix_json(r.P);
   j["polar_plane"] = matrix_json(r.polar_plane);
   j["R"] = matrix_json(r.R);
@@ -253,6 +320,7 @@ template <class S> nlohmann::ordered_json reflection_json(const Scene& sc, const
   const bool finite = all_finite(it.M) && all_finite(it.result.B);
   j["status"] = finite ? it.result.status() : "non-finite";
   if (it.origin) j["origin"] = origin_json(*it.origin);
+  if (it.escalated) j["escalated"] = it.escalated;
   j["M"] = matrix_json(it.M);
   j["B"] = matrix_json(it.result.B);
   return j;

@@ -12,6 +12,9 @@ namespace qverify {
 /// report.html of `qverify audit` from its report.json document and the plot.
 std::string audit_html(const nlohmann::ordered_json& doc, const std::string& svg);
 
+/// report.html of `qverify stress` from its document and one SVG per family.
+std::string stress_html(const nlohmann::ordered_json& doc, const std::vector<std::pair<std::string, std::string>>& svgs);
+
 /// Shared page frame: head with inline CSS, a title, the body, a footer.
 std::string html_page(const std::string& title, const std::string& body);
 

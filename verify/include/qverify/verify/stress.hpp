@@ -1,0 +1,40 @@
+#pragma once
+/// \file stress.hpp
+/// `qverify stress`: sweeps of stiff and extreme cases. Each family pushes one
+/// parameter over many decades towards a breaking point; every point is
+/// computed in several precisions, by both methods (and for double in the
+/// world frame and in the robust local frame), and compared with exact: as a
+/// matrix (projective error) and geometrically (distance of exact terminator or
+/// reflected points from the computed P or B, relative to the object's size).
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace qverify {
+
+struct StressFamily {
+  std::string name, description, parameter;
+  std::vector<double> values;              ///< parameter values (decades)
+  std::function<std::string(double)> scene;  ///< qverify-scene/1 text for a parameter value
+  double size = 1;                         ///< object size (for relative geometric error)
+  bool reflection = false;                 ///< the family's item is a reflection (else a shadow)
+};
+
+/// The families of `qverify stress --list`.
+const std::vector<StressFamily>& stress_families();
+
+struct StressOptions {
+  std::string out_dir;
+  std::vector<std::string> families;  ///< empty: all
+  int samples = 8;                    ///< exact points per item for the geometric error
+  std::function<void(const std::string&)> progress;
+};
+
+/// Runs the sweeps, writes report.json (qverify-stress/1), report.html and
+/// one SVG per family; returns the document.
+nlohmann::ordered_json run_stress(const StressOptions& opt);
+
+}  // namespace qverify

@@ -1,0 +1,348 @@
+#include <qverify/exact/number_text.hpp>
+#include <qverify/exact/sampling.hpp>
+#include <qverify/verify/audit.hpp>
+#include <qverify/verify/plot.hpp>
+#include <qverify/verify/report.hpp>
+#include <qverify/verify/stress.hpp>
+
+#include <cmath>
+#include <optional>
+#include <filesystem>
+#include <fstream>
+
+namespace qverify {
+
+using json = nlohmann::ordered_json;
+using Q = Rational;
+
+namespace {
+
+Q pow10(int k) {
+  Q r(1);
+  for (int i = 0; i < std::abs(k); ++i) r *= 10;
+  return k >= 0 ? r : Q(1) / r;
+}
+/// An exact number as a JSON string "p/q".
+std::string q(const Q& x) { return "\"" + x.str() + "\""; }
+std::string vec(const Q& a, const Q& b, const Q& c) { return "[" + q(a) + ", " + q(b) + ", " + q(c) + "]"; }
+int exponent_of(double v) { return static_cast<int>(std::lround(std::log10(v))); }
+
+std::vector<double> decades(int from, int to, int step = 1) {
+  std::vector<double> v;
+  for (int k = from; step > 0 ? k <= to : k >= to; k += step) v.push_back(std::pow(10.0, k));
+  return v;
+}
+
+std::string scene_text(const std::string& name, const std::string& quadric, const std::string& light,
+                       const std::string& mirror) {
+  std::string s = R"({"format": "qverify-scene/1", "name": ")" + name + R"(", "quadrics": [)" + quadric + "]";
+  if (!light.empty()) s += R"(, "lights": [)" + light + "]";
+  if (!mirror.empty()) s += R"(, "mirrors": [)" + mirror + "]";
+  return s + "}";
+}
+
+std::string sphere(const Q& cx, const Q& cy, const Q& cz, const Q& r) {
+  return R"({"id": "obj", "sphere": {"center": )" + vec(cx, cy, cz) + R"(, "radius": )" + q(r) + "}}";
+}
+std::string point_light(const Q& x, const Q& y, const Q& z) {
+  return R"({"id": "light", "position": )" + vec(x, y, z) + "}";
+}
+
+std::vector<StressFamily> make_families() {
+  std::vector<StressFamily> f;
+  f.push_back({"light-near-surface", "unit sphere; point light at (2,3,6)/7 (1 + eps) approaching the surface", "eps",
+               decades(-1, -15, -1), [](double e) {
+                 const Q s = Q(1) + pow10(exponent_of(e));
+                 return scene_text("light-near-surface", sphere(0, 0, 0, 1), point_light(Q(2, 7) * s, Q(3, 7) * s, Q(6, 7) * s), "");
+               }, 1, false});
+  f.push_back({"light-far", "unit sphere; point light at distance D along (2,3,6)/7, going to infinity", "D",
+               decades(1, 15), [](double d) {
+                 const Q D = pow10(exponent_of(d));
+                 return scene_text("light-far", sphere(0, 0, 0, 1), point_light(Q(2, 7) * D, Q(3, 7) * D, Q(6, 7) * D), "");
+               }, 1, false});
+  f.push_back({"light-near-z0", "sphere at (0,0,-3); light at (2,1,l_z), l_z -> 0: the paper's T (1/l_z) breaks", "l_z",
+               decades(-1, -15, -1), [](double z) {
+                 return scene_text("light-near-z0", sphere(0, 0, -3, 1), point_light(2, 1, pow10(exponent_of(z))), "");
+               }, 1, false});
+  f.push_back({"thin-ellipsoid", "rotated ellipsoid with radii 1, 1/2 and 1/aspect; light at (2,3,6)", "aspect",
+               decades(0, 12), [](double a) {
+                 const std::string e = R"({"id": "obj", "ellipsoid": {"center": )" + vec(Q(1, 2), Q(-1, 4), 0) +
+                                       R"(, "radii": )" + vec(1, Q(1, 2), Q(1) / pow10(exponent_of(a))) +
+                                       R"(, "axes": [["3/5", "-4/5", 0], ["4/5", "3/5", 0], [0, 0, 1]]}})";
+                 return scene_text("thin-ellipsoid", e, point_light(2, 3, 6), "");
+               }, 1, false});
+  f.push_back({"far-from-origin", "unit sphere at (d, 2, 1); light at its centre + (2,3,6)", "d", decades(0, 12),
+               [](double d) {
+                 const Q D = pow10(exponent_of(d));
+                 return scene_text("far-from-origin", sphere(D, 2, 1, 1), point_light(D + 2, 5, 7), "");
+               }, 1, false});
+  f.push_back({"near-degenerate", "ellipsoid with radii 1, 1, R: det A -> 0, the ellipsoid becomes a cylinder", "R",
+               decades(0, 14), [](double r) {
+                 const std::string e = R"({"id": "obj", "ellipsoid": {"center": )" + vec(Q(1, 4), 0, Q(1, 2)) +
+                                       R"(, "radii": )" + vec(1, 1, pow10(exponent_of(r))) +
+                                       R"(, "axes": [[1, 0, 0], [0, "3/5", "-4/5"], [0, "4/5", "3/5"]]}})";
+                 return scene_text("near-degenerate", e, point_light(2, 3, 6), "");
+               }, 1, false});
+  f.push_back({"mirror-far", "unit sphere at (1/2, 1/4, 0); mirror 2x + 3y + 6z = 7 d, d -> infinity", "d", decades(0, 12),
+               [](double d) {
+                 const Q D = pow10(exponent_of(d));
+                 return scene_text("mirror-far", sphere(Q(1, 2), Q(1, 4), 0, 1), "",
+                                   R"({"id": "mirror", "plane": [2, 3, 6, )" + q(Q(-7) * D) + "]}");
+               }, 1, true});
+  f.push_back({"scale-extremes", "sphere at (1,2,3), radius 1, as a matrix with every entry scaled by s", "s",
+               decades(-150, 150, 25), [](double s) {
+                 const Q S = pow10(exponent_of(s));
+                 const int A[4][4] = {{1, 0, 0, -1}, {0, 1, 0, -2}, {0, 0, 1, -3}, {-1, -2, -3, 13}};
+                 std::string m = R"({"id": "obj", "matrix": [)";
+                 for (int i = 0; i < 4; ++i) {
+                   m += i ? ", [" : "[";
+                   for (int j = 0; j < 4; ++j) m += (j ? ", " : "") + q(S * A[i][j]);
+                   m += "]";
+                 }
+                 return scene_text("scale-extremes", m + "]}", point_light(5, 1, 9), "");
+               }, 1, false});
+  f.push_back({"decimal-inputs", "sphere of radius 7/10 s at (0.1, 0.2, 0.3), light at the centre + s (2,3,6): decimal "
+               "inputs that binary cannot represent, the object shrinking", "s", decades(0, -12, -1),
+               [](double s) {
+                 const Q S = pow10(exponent_of(s));
+                 const Q cx(1, 10), cy(2, 10), cz(3, 10);
+                 return scene_text("decimal-inputs", sphere(cx, cy, cz, Q(7, 10) * S),
+                                   point_light(cx + 2 * S, cy + 3 * S, cz + 6 * S), "");
+               }, 0, false});
+  return f;
+}
+
+struct RunSpec {
+  const char* precision;
+  Method method;
+  std::optional<Frame> frame;
+  std::string label;
+};
+
+std::vector<RunSpec> run_specs() {
+  return {{"float", Method::direct, std::nullopt, "float/direct"},
+          {"float", Method::paper, std::nullopt, "float/paper"},
+          {"double", Method::direct, Frame::world, "double/direct/world (naive)"},
+          {"double", Method::direct, std::nullopt, "double/direct (default, robust)"},
+          {"double", Method::paper, std::nullopt, "double/paper"},
+          {"long-double", Method::direct, std::nullopt, "long-double/direct"},
+          {"long-double", Method::paper, std::nullopt, "long-double/paper"},
+          {"float128", Method::direct, std::nullopt, "float128/direct"},
+          {"float128", Method::paper, std::nullopt, "float128/paper"}};
+}
+
+const char* kColors[] = {"#9edae5", "#17becf", "#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#98df8a", "#9467bd", "#c5b0d5"};
+
+/// Max first-order distance of the points (already in the result's frame) from Qm.
+double max_distance(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
+  Measure worst = 0;
+  for (const RootPoint& x : pts) {
+    const RootNumber f = x.form(Qm);
+    if (CGAL::is_zero(f)) continue;
+    Measure g = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Measure gi = to_measure(x.linear(Qm.row(i).transpose()));
+      g += gi * gi;
+    }
+    const Measure w = abs(to_measure(x.coords()[3]));
+    if (!(g > 0) || !(w > 0)) return INFINITY;
+    const Measure d = abs(to_measure(f)) / (w * 2 * sqrt(g));
+    if (d > worst) worst = d;
+  }
+  return worst.convert_to<double>();
+}
+
+/// Least-squares slope of log10(y) against log10(x) over finite, positive points.
+json slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::isfinite(y[i]) && y[i] > 0 && x[i] > 0) {
+      const double a = std::log10(x[i]), b = std::log10(y[i]);
+      sx += a, sy += b, sxx += a * a, sxy += a * b, ++n;
+    }
+  if (n < 2 || n * sxx - sx * sx == 0) return nullptr;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+}  // namespace
+
+const std::vector<StressFamily>& stress_families() {
+  static const std::vector<StressFamily> f = make_families();
+  return f;
+}
+
+json run_stress(const StressOptions& opt) {
+  const auto specs = run_specs();
+  json families = json::array();
+  std::vector<std::pair<std::string, std::string>> svgs;
+  for (const StressFamily& fam : stress_families()) {
+    if (!opt.families.empty() && std::find(opt.families.begin(), opt.families.end(), fam.name) == opt.families.end())
+      continue;
+    if (opt.progress) opt.progress("stress: " + fam.name);
+    json points = json::array();
+    std::vector<std::vector<double>> geo(specs.size()), mat(specs.size());
+    std::vector<double> params, predicted, floors;
+    bool all_meet = true;
+    for (double v : fam.values) {
+      const Scene sc = parse_scene(fam.scene(v), fam.name + ".json");
+      const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
+      const Mat4<Q>& A = ref.scene.A[0];
+      // object size for the relative geometric error
+      const double size = fam.size > 0 ? fam.size : v * 7 / 10;
+      // exact sample points (world), shifted into each result's frame later
+      std::vector<RootPoint> pts;
+      Mat4<Q> Mw = Mat4<Q>::Identity();
+      if (fam.reflection) {
+        Mw = ref.reflections[0].M;
+        for (const RootPoint& x : sample_quadric(A, opt.samples, 11).points) pts.push_back(x.mapped(Mw));
+      } else {
+        pts = sample_section(A, Vec4<Q>(A * ref.scene.L[0]), opt.samples, 11).points;
+      }
+      // first-order condition estimate of the naive double computation (world frame)
+      Measure kappa = 1;
+      if (!fam.reflection) {
+        const Mat4<Q> absA = A.cwiseAbs();
+        const Vec4<Q> absL = ref.scene.L[0].cwiseAbs();
+        const Vec4<Q> aAL = absA * absL;
+        const Mat4<Q> Pabs = absL.dot(aAL) * absA + aAL * aAL.transpose();
+        const Q nP = max_abs(ref.shadows[0].result.P);
+        if (nP != 0) kappa = to_measure(Q(max_abs(Pabs) / nP));
+      } else {
+        const Mat4<Q> aM = Mw.cwiseAbs();
+        const Q nB = max_abs(ref.reflections[0].result.B);
+        if (nB != 0) kappa = to_measure(Q(max_abs(Mat4<Q>(aM.transpose() * A.cwiseAbs() * aM)) / nB));
+      }
+      const double pred = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
+      // The floor: the exact result in the robust path's frame, correctly rounded to double (with the same
+      // exact power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
+      double floor_err = INFINITY;
+      std::optional<Vec3<Q>> robust_origin;
+      {
+        const ResultSet rob = computed_results(sc, *parse_precision("double"), Method::direct, std::nullopt);
+        robust_origin = fam.reflection ? rob.reflections[0].origin : rob.shadows[0].origin;
+        const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
+        std::vector<RootPoint> local;
+        for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
+        const Mat4<Q> exact_local = fam.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
+                                                   : quadric_to_local(ref.shadows[0].result.P, o);
+        const Mat4<double> rounded = rounded_scaled<double>(exact_local);
+        if (all_finite(rounded)) floor_err = max_distance(local, exact_matrix(rounded)) / size;
+      }
+      const double target = std::max(1e-9, 10 * floor_err);
+      json runs = json::array();
+      for (std::size_t r = 0; r < specs.size(); ++r) {
+        const RunSpec& spec = specs[r];
+        json run{{"run", spec.label}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
+        double me = INFINITY, ge = INFINITY;
+        std::string status;
+        try {
+          const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
+          if (fam.reflection) {
+            const ReflectionMatrices& g = rs.reflections[0];
+            status = g.status;
+            if (g.present) {
+              const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();
+              me = projective_error(quadric_from_local(g.B, o), ref.reflections[0].result.B, true);
+              std::vector<RootPoint> local;
+              for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
+              ge = max_distance(local, g.B) / size;
+              run["frame"] = g.origin ? "local" : "world";
+            }
+          } else {
+            const ShadowMatrices& g = rs.shadows[0];
+            status = g.status;
+            if (g.present) {
+              const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();
+              me = projective_error(quadric_from_local(g.P, o), ref.shadows[0].result.P, true);
+              std::vector<RootPoint> local;
+              for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
+              ge = max_distance(local, g.P) / size;
+              run["frame"] = g.origin ? "local" : "world";
+            }
+          }
+        } catch (const InputError& e) {
+          status = std::string("refused: ") + e.problem;
+        }
+        run["status"] = status;
+        run["matrix_error"] = num(me);
+        run["geometric_error"] = num(ge);
+        runs.push_back(run);
+        geo[r].push_back(ge);
+        mat[r].push_back(me);
+      }
+      params.push_back(v);
+      predicted.push_back(pred);
+      floors.push_back(floor_err);
+      const double robust = geo[3].back();  // double/direct (default)
+      const bool meets = robust <= target;
+      all_meet = all_meet && meets;
+      points.push_back({{"param", v},
+                        {"exact_status", fam.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status()},
+                        {"points", pts.size()},
+                        {"kappa", kappa.convert_to<double>()},
+                        {"predicted_double_error", pred},
+                        {"rounded_exact_error", num(floor_err)},
+                        {"target", target},
+                        {"default_meets_target", meets},
+                        {"runs", runs}});
+    }
+    // slopes and breakdown
+    json slopes, breakdown;
+    slopes["predicted_double_error (eps * kappa)"] = slope(params, predicted);
+    for (std::size_t r = 0; r < specs.size(); ++r) {
+      slopes[specs[r].label] = {{"matrix_error", slope(params, mat[r])}, {"geometric_error", slope(params, geo[r])}};
+      json at = nullptr;
+      for (std::size_t i = 0; i < params.size(); ++i)
+        if (!(geo[r][i] <= 1e-9)) {
+          at = params[i];
+          break;
+        }
+      breakdown[specs[r].label] = at;
+    }
+    json famj{{"name", fam.name},     {"description", fam.description}, {"parameter", fam.parameter},
+              {"item", fam.reflection ? "reflection B" : "shadow P"},
+              {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
+                                   "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
+              {"default_meets_target", all_meet}, {"points", points}, {"slopes", slopes},
+              {"breakdown", breakdown}};
+    families.push_back(famj);
+
+    Plot plot;
+    plot.title = fam.name + ": geometric error of " + (fam.reflection ? "B" : "P") + " relative to the object size";
+    plot.x_label = fam.parameter;
+    plot.y_label = "max distance of exact points / object size";
+    for (std::size_t r = 0; r < specs.size(); ++r) {
+      PlotSeries s{specs[r].label, kColors[r], {}, true, true, r == 2, {}};
+      for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[r][i]);
+      plot.series.push_back(s);
+    }
+    PlotSeries floor_series{"exact, correctly rounded to double (floor)", "#000000", {}, true, true, true, {}};
+    for (std::size_t i = 0; i < params.size(); ++i) floor_series.points.emplace_back(params[i], floors[i]);
+    plot.series.push_back(floor_series);
+    PlotSeries pred_series{"eps_double * kappa (first-order estimate)", "#7f7f7f", {}, true, false, true, {}};
+    for (std::size_t i = 0; i < params.size(); ++i) pred_series.points.emplace_back(params[i], predicted[i]);
+    plot.series.push_back(pred_series);
+    if (!breakdown["double/direct/world (naive)"].is_null())
+      plot.x_marks.emplace_back(breakdown["double/direct/world (naive)"].get<double>(), "naive double > 1e-9");
+    plot.height = 520;
+    plot.width = 900;
+    svgs.emplace_back(fam.name, render_svg(plot));
+  }
+  json doc{{"format", "qverify-stress/1"},
+           {"reference", "exact"},
+           {"geometric_error", "max over exact sample points (terminator points for P, reflected points of A for B, "
+                               "sampled in Q(sqrt d)) of the first-order distance |x^T Q x| / |grad|, in the result's own "
+                               "frame, divided by the object's size"},
+           {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"},
+           {"families", families}};
+  std::filesystem::create_directories(opt.out_dir);
+  for (const auto& [name, svg] : svgs) std::ofstream(std::filesystem::path(opt.out_dir) / (name + ".svg")) << svg;
+  std::ofstream(std::filesystem::path(opt.out_dir) / "report.json") << doc.dump(2) << "\n";
+  std::ofstream(std::filesystem::path(opt.out_dir) / "report.html") << stress_html(doc, svgs);
+  return doc;
+}
+
+}  // namespace qverify
