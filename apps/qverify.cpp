@@ -30,8 +30,6 @@ Precision precision_of(const std::string& text) {
   if (!p)
     throw UsageError("--precision: unknown precision \"" + text +
                      "\" (expected float, double, long-double, float128, mpfr:BITS with 16 <= BITS <= 65536, interval, exact)");
-  if (p->kind == Precision::Kind::interval)
-    throw UsageError("--precision interval: certified intervals are not available yet in this build");
   return *p;
 }
 

@@ -13,7 +13,7 @@ flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --dis
 timeout 60 "$browser" "${flags[@]}" --dump-dom "file://$html" > "$tmp/dom.html" 2>/dev/null
 timeout 60 "$browser" "${flags[@]}" --screenshot="${html%.html}.png" "file://$html" >/dev/null 2>&1
 points=$(grep -o '<circle class="point"' "$tmp/dom.html" | wc -l)
-if ! grep -q '<figure id="plot">' "$tmp/dom.html" || ! grep -q '<svg' "$tmp/dom.html"; then
+if ! grep -q '<figure[^>]*id="plot' "$tmp/dom.html" || ! grep -q '<svg' "$tmp/dom.html"; then
   echo "check-html-report: no plot in the rendered page $html" >&2; exit 1
 fi
 if [ "$points" -lt "$min" ]; then

@@ -248,7 +248,8 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
   CHECK(doc["reference"] == "exact");
   std::map<std::string, nlohmann::json> row;
   for (const auto& x : doc["rows"]) row[x["precision"].get<std::string>() + "/" + x["method"].get<std::string>()] = x;
-  CHECK(row.size() == 14);  // float, double, long-double, float128, mpfr:128, mpfr:256, exact x 2 methods
+  CHECK(row.size() == 16);  // float, double, long-double, float128, mpfr:128, mpfr:256, interval, exact x 2 methods
+  CHECK(row["interval/direct"]["max_rel_error"].get<double>() < 1e-14);
   for (const char* m : {"direct", "paper"}) {
     const std::string M = m;
     CHECK(row["exact/" + M]["max_rel_error"] == 0);
@@ -260,6 +261,7 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
   CHECK(doc["items"].size() == 6);  // only the requested pairs
   CHECK(doc["skipped"].size() == 14);
   CHECK(!doc["pareto"].empty());
+  CHECK(std::filesystem::file_size(dir / "report.html") > 1000);
   std::ifstream html(dir / "report.html");
   const std::string text((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
   CHECK(text.find("<svg") != std::string::npos);

@@ -5,6 +5,7 @@
 #include <qverify/exact/polynomial.hpp>
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/sampling.hpp>
+#include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
 
 using namespace qverify;
@@ -149,5 +150,28 @@ TEST_CASE("the double core is within a rounding-error bound of the exact twin", 
     const Mat4<double> Md = mirror_matrix<double>(test::to_scalar<double>(plane));
     CHECK(to_measure(cross_residual(Mat4<Q>(Md.unaryExpr([](double v) { return to_rational(v); })), M)) <=
           Measure(64 * eps * 10));
+  }
+}
+
+TEST_CASE("interval results enclose the exact results of the same formula", "[exact][interval]") {
+  const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/mixed-requests.json");
+  for (Method m : {Method::direct, Method::paper}) {
+    const Evaluation<Interval> iv = evaluate<Interval>(sc, m);
+    const Evaluation<Q> ex = evaluate<Q>(sc, m);
+    CHECK(iv.frame == Frame::world);
+    auto inside = [](const auto& I, const auto& E) {
+      for (Eigen::Index i = 0; i < E.size(); ++i)
+        if (!(to_rational(I(i).inf()) <= E(i) && E(i) <= to_rational(I(i).sup()))) return false;
+      return true;
+    };
+    for (std::size_t k = 0; k < ex.shadows.size(); ++k) {
+      CHECK(inside(iv.shadows[k].result.P, ex.shadows[k].result.P));
+      CHECK(inside(iv.shadows[k].result.polar_plane, ex.shadows[k].result.polar_plane));
+      CHECK(inside(iv.shadows[k].result.R, ex.shadows[k].result.R));
+    }
+    for (std::size_t k = 0; k < ex.reflections.size(); ++k) {
+      CHECK(inside(iv.reflections[k].M, ex.reflections[k].M));
+      CHECK(inside(iv.reflections[k].result.B, ex.reflections[k].result.B));
+    }
   }
 }

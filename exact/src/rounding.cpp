@@ -7,6 +7,8 @@
 
 #include <qverify/exact/rounding.hpp>
 
+#include <cmath>
+
 namespace qverify {
 namespace {
 
@@ -14,14 +16,14 @@ namespace {
 /// MPFR exponent range [emin, emax] (significand in [1/2, 1)), subnormals
 /// included. Returns the MPFR value (caller clears it) via `out`.
 void round_in_format(mpfr_t out, const Rational& q, mpfr_prec_t prec, mpfr_exp_t emin, mpfr_exp_t emax,
-                     RoundingReport& rep) {
+                     RoundingReport& rep, mpfr_rnd_t mode = MPFR_RNDN) {
   const mpfr_exp_t old_min = mpfr_get_emin(), old_max = mpfr_get_emax();
   mpfr_set_emin(emin);
   mpfr_set_emax(emax);
   mpfr_init2(out, prec);
-  int inex = mpfr_set_q(out, q.backend().data(), MPFR_RNDN);
-  inex = mpfr_check_range(out, inex, MPFR_RNDN);
-  inex = mpfr_subnormalize(out, inex, MPFR_RNDN);
+  int inex = mpfr_set_q(out, q.backend().data(), mode);
+  inex = mpfr_check_range(out, inex, mode);
+  inex = mpfr_subnormalize(out, inex, mode);
   rep.inexact = rep.inexact || inex != 0;
   if (mpfr_inf_p(out)) rep.overflow = true;
   if (q != 0 && (mpfr_zero_p(out) || mpfr_get_exp(out) < emin + prec - 1)) rep.underflow = true;
@@ -78,6 +80,26 @@ template <> Float128 round_rational<Float128>(const Rational& q, RoundingReport&
   mpfr_clear(t);
   return Float128(d);
 }
+
+Interval enclose(const Rational& q) {
+  RoundingReport rep;
+  mpfr_t lo, hi;
+  round_in_format(lo, q, 53, -1073, 1024, rep, MPFR_RNDD);
+  round_in_format(hi, q, 53, -1073, 1024, rep, MPFR_RNDU);
+  const Interval r(mpfr_get_d(lo, MPFR_RNDD), mpfr_get_d(hi, MPFR_RNDU));
+  mpfr_clear(lo);
+  mpfr_clear(hi);
+  return r;
+}
+
+template <> Interval round_rational<Interval>(const Rational& q, RoundingReport& rep) {
+  const Interval r = enclose(q);
+  if (!std::isfinite(r.inf()) || !std::isfinite(r.sup())) rep.overflow = true;
+  if (r.inf() != r.sup()) rep.inexact = true;
+  return r;
+}
+
+Rational to_rational(const Interval& x) { return (to_rational(x.inf()) + to_rational(x.sup())) / 2; }
 
 template <> Mpfr round_rational<Mpfr>(const Rational& q, RoundingReport& rep) {
   Mpfr x;  // current default precision

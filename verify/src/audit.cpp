@@ -29,7 +29,7 @@ double projective_error(const Vec4<Q>& X, const Vec4<Q>& Y, bool positive) { ret
 
 std::vector<Precision> default_ladder() {
   std::vector<Precision> out;
-  for (const char* p : {"float", "double", "long-double", "float128", "mpfr:128", "mpfr:256", "exact"})
+  for (const char* p : {"float", "double", "long-double", "float128", "mpfr:128", "mpfr:256", "interval", "exact"})
     out.push_back(*parse_precision(p));
   return out;
 }

@@ -33,6 +33,10 @@ nlohmann::ordered_json scalar_json(const Mpfr& x) {
   return x.str(digits, std::ios_base::fmtflags(0));
 }
 nlohmann::ordered_json scalar_json(const Rational& x) { return x.str(); }
+nlohmann::ordered_json scalar_json(const Interval& x) {
+  if (!std::isfinite(x.inf()) || !std::isfinite(x.sup())) return nullptr;
+  return {{"lo", x.inf()}, {"hi", x.sup()}};
+}
 
 std::string Precision::name() const {
   switch (kind) {

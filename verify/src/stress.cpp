@@ -186,7 +186,8 @@ json run_stress(const StressOptions& opt) {
     std::vector<std::vector<double>> geo(specs.size()), mat(specs.size());
     std::vector<double> params, predicted, floors;
     bool all_meet = true;
-    for (double v : fam.values) {
+    const std::vector<double> values = opt.worst_only ? std::vector<double>{fam.values.back()} : fam.values;
+    for (double v : values) {
       const Scene sc = parse_scene(fam.scene(v), fam.name + ".json");
       const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
       const Mat4<Q>& A = ref.scene.A[0];

@@ -18,7 +18,7 @@ template <class Derived> Eigen::Index pivot_index(const Eigen::MatrixBase<Derive
   S b = abs_of<S>(m(0));
   for (Eigen::Index i = 1; i < m.size(); ++i) {
     const S a = abs_of<S>(m(i));
-    if (b < a) { b = a; best = i; }
+    if (qverify::less_than<S>(b, a)) { b = a; best = i; }
   }
   return best;
 }
@@ -34,12 +34,12 @@ typename DX::Scalar cross_residual(const Eigen::MatrixBase<DX>& X, const Eigen::
   const Eigen::Index p = pivot_index(Y);
   const S yp = Y(p), xp = X(p);
   const S xs = max_abs(X), ys = abs_of<S>(yp);
-  if (xs == S(0) && ys == S(0)) return S(0);
-  if (xs == S(0) || ys == S(0)) return S(1);
+  if (qverify::equals_zero<S>(xs) && qverify::equals_zero<S>(ys)) return S(0);
+  if (qverify::equals_zero<S>(xs) || qverify::equals_zero<S>(ys)) return S(1);
   S worst(0);
   for (Eigen::Index i = 0; i < X.size(); ++i) {
     const S r = abs_of<S>(S(X(i) * yp - Y(i) * xp));
-    if (worst < r) worst = r;
+    if (qverify::less_than<S>(worst, r)) worst = r;
   }
   return worst / (xs * ys);
 }
@@ -51,14 +51,14 @@ bool proportional(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DY>& Y
                   const typename DX::Scalar& tol) {
   using S = typename DX::Scalar;
   const Eigen::Index p = pivot_index(Y);
-  if ((max_abs(X) == S(0)) != (max_abs(Y) == S(0))) return false;
+  if (qverify::equals_zero<S>(max_abs(X)) != qverify::equals_zero<S>(max_abs(Y))) return false;
   if (factor == Factor::positive && sign_of<S>(X(p)) != sign_of<S>(Y(p))) return false;
-  return !(tol < cross_residual(X, Y));
+  return !qverify::less_than<S>(tol, cross_residual(X, Y));
 }
 
 /// Symmetry law: Q^T = Q (exactly, or within tol * |Q|_max).
 template <class S> bool is_symmetric(const Mat4<S>& Q, const S& tol) {
-  return !(tol * max_abs(Q) < max_abs(Mat4<S>(Q - Q.transpose())));
+  return !qverify::less_than<S>(S(tol * max_abs(Q)), max_abs(Mat4<S>(Q - Q.transpose())));
 }
 
 }  // namespace qverify

@@ -125,7 +125,7 @@ template <class S> bool is_degenerate_quadric(const Mat4<S>& A) {
 template <class S> Eigen::Matrix<S, 4, 3> plane_basis(const Vec4<S>& pi) {
   int k = 0;
   for (int i = 1; i < 4; ++i)
-    if (abs_of<S>(pi(k)) < abs_of<S>(pi(i))) k = i;
+    if (qverify::less_than<S>(abs_of<S>(pi(k)), abs_of<S>(pi(i)))) k = i;
   Eigen::Matrix<S, 4, 3> E = Eigen::Matrix<S, 4, 3>::Zero();
   for (int j = 0, col = 0; j < 4; ++j) {
     if (j == k) continue;
@@ -152,7 +152,7 @@ template <class S> bool conic_is_empty(const Mat3<S>& K) {
   const S m2 = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0);
   const S m3 = K.determinant();
   if (negligible<S>(m1, s) || negligible<S>(m2, S(s * s)) || negligible<S>(m3, S(s * s * s))) return false;
-  if (!(S(0) < m2)) return false;
+  if (!qverify::less_than<S>(S(0), m2)) return false;
   return sign_of<S>(m1) == sign_of<S>(m3);
 }
 

@@ -22,14 +22,38 @@ template <class S> using Vec4 = Eigen::Matrix<S, 4, 1>;
 template <class S> using Mat3 = Eigen::Matrix<S, 3, 3>;
 template <class S> using Mat4 = Eigen::Matrix<S, 4, 4>;
 
+/// The decisions the core takes on scalars. The primary template serves
+/// totally ordered types (floating point, rationals, the symbolic scalar);
+/// interval types specialise it (exact/interval.hpp) so that a comparison is
+/// true only when it is *certain*, and never throws.
+template <class S, class Enable = void> struct ScalarOps {
+  static constexpr bool interval = false;
+  /// Does S round? Exact types have NumTraits epsilon 0.
+  static bool exact() { return Eigen::NumTraits<S>::epsilon() == S(0); }
+  static bool less(const S& a, const S& b) { return a < b; }
+  static bool is_zero(const S& a) { return a == S(0); }
+  static S abs(const S& x) { return x < S(0) ? S(-x) : x; }
+  /// Not NaN and not beyond the largest finite value (always true when exact).
+  static bool finite(const S& x) {
+    if (!(x == x)) return false;
+    return exact() || !(Eigen::NumTraits<S>::highest() < abs(x));
+  }
+};
+
 /// True when `S` does not round (NumTraits epsilon is zero).
-template <class S> inline bool is_exact() { return Eigen::NumTraits<S>::epsilon() == S(0); }
+template <class S> inline bool is_exact() { return ScalarOps<S>::exact(); }
 
-/// |x| for any scalar (found by ADL for multiprecision types).
-template <class S> inline S abs_of(const S& x) { return x < S(0) ? S(-x) : x; }
+/// a < b (for intervals: certainly).
+template <class S> inline bool less_than(const S& a, const S& b) { return ScalarOps<S>::less(a, b); }
 
-/// -1, 0 or +1.
-template <class S> inline int sign_of(const S& x) { return (S(0) < x) - (x < S(0)); }
+/// x == 0 (for intervals: certainly).
+template <class S> inline bool equals_zero(const S& x) { return ScalarOps<S>::is_zero(x); }
+
+/// |x| for any scalar.
+template <class S> inline S abs_of(const S& x) { return ScalarOps<S>::abs(x); }
+
+/// -1, 0 or +1 (0 for an interval whose sign is not certain).
+template <class S> inline int sign_of(const S& x) { return qverify::less_than<S>(S(0), x) - qverify::less_than<S>(x, S(0)); }
 
 /// Largest absolute entry, the scale used by every tolerance of the core.
 template <class Derived>
@@ -39,7 +63,7 @@ inline typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
   for (Eigen::Index i = 0; i < m.rows(); ++i)
     for (Eigen::Index j = 0; j < m.cols(); ++j) {
       S a = abs_of<S>(m(i, j));
-      if (best < a) best = a;
+      if (qverify::less_than<S>(best, a)) best = a;
     }
   return best;
 }
@@ -51,7 +75,7 @@ template <class S> inline S status_tolerance() { return S(64) * Eigen::NumTraits
 
 /// `|q| <= tol * scale` with the core's status tolerance; `q == 0` for exact types.
 template <class S> inline bool negligible(const S& q, const S& scale) {
-  return !(status_tolerance<S>() * scale < abs_of<S>(q));
+  return !qverify::less_than<S>(S(status_tolerance<S>() * scale), abs_of<S>(q));
 }
 
 /// u v^T + v u^T: the quadric of the plane pair {u = 0} ∪ {v = 0}.

@@ -45,7 +45,7 @@ template <class S> Mat4<S> tangent_cone(const Mat4<S>& A, const Vec4<S>& L) {
 /// N up to a factor): z = l_z for a point light, the plane at infinity for a
 /// parallel light.
 template <class S> Vec4<S> frame_plane(const Vec4<S>& L) {
-  if (L(3) == S(0)) return Vec4<S>(S(0), S(0), S(0), S(1));
+  if (qverify::equals_zero<S>(L(3))) return Vec4<S>(S(0), S(0), S(0), S(1));
   return Vec4<S>(S(0), S(0), L(3), S(-L(2)));
 }
 
@@ -77,11 +77,11 @@ template <class S> struct PaperFrame {
 
 template <class S> PaperFrame<S> paper_frame(const Vec4<S>& L) {
   PaperFrame<S> f;
-  if (L(2) == S(0)) {
+  if (qverify::equals_zero<S>(L(2))) {
     f.singular = true;
     return f;
   }
-  if (L(3) == S(0)) {  // parallel light: shear, T = I
+  if (qverify::equals_zero<S>(L(3))) {  // parallel light: shear, T = I
     const S sx = L(0) / L(2), sy = L(1) / L(2);
     f.M(0, 2) = -sx;
     f.M(1, 2) = -sy;
@@ -141,7 +141,7 @@ template <class S> Vec4<S> paper_S(const Mat4<S>& C) { return C.col(2); }
 template <class S> Vec4<S> paper_polar_plane(const Vec4<S>& Splane, const PaperFrame<S>& f) {
   const Mat4<S> N = f.T * f.M;
   Vec4<S> pi = N.transpose() * Splane;
-  if (f.light_z < S(0)) pi = -pi;
+  if (qverify::less_than<S>(f.light_z, S(0))) pi = -pi;
   return pi;
 }
 

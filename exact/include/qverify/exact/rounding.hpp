@@ -5,6 +5,7 @@
 /// MPFR with the target format's precision and exponent range. The exact
 /// path never calls these; the floating paths round each input exactly once.
 
+#include <qverify/exact/interval.hpp>
 #include <qverify/exact/scalars.hpp>
 
 namespace qverify {
@@ -25,6 +26,8 @@ template <> Float128 round_rational<Float128>(const Rational& q, RoundingReport&
 /// At the current default precision of Mpfr (see set_mpfr_bits).
 template <> Mpfr round_rational<Mpfr>(const Rational& q, RoundingReport& rep);
 template <> inline Rational round_rational<Rational>(const Rational& q, RoundingReport&) { return q; }
+/// The certified enclosure of q (its bounds rounded outwards).
+template <> Interval round_rational<Interval>(const Rational& q, RoundingReport& rep);
 
 /// Exact value of a finite floating number as a Rational (every binary float is
 /// a dyadic rational). Used to measure errors of floating results exactly.

@@ -26,7 +26,7 @@ enum class Frame { world, local };
 /// The default frame: local for floating types with the direct method (the
 /// paper's route is defined in world coordinates: T depends on l_z).
 template <class S> Frame default_frame(Method method) {
-  return !is_exact<S>() && method == Method::direct ? Frame::local : Frame::world;
+  return !is_exact<S>() && !ScalarOps<S>::interval && method == Method::direct ? Frame::local : Frame::world;
 }
 
 /// Scales a matrix by an exact power of two so that its largest entry lies in
@@ -275,6 +275,18 @@ template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::o
   return ev;
 }
 
+/// Interval results: the status words are decided by the exact twin (an
+/// interval comparison can only say "possibly").
+template <class S> void certify_statuses(const Scene& sc, Method method, Evaluation<S>& ev) {
+  const Evaluation<Rational> ex = evaluate<Rational>(sc, method, Frame::world);
+  for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
+    ev.shadows[k].result.flags = ex.shadows[k].result.flags;
+    ev.shadows[k].result.direct_fallback = ex.shadows[k].result.direct_fallback;
+  }
+  for (std::size_t k = 0; k < ev.reflections.size(); ++k)
+    ev.reflections[k].result.degenerate = ex.reflections[k].result.degenerate;
+}
+
 inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
 
 /// An origin (exact doubles) as three JSON numbers.
@@ -332,7 +344,8 @@ nlohmann::ordered_json skipped_json(const Scene& sc);
 /// The whole `qverify-eval/1` document.
 template <class S>
 nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
-  const Evaluation<S> ev = evaluate<S>(sc, method, frame);
+  Evaluation<S> ev = evaluate<S>(sc, method, frame);
+  if constexpr (ScalarOps<S>::interval) certify_statuses(sc, method, ev);
   nlohmann::ordered_json doc;
   doc["format"] = "qverify-eval/1";
   doc["scene"] = sc.name;
@@ -340,6 +353,9 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
   doc["method"] = method_name(method);
   doc["frame"] = ev.frame == Frame::local ? "local" : "world";
   if (prec.kind == Precision::Kind::mpfr) doc["working_bits"] = mpfr_working_bits();
+  if (prec.kind == Precision::Kind::interval)
+    doc["certified"] = "every entry is an enclosure {lo, hi} of the exact result of the same formula; statuses "
+                       "decided in exact arithmetic";
   doc["shadows"] = nlohmann::ordered_json::array();
   for (const auto& it : ev.shadows) doc["shadows"].push_back(shadow_json(sc, it));
   doc["reflections"] = nlohmann::ordered_json::array();

@@ -3,6 +3,7 @@
 /// The precision ladder of the CLI (`--precision P`) and the dispatch from a
 /// run-time precision to a compile-time scalar type.
 
+#include <qverify/exact/interval.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #include <optional>
@@ -22,7 +23,7 @@ struct Precision {
 std::optional<Precision> parse_precision(const std::string& text);
 
 /// Calls f(S{}) with the scalar type of p (for mpfr, after setting the
-/// working precision). Interval is not dispatched here (see interval.hpp).
+/// working precision).
 template <class F> decltype(auto) with_scalar(const Precision& p, F&& f) {
   switch (p.kind) {
     case Precision::Kind::f32: return f(float{});
@@ -31,7 +32,7 @@ template <class F> decltype(auto) with_scalar(const Precision& p, F&& f) {
     case Precision::Kind::f128: return f(Float128{});
     case Precision::Kind::mpfr: set_mpfr_bits(p.bits); return f(Mpfr{});
     case Precision::Kind::exact: return f(Rational{});
-    case Precision::Kind::interval: break;
+    case Precision::Kind::interval: return f(Interval{});
   }
   return f(double{});
 }

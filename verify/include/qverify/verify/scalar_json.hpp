@@ -7,6 +7,7 @@
 /// A non-finite value is written as null (its item says why).
 
 #include <qverify/core/scalar.hpp>
+#include <qverify/exact/interval.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #include <nlohmann/json.hpp>
@@ -19,6 +20,8 @@ nlohmann::ordered_json scalar_json(long double x);
 nlohmann::ordered_json scalar_json(const Float128& x);
 nlohmann::ordered_json scalar_json(const Mpfr& x);
 nlohmann::ordered_json scalar_json(const Rational& x);
+/// {"lo": number, "hi": number}: a certified enclosure.
+nlohmann::ordered_json scalar_json(const Interval& x);
 
 template <class Derived> nlohmann::ordered_json matrix_json(const Eigen::MatrixBase<Derived>& m) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -37,11 +40,8 @@ template <class Derived> nlohmann::ordered_json matrix_json(const Eigen::MatrixB
 /// Is every entry finite (always true for exact types)?
 template <class Derived> bool all_finite(const Eigen::MatrixBase<Derived>& m) {
   using S = typename Derived::Scalar;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const S& x = m(i);
-    if (!(x == x)) return false;  // NaN
-    if (!is_exact<S>() && (Eigen::NumTraits<S>::highest() < abs_of<S>(x))) return false;
-  }
+  for (Eigen::Index i = 0; i < m.size(); ++i)
+    if (!ScalarOps<S>::finite(m(i))) return false;
   return true;
 }
 

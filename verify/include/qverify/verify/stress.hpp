@@ -30,6 +30,7 @@ struct StressOptions {
   std::string out_dir;
   std::vector<std::string> families;  ///< empty: all
   int samples = 8;                    ///< exact points per item for the geometric error
+  bool worst_only = false;            ///< only the last (most extreme) parameter value of each family
   std::function<void(const std::string&)> progress;
 };
 
