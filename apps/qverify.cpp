@@ -2,6 +2,7 @@
 #include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
 #include <qverify/verify/audit.hpp>
+#include <qverify/verify/bench.hpp>
 #include <qverify/verify/stress.hpp>
 #include <qverify/verify/verifier.hpp>
 
@@ -153,6 +154,18 @@ void print_stress(const json& doc, const std::string& dir) {
   fmt::print("\nwrote {0}/report.json, {0}/report.html and one SVG per family\n", dir);
 }
 
+void print_bench(const json& doc) {
+  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run)\n\n", doc["n"].get<long>(),
+             doc["threads"].get<int>(), doc["memory_bandwidth_gbps"].get<double>());
+  fmt::print("{:<11} {:<10} {:<7} {:>14} {:>10} {:>8} {:>9} {:>10}\n", "op", "precision", "method", "items/s", "ns/item",
+             "bytes", "roofline", "x double");
+  for (const auto& r : doc["rows"])
+    fmt::print("{:<11} {:<10} {:<7} {:>14.4g} {:>10.2f} {:>8} {:>9.2f} {:>10.1f}\n", r["op"].get<std::string>(),
+               r["precision"].get<std::string>(), r["method"].get<std::string>(), r["items_per_s"].get<double>(),
+               r["ns_per_item"].get<double>(), r["bytes_per_item"].get<int>(), r["roofline_fraction"].get<double>(),
+               r["cost_vs_double_direct"].get<double>());
+}
+
 /// Wraps text at `width` columns with an indent.
 std::string wrap_text(const std::string& text, std::size_t width, const std::string& indent) {
   std::string out, line;
@@ -247,6 +260,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   stress->add_flag("--json", as_json, "Also print report.json on stdout");
 
+  CLI::App* bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
+                                                "per item and roofline fraction per op, precision and method");
+  BenchOptions bench_opt;
+  bench->add_option("--n", bench_opt.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
+  bench->add_option("--threads", bench_opt.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
+  bench->add_option("--repeats", bench_opt.repeats, "Runs per row (median)")->capture_default_str()->check(CLI::Range(1, 50));
+  bench->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
+
   CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
   bool strict = false;
   paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
@@ -323,6 +344,13 @@ int main(int argc, char** argv) {
       const json doc = run_stress(opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_stress(doc, out_dir);
+      return kOk;
+    }
+    if (bench->parsed()) {
+      bench_opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+      const json doc = run_bench(bench_opt);
+      if (as_json) std::cout << doc.dump(2) << "\n";
+      else print_bench(doc);
       return kOk;
     }
     if (paper->parsed()) {

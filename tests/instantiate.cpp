@@ -1,5 +1,6 @@
 // Explicit instantiation of every core template for double and for the exact
 // rational: every member must compile for both (the generic code has one body).
+#include <qverify/core/batch.hpp>
 #include <qverify/core/core.hpp>
 #include <qverify/exact/scalars.hpp>
 
@@ -28,6 +29,16 @@
   template bool is_symmetric<S>(const Mat4<S>&, const S&);                                                   \
   template Vec4<S> polar_plane<S>(const Mat4<S>&, const Vec4<S>&);                                           \
   template Mat4<S> tangent_cone<S>(const Mat4<S>&, const Vec4<S>&);                                          \
+  template Mat4<S> tangent_cone_from_polar<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);               \
+  template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
+  template Mat4<S> scaled_mirror_matrix<S>(const Vec4<S>&);                                                   \
+  template Mat4<S> gather_sym<S>(const SymBatch<S>&, Eigen::Index);                                            \
+  template void scatter_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                    \
+  template void store_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                      \
+  template void shadow_batch<S>(const SymBatch<S>&, const Vec4Batch<S>&, Method, SymBatch<S>&, Vec4Batch<S>&, \
+                                SymBatch<S>&, int);                                                           \
+  template void reflection_batch<S>(const SymBatch<S>&, const Vec4Batch<S>&, Method, AffineBatch<S>&,          \
+                                    SymBatch<S>&, int);                                                       \
   template Vec4<S> frame_plane<S>(const Vec4<S>&);                                                           \
   template Mat4<S> terminator_quadric<S>(const Mat4<S>&, const Vec4<S>&);                                    \
   template struct PaperFrame<S>;                                                                             \

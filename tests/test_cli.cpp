@@ -5,6 +5,7 @@
 
 #include <array>
 #include <map>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -270,4 +271,27 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
   CHECK(text.find("<link") == std::string::npos);
   CHECK(text.find("@import") == std::string::npos);
   CHECK(text.find("<figure id=\"plot\">") != std::string::npos);
+}
+
+TEST_CASE("bench --json reports plausible rows against the bandwidth measured in the same run", "[cli][bench]") {
+  const Run r = run("bench --n 2000000 --repeats 1 --json");
+  REQUIRE(r.code == 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  CHECK(doc["format"] == "qverify-bench/1");
+  CHECK(doc["n"] == 2000000);
+  CHECK(doc["threads"].get<int>() >= 1);
+  CHECK(doc["memory_bandwidth_gbps"].get<double>() > 0);
+  std::set<std::string> seen;
+  for (const auto& row : doc["rows"]) {
+    for (const char* k : {"op", "precision", "method", "items_per_s", "bytes_per_item", "roofline_fraction"})
+      CHECK(row.contains(k));
+    seen.insert(row["op"].get<std::string>() + "/" + row["precision"].get<std::string>() + "/" +
+                row["method"].get<std::string>());
+    CHECK(row["items_per_s"].get<double>() > 0);
+    CHECK(row["roofline_fraction"].get<double>() < 1.5);  // no row far above the measured limit
+  }
+  for (const char* k : {"shadow/double/direct", "shadow/double/paper", "shadow/interval/direct", "shadow/exact/direct",
+                        "reflection/double/direct", "reflection/double/paper", "reflection/interval/direct",
+                        "reflection/exact/direct"})
+    CHECK(seen.count(k) == 1);
 }

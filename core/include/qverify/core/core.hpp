@@ -7,3 +7,4 @@
 #include <qverify/core/projective.hpp>
 #include <qverify/core/shadow.hpp>
 #include <qverify/core/mirror.hpp>
+#include <qverify/core/batch.hpp>

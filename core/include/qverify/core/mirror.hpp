@@ -26,6 +26,20 @@ template <class S> Mat4<S> mirror_matrix(const Vec4<S>& plane) {
   return M;
 }
 
+/// (n.n) times the mirror matrix, division-free (for exact integer types):
+///   [[(n.n) I - 2 n n^T, -2 d n], [0 0 0 n.n]].
+/// As a projective map it is the reflection itself; B from it carries the
+/// positive factor (n.n)^2.
+template <class S> Mat4<S> scaled_mirror_matrix(const Vec4<S>& plane) {
+  const Vec3<S> n = plane.template head<3>();
+  const S nn = n.squaredNorm();
+  Mat4<S> M = Mat4<S>::Zero();
+  M.template topLeftCorner<3, 3>() = nn * Mat3<S>::Identity() - S(2) * (n * n.transpose());
+  M.template topRightCorner<3, 1>() = -(S(2) * plane(3)) * n;
+  M(3, 3) = nn;
+  return M;
+}
+
 /// Eq. (11), direct: B = M^T A M (using M = M^{-1}). A point x lies on A
 /// exactly when its mirror image M x lies on B.
 template <class S> Mat4<S> mirror_image(const Mat4<S>& A, const Mat4<S>& M) {

@@ -32,13 +32,17 @@ enum class Method { direct, paper };
 /// terminator (the points where rays from L graze A).
 template <class S> Vec4<S> polar_plane(const Mat4<S>& A, const Vec4<S>& L) { return A * L; }
 
+/// The tangent cone from a precomputed polar plane AL = A L (batches reuse it).
+template <class S> Mat4<S> tangent_cone_from_polar(const Mat4<S>& A, const Vec4<S>& L, const Vec4<S>& AL) {
+  return L.dot(AL) * A - AL * AL.transpose();
+}
+
 /// Tangent cone of A from L (the cone P of eq. (3), apex L):
 ///   P = (L^T A L) A - (A L)(A L)^T.
 /// P L = 0 (L is its apex) and P agrees with A on the polar plane up to the
 /// factor L^T A L, so P contains the terminator.
 template <class S> Mat4<S> tangent_cone(const Mat4<S>& A, const Vec4<S>& L) {
-  const Vec4<S> AL = A * L;
-  return L.dot(AL) * A - AL * AL.transpose();
+  return tangent_cone_from_polar<S>(A, L, Vec4<S>(A * L));
 }
 
 /// The plane that the paper's frame change N = T M sends to infinity (row 4 of
@@ -49,11 +53,16 @@ template <class S> Vec4<S> frame_plane(const Vec4<S>& L) {
   return Vec4<S>(S(0), S(0), L(3), S(-L(2)));
 }
 
+/// R from a precomputed polar plane AL (batches reuse it).
+template <class S> Mat4<S> terminator_quadric_from_polar(const Vec4<S>& L, const Vec4<S>& AL) {
+  return plane_pair<S>(AL, frame_plane<S>(L));
+}
+
 /// The quadric R of eq. (6) by the direct route: the polar plane pi read as a
 /// quadric in the paper's way, pi h^T + h pi^T (the plane pair pi ∪ h).
 /// It contains the terminator A ∩ pi.
 template <class S> Mat4<S> terminator_quadric(const Mat4<S>& A, const Vec4<S>& L) {
-  return plane_pair<S>(polar_plane<S>(A, L), frame_plane<S>(L));
+  return terminator_quadric_from_polar<S>(L, polar_plane<S>(A, L));
 }
 
 // ------------------------------------------------------------------ paper route
