@@ -1,6 +1,7 @@
 // qverify command line: see shared/spec/cli.md for the contract.
 #include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
+#include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/bench.hpp>
 #include <qverify/verify/stress.hpp>
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <iostream>
 #include <sstream>
@@ -223,6 +225,11 @@ int main(int argc, char** argv) {
 
   CLI::App* eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
   add_common(eval);
+  double tolerance = 0;
+  eval->add_option("--tolerance", tolerance,
+                   "Adaptive mode: escalate each item double -> interval -> exact until its result is certified within "
+                   "this relative tolerance (double output; per-item 'certified' says by which stage)")
+      ->check(CLI::Range(0.0, 1.0));
 
   CLI::App* verify = app.add_subcommand("verify",
                                         "Check results on exact sample points: terminator points on A, P and R, "
@@ -289,7 +296,13 @@ int main(int argc, char** argv) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);
       const Scene sc = load_scene(scene_file);
-      const json doc = eval_document(sc, prec, method, frame_of(frame_text));
+      if (tolerance > 0 && prec.kind != Precision::Kind::f64)
+        throw UsageError("--tolerance: the adaptive mode produces double results; drop --precision");
+      if (tolerance > 0 && tolerance < std::ldexp(1.0, -53))
+        throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
+                         "result rounded to double is that far); use --precision exact");
+      const json doc = tolerance > 0 ? adaptive_eval_document(sc, method, tolerance)
+                                     : eval_document(sc, prec, method, frame_of(frame_text));
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_eval(doc);
       return kOk;

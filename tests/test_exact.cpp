@@ -6,6 +6,7 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/sampling.hpp>
 #include <qverify/verify/eval.hpp>
+#include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/paper_audit.hpp>
 
 using namespace qverify;
@@ -174,4 +175,36 @@ TEST_CASE("interval results enclose the exact results of the same formula", "[ex
       CHECK(inside(iv.reflections[k].result.B, ex.reflections[k].result.B));
     }
   }
+}
+
+TEST_CASE("adaptive mode: every item is within its certified bound of the exact result", "[exact][adaptive]") {
+  CHECK_THROWS(adaptive_eval_document(load_scene(std::string(QVERIFY_SCENES) + "/egg-sun-wall.json"), Method::direct, 1e-18));
+  for (const char* file : {"mixed-requests.json", "egg-sun-wall.json"})
+    for (double tol : {1e-9, 1e-15, 1.2e-16}) {
+      INFO(file << " " << tol);
+      const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + file);
+      const auto doc = adaptive_eval_document(sc, Method::direct, tol);
+      const Evaluation<Q> ex = evaluate<Q>(sc, Method::direct, Frame::world);
+      auto check = [&](const nlohmann::ordered_json& got, const auto& want, double bound) {
+        Q scale = max_abs(want);
+        for (Eigen::Index i = 0; i < want.size(); ++i) {
+          const auto& v = want.cols() == 1 ? got[static_cast<std::size_t>(i)]
+                                           : got[static_cast<std::size_t>(i / 4)][static_cast<std::size_t>(i % 4)];
+          const Q g = to_rational(v.template get<double>());
+          const Q w = want(i / want.cols(), i % want.cols());
+          CHECK(to_measure(Q(g > w ? g - w : w - g)) <= Measure(bound) * to_measure(scale) * Measure("1.0000001"));
+        }
+      };
+      for (std::size_t k = 0; k < ex.shadows.size(); ++k) {
+        const auto& item = doc["shadows"][k];
+        const double bound = item["certified"]["relative_error_bound"].get<double>();
+        CHECK(bound <= 3 * tol);
+        check(item["P"], ex.shadows[k].result.P, bound);
+        check(item["R"], ex.shadows[k].result.R, bound);
+      }
+      for (std::size_t k = 0; k < ex.reflections.size(); ++k) {
+        const auto& item = doc["reflections"][k];
+        check(item["B"], ex.reflections[k].result.B, item["certified"]["relative_error_bound"].get<double>());
+      }
+    }
 }
