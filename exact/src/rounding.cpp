@@ -48,37 +48,33 @@ template <class F> Rational binary_to_rational(F x) {
 
 }  // namespace
 
-template <> float round_rational<float>(const Rational& q, RoundingReport& rep) {
+/// Rounds q to nearest in a binary format (see round_in_format) and reads the
+/// result out with `get` (exact: the MPFR value already has the format's precision).
+template <class F, class Get>
+F round_to_format(const Rational& q, RoundingReport& rep, mpfr_prec_t prec, mpfr_exp_t emin, mpfr_exp_t emax, Get get) {
   mpfr_t t;
-  round_in_format(t, q, 24, -148, 128, rep);
-  const float f = mpfr_get_flt(t, MPFR_RNDN);
+  round_in_format(t, q, prec, emin, emax, rep);
+  const F f = get(t);
   mpfr_clear(t);
   return f;
 }
 
+template <> float round_rational<float>(const Rational& q, RoundingReport& rep) {
+  return round_to_format<float>(q, rep, 24, -148, 128, [](mpfr_t t) { return mpfr_get_flt(t, MPFR_RNDN); });
+}
+
 template <> double round_rational<double>(const Rational& q, RoundingReport& rep) {
-  mpfr_t t;
-  round_in_format(t, q, 53, -1073, 1024, rep);
-  const double d = mpfr_get_d(t, MPFR_RNDN);
-  mpfr_clear(t);
-  return d;
+  return round_to_format<double>(q, rep, 53, -1073, 1024, [](mpfr_t t) { return mpfr_get_d(t, MPFR_RNDN); });
 }
 
 template <> long double round_rational<long double>(const Rational& q, RoundingReport& rep) {
   static_assert(std::numeric_limits<long double>::digits == 64, "x87 extended long double expected");
-  mpfr_t t;
-  round_in_format(t, q, 64, -16444, 16384, rep);
-  const long double d = mpfr_get_ld(t, MPFR_RNDN);
-  mpfr_clear(t);
-  return d;
+  return round_to_format<long double>(q, rep, 64, -16444, 16384, [](mpfr_t t) { return mpfr_get_ld(t, MPFR_RNDN); });
 }
 
 template <> Float128 round_rational<Float128>(const Rational& q, RoundingReport& rep) {
-  mpfr_t t;
-  round_in_format(t, q, 113, -16493, 16384, rep);
-  const __float128 d = mpfr_get_float128(t, MPFR_RNDN);
-  mpfr_clear(t);
-  return Float128(d);
+  return round_to_format<Float128>(q, rep, 113, -16493, 16384,
+                                   [](mpfr_t t) { return Float128(mpfr_get_float128(t, MPFR_RNDN)); });
 }
 
 Interval enclose(const Rational& q) {

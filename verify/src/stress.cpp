@@ -241,28 +241,19 @@ json run_stress(const StressOptions& opt) {
         std::string status;
         try {
           const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
-          if (fam.reflection) {
-            const ReflectionMatrices& g = rs.reflections[0];
-            status = g.status;
-            if (g.present) {
-              const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();
-              me = projective_error(quadric_from_local(g.B, o), ref.reflections[0].result.B, true);
-              std::vector<RootPoint> local;
-              for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
-              ge = max_distance(local, g.B) / size;
-              run["frame"] = g.origin ? "local" : "world";
-            }
-          } else {
-            const ShadowMatrices& g = rs.shadows[0];
-            status = g.status;
-            if (g.present) {
-              const Vec3<Q> o = g.origin ? *g.origin : Vec3<Q>::Zero();
-              me = projective_error(quadric_from_local(g.P, o), ref.shadows[0].result.P, true);
-              std::vector<RootPoint> local;
-              for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
-              ge = max_distance(local, g.P) / size;
-              run["frame"] = g.origin ? "local" : "world";
-            }
+          // the family's one item: B of a reflection or P of a shadow, in its own frame
+          const bool present = fam.reflection ? rs.reflections[0].present : rs.shadows[0].present;
+          const auto& origin = fam.reflection ? rs.reflections[0].origin : rs.shadows[0].origin;
+          status = fam.reflection ? rs.reflections[0].status : rs.shadows[0].status;
+          if (present) {
+            const Mat4<Q>& got = fam.reflection ? rs.reflections[0].B : rs.shadows[0].P;
+            const Mat4<Q>& want = fam.reflection ? ref.reflections[0].result.B : ref.shadows[0].result.P;
+            const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
+            me = projective_error(quadric_from_local(got, o), want, true);
+            std::vector<RootPoint> local;
+            for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
+            ge = max_distance(local, got) / size;
+            run["frame"] = origin ? "local" : "world";
           }
         } catch (const InputError& e) {
           status = std::string("refused: ") + e.problem;

@@ -365,22 +365,27 @@ class CandidateReader {
     return v;
   }
 
+  /// A list of `count` entries into out[0..count); false if any entry is null (non-finite).
+  template <class Out> bool entries(const JsonNode& n, const std::string& path, int count, Out out, const char* what) const {
+    if (n.kind != JsonNode::Kind::array || n.items.size() != static_cast<std::size_t>(count)) fail(path, what);
+    bool ok = true;
+    for (int i = 0; i < count; ++i) {
+      auto v = entry(n.items[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]");
+      if (v) out(i, *v);
+      else ok = false;
+    }
+    return ok;
+  }
+
   /// A 4x4 matrix; nullopt if absent or any entry is null (non-finite).
   std::optional<Mat4<Q>> mat4(const JsonNode* n, const std::string& path) const {
     if (!n) return std::nullopt;
     if (n->kind != JsonNode::Kind::array || n->items.size() != 4) fail(path, "expected 4 rows of 4 numbers");
     Mat4<Q> m;
     bool ok = true;
-    for (int i = 0; i < 4; ++i) {
-      const std::string ip = path + "[" + std::to_string(i) + "]";
-      const JsonNode& row = n->items[static_cast<std::size_t>(i)];
-      if (row.kind != JsonNode::Kind::array || row.items.size() != 4) fail(ip, "expected a row of 4 numbers");
-      for (int j = 0; j < 4; ++j) {
-        auto v = entry(row.items[static_cast<std::size_t>(j)], ip + "[" + std::to_string(j) + "]");
-        if (v) m(i, j) = *v;
-        else ok = false;
-      }
-    }
+    for (int i = 0; i < 4; ++i)
+      ok = entries(n->items[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]", 4,
+                   [&](int j, const Q& v) { m(i, j) = v; }, "expected a row of 4 numbers") && ok;
     if (!ok) return std::nullopt;
     return m;
   }
@@ -388,15 +393,8 @@ class CandidateReader {
   /// A plane (4 numbers); nullopt if absent or any entry is null.
   std::optional<Vec4<Q>> vec4(const JsonNode* n, const std::string& path) const {
     if (!n) return std::nullopt;
-    if (n->kind != JsonNode::Kind::array || n->items.size() != 4) fail(path, "expected 4 numbers");
     Vec4<Q> v;
-    bool ok = true;
-    for (int i = 0; i < 4; ++i) {
-      auto x = entry(n->items[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]");
-      if (x) v(i) = *x;
-      else ok = false;
-    }
-    if (!ok) return std::nullopt;
+    if (!entries(*n, path, 4, [&](int i, const Q& x) { v(i) = x; }, "expected 4 numbers")) return std::nullopt;
     return v;
   }
 
@@ -474,13 +472,9 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
       }
       std::optional<Vec3<Q>> origin;
       if (const JsonNode* o = it.find("origin")) {
-        if (o->kind != JsonNode::Kind::array || o->items.size() != 3) r.fail(path + ".origin", "expected 3 numbers");
         Vec3<Q> v;
-        for (int i = 0; i < 3; ++i) {
-          auto x = r.entry(o->items[static_cast<std::size_t>(i)], path + ".origin[" + std::to_string(i) + "]");
-          if (!x) r.fail(path + ".origin", "origin must be finite");
-          v(i) = *x;
-        }
+        if (!r.entries(*o, path + ".origin", 3, [&](int i, const Q& x) { v(i) = x; }, "expected 3 numbers"))
+          r.fail(path + ".origin", "origin must be finite");
         origin = v;
       }
       const JsonNode* st = it.find("status");
