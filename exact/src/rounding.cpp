@@ -31,17 +31,23 @@ void round_in_format(mpfr_t out, const Rational& q, mpfr_prec_t prec, mpfr_exp_t
   mpfr_set_emax(old_max);
 }
 
+/// The exact value of an MPFR number (every finite one is a dyadic rational).
+Rational mpfr_to_rational(mpfr_srcptr t) {
+  mpq_t r;
+  mpq_init(r);
+  mpfr_get_q(r, t);
+  Rational out{r};
+  mpq_clear(r);
+  return out;
+}
+
 template <class F> Rational binary_to_rational(F x) {
   // Every finite binary float is m * 2^e with integer m: read it exactly through MPFR.
   mpfr_t t;
   mpfr_init2(t, 128);
   if constexpr (std::is_same_v<F, float> || std::is_same_v<F, double>) mpfr_set_d(t, static_cast<double>(x), MPFR_RNDN);
   else mpfr_set_ld(t, x, MPFR_RNDN);
-  mpq_t r;
-  mpq_init(r);
-  mpfr_get_q(r, t);
-  Rational out{r};
-  mpq_clear(r);
+  Rational out = mpfr_to_rational(t);
   mpfr_clear(t);
   return out;
 }
@@ -112,22 +118,11 @@ Rational to_rational(const Float128& x) {
   mpfr_t t;
   mpfr_init2(t, 113);
   mpfr_set_float128(t, x.backend().value(), MPFR_RNDN);
-  mpq_t r;
-  mpq_init(r);
-  mpfr_get_q(r, t);
-  Rational out{r};
-  mpq_clear(r);
+  Rational out = mpfr_to_rational(t);
   mpfr_clear(t);
   return out;
 }
 
-Rational to_rational(const Mpfr& x) {
-  mpq_t r;
-  mpq_init(r);
-  mpfr_get_q(r, x.backend().data());
-  Rational out{r};
-  mpq_clear(r);
-  return out;
-}
+Rational to_rational(const Mpfr& x) { return mpfr_to_rational(x.backend().data()); }
 
 }  // namespace qverify

@@ -146,6 +146,16 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
   json checks = json::array();
   int passed = 0, skipped = 0;
   failed = 0;
+  // A check's verdict: pass, or fail with every problem found.
+  auto finish = [&](json& c, const std::vector<std::string>& problems) {
+    if (!problems.empty()) {
+      std::string r;
+      for (const auto& p : problems) r += (r.empty() ? "" : "; ") + p;
+      c["reason"] = r;
+    }
+    (problems.empty() ? passed : failed)++;
+    checks.push_back(c);
+  };
 
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
     const Pair& pr = sc.shadows[k];
@@ -240,13 +250,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     if (got.origin) c["origin"] = origin_json(*got.origin);
     if (samples.exhausted)
       c["note"] = "only " + std::to_string(samples.points.size()) + " real point(s) found on this terminator";
-    if (!problems.empty()) {
-      std::string r;
-      for (const auto& p : problems) r += (r.empty() ? "" : "; ") + p;
-      c["reason"] = r;
-    }
-    (problems.empty() ? passed : failed)++;
-    checks.push_back(c);
+    finish(c, problems);
   }
 
   for (std::size_t k = 0; k < sc.reflections.size(); ++k) {
@@ -319,13 +323,7 @@ json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& 
     if (got.origin) c["origin"] = origin_json(*got.origin);
     c["kappa"] = to_d(kappa);
     c["item_status"] = got.status.empty() ? want.result.status() : got.status;
-    if (!problems.empty()) {
-      std::string r;
-      for (const auto& p : problems) r += (r.empty() ? "" : "; ") + p;
-      c["reason"] = r;
-    }
-    (problems.empty() ? passed : failed)++;
-    checks.push_back(c);
+    finish(c, problems);
   }
   doc["checks"] = checks;
   doc["passed"] = passed;
