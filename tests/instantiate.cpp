@@ -32,6 +32,8 @@
   template Mat4<S> tangent_cone_from_polar<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);               \
   template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
   template Mat4<S> scaled_mirror_matrix<S>(const Vec4<S>&);                                                   \
+  template Mat4<S> mirror_image_of_plane<S>(const Mat4<S>&, const Vec4<S>&);                                  \
+  template ReflectionResult<S> reflection_in_plane<S>(const Mat4<S>&, const Vec4<S>&, Method);                 \
   template Mat4<S> gather_sym<S>(const SymBatch<S>&, Eigen::Index);                                            \
   template void scatter_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                    \
   template void store_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                      \

@@ -73,6 +73,7 @@ template <class S> void law_reflection_incidence(const Mat4<S>& A, const Vec4<S>
   const Mat4<S> M = mirror_matrix<S>(plane);
   const Mat4<S> B = reflection<S>(A, M, m).B;
   CHECK(incidence<S>(B, Vec4<S>(M * x_on_A)) <= law_tol<S>());
+  CHECK(incidence<S>(reflection_in_plane<S>(A, plane, m).B, Vec4<S>(M * x_on_A)) <= law_tol<S>());
 }
 
 /// Terminator incidence: a point x on A and on the polar plane lies on P and R;
@@ -100,6 +101,8 @@ template <class S> void law_routes_agree(const Mat4<S>& A, const Vec4<S>& L, con
   const Mat4<S> M = mirror_matrix<S>(plane);
   CHECK(proportional(reflection<S>(A, M, Method::paper).B, reflection<S>(A, M, Method::direct).B, Factor::positive,
                      law_tol<S>()));
+  // the rank-one form of (11) is the same B (exactly, for exact types)
+  CHECK(proportional(mirror_image_of_plane<S>(A, plane), mirror_image<S>(A, M), Factor::positive, law_tol<S>()));
 }
 
 // ------------------------------------------------------------ input families

@@ -74,7 +74,11 @@ TEST_CASE("mirror image of a sphere is the sphere about the reflected centre", "
   const Vec4<Q> c4(c(0), c(1), c(2), 1);
   const Vec4<Q> mc = M * c4;
   const Mat4<Q> expected = sphere_quadric<Q>(mc.head<3>(), Q(3, 2));
-  for (Method m : {Method::direct, Method::paper}) CHECK(reflection<Q>(A, M, m).B == expected);
+  for (Method m : {Method::direct, Method::paper}) {
+    CHECK(reflection<Q>(A, M, m).B == expected);
+    CHECK(reflection_in_plane<Q>(A, plane, m).B == expected);
+    CHECK(reflection_in_plane<Q>(A, plane2, m).B == expected);  // any scale of the plane
+  }
   CHECK((M * M).isIdentity(Q(0)));
 }
 

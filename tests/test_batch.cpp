@@ -44,7 +44,7 @@ template <class S> void check_batch_equals_items(int threads) {
       CHECK(Vec4<S>(pi.row(i).transpose()) == s.polar_plane);
       CHECK(same_upper(R, i, s.R));
       const Mat4<S> mm = mirror_matrix<S>(planes.row(i).transpose());
-      CHECK(same_upper(B, i, reflection<S>(a, mm, m).B));
+      CHECK(same_upper(B, i, reflection_in_plane<S>(a, planes.row(i).transpose(), m).B));
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) CHECK(M(i, 4 * r + c) == mm(r, c));
     }

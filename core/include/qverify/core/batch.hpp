@@ -158,7 +158,8 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) rows[4 * r + c] = m(r, c);
       store_row<S, 12>(&M(i, 0), rows);
-      store_sym(B, i, method == Method::paper && !scaled ? mirror_image_paper<S>(a, m) : mirror_image<S>(a, m));
+      store_sym(B, i, scaled ? mirror_image<S>(a, m)
+                             : method == Method::paper ? mirror_image_paper<S>(a, m) : mirror_image_of_plane<S>(a, pl));
     }
     store_fence();
   });

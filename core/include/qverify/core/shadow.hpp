@@ -34,7 +34,8 @@ template <class S> Vec4<S> polar_plane(const Mat4<S>& A, const Vec4<S>& L) { ret
 
 /// The tangent cone from a precomputed polar plane AL = A L (batches reuse it).
 template <class S> Mat4<S> tangent_cone_from_polar(const Mat4<S>& A, const Vec4<S>& L, const Vec4<S>& AL) {
-  return L.dot(AL) * A - AL * AL.transpose();
+  const S s = L.dot(AL);
+  return symmetric_from<S>([&](int i, int j) { return S(s * A(i, j) - AL(i) * AL(j)); });
 }
 
 /// Tangent cone of A from L (the cone P of eq. (3), apex L):

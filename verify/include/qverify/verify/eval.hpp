@@ -261,7 +261,8 @@ template <class S> void evaluate_items(const Scene& sc, Method method, Evaluatio
     }
     auto& M = mirrors[pr.pair.other];
     if (!M) M = mirror_matrix<S>(ev.scene.planes[pr.pair.other]);
-    ev.reflections.push_back({pr.pair, *M, reflection<S>(pr.A, *M, method), std::nullopt});
+    ev.reflections.push_back(
+        {pr.pair, *M, reflection_in_plane<S>(pr.A, ev.scene.planes[pr.pair.other], method), std::nullopt});
   }
 }
 
