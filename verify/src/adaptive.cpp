@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -51,6 +52,46 @@ template <class D> auto rounded(const Eigen::MatrixBase<D>& m) {
       .eval();
 }
 
+using IntervalMatrix = Eigen::Matrix<Interval, Eigen::Dynamic, Eigen::Dynamic>;
+using ExactMatrix = Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// One output of an item (a 4x4 matrix or a plane) at every stage of the ladder.
+struct Part {
+  const char* key;
+  Eigen::MatrixXd dbl;
+  IntervalMatrix enc;
+  std::function<ExactMatrix()> exact;  ///< evaluated only when the item reaches the exact stage
+};
+
+/// Certifies one item within tol: its double result if every part lies in its enclosure widened by
+/// tol x scale (and the enclosures are that narrow), else the enclosures' midpoints if their half-width
+/// is that small, else the exact result rounded to double. Writes the parts and `certified` into j and
+/// returns the stage.
+std::string certify(json& j, const std::vector<Part>& parts, double tol) {
+  double hw = 0;
+  bool dbl_ok = true;
+  for (const Part& p : parts) {
+    hw = std::max(hw, relative_halfwidth(p.enc));
+    dbl_ok = dbl_ok && all_finite(p.dbl) && inside(p.dbl, p.enc, tol);
+  }
+  std::string by;
+  double bound = 0;
+  if (dbl_ok && hw <= tol) {
+    by = "double";
+    bound = 2 * hw + tol;
+  } else if (hw <= tol) {
+    by = "interval";
+    bound = hw;
+    for (const Part& p : parts) j[p.key] = matrix_json(midpoints(p.enc));
+  } else {
+    by = "exact";
+    bound = std::ldexp(1.0, -53);
+    for (const Part& p : parts) j[p.key] = matrix_json(rounded(p.exact()));
+  }
+  j["certified"] = {{"by", by}, {"relative_error_bound", bound}};
+  return by;
+}
+
 }  // namespace
 
 json adaptive_eval_document(const Scene& sc, Method method, double tol) {
@@ -82,29 +123,12 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     const ShadowResult<Interval>& ii = iv.shadows[k].result;
     json j = shadow_json(sc, dd);
     j["status"] = exact().shadows[k].result.status();  // statuses: exact
-    std::string by;
-    double bound = 0;
-    const double hw = std::max({relative_halfwidth(ii.P), relative_halfwidth(ii.polar_plane), relative_halfwidth(ii.R)});
-    if (all_finite(dd.result.P) && inside(dd.result.P, ii.P, tol) && inside(dd.result.polar_plane, ii.polar_plane, tol) &&
-        inside(dd.result.R, ii.R, tol) && hw <= tol) {
-      by = "double";
-      bound = 2 * hw + tol;
-    } else if (hw <= tol) {
-      by = "interval";
-      bound = hw;
-      j["P"] = matrix_json(midpoints(ii.P));
-      j["polar_plane"] = matrix_json(midpoints(ii.polar_plane));
-      j["R"] = matrix_json(midpoints(ii.R));
-    } else {
-      by = "exact";
-      bound = std::ldexp(1.0, -53);
-      const ShadowResult<Q>& e = exact().shadows[k].result;
-      j["P"] = matrix_json(rounded(e.P));
-      j["polar_plane"] = matrix_json(rounded(e.polar_plane));
-      j["R"] = matrix_json(rounded(e.R));
-    }
-    ++count[by];
-    j["certified"] = {{"by", by}, {"relative_error_bound", bound}};
+    ++count[certify(j,
+                    {{"P", dd.result.P, ii.P, [&] { return ExactMatrix(exact().shadows[k].result.P); }},
+                     {"polar_plane", dd.result.polar_plane, ii.polar_plane,
+                      [&] { return ExactMatrix(exact().shadows[k].result.polar_plane); }},
+                     {"R", dd.result.R, ii.R, [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
+                    tol)];
     shadows.push_back(j);
   }
   json reflections = json::array();
@@ -113,25 +137,10 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     const ReflectionItem<Interval>& ii = iv.reflections[k];
     json j = reflection_json(sc, dd);
     j["status"] = exact().reflections[k].result.status();
-    std::string by;
-    double bound = 0;
-    const double hw = std::max(relative_halfwidth(ii.M), relative_halfwidth(ii.result.B));
-    if (all_finite(dd.result.B) && inside(dd.M, ii.M, tol) && inside(dd.result.B, ii.result.B, tol) && hw <= tol) {
-      by = "double";
-      bound = 2 * hw + tol;
-    } else if (hw <= tol) {
-      by = "interval";
-      bound = hw;
-      j["M"] = matrix_json(midpoints(ii.M));
-      j["B"] = matrix_json(midpoints(ii.result.B));
-    } else {
-      by = "exact";
-      bound = std::ldexp(1.0, -53);
-      j["M"] = matrix_json(rounded(exact().reflections[k].M));
-      j["B"] = matrix_json(rounded(exact().reflections[k].result.B));
-    }
-    ++count[by];
-    j["certified"] = {{"by", by}, {"relative_error_bound", bound}};
+    ++count[certify(j,
+                    {{"M", dd.M, ii.M, [&] { return ExactMatrix(exact().reflections[k].M); }},
+                     {"B", dd.result.B, ii.result.B, [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
+                    tol)];
     reflections.push_back(j);
   }
   doc["shadows"] = shadows;

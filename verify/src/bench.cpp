@@ -4,6 +4,7 @@
 #include <qverify/verify/eval.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstring>
 #include <numeric>
@@ -83,14 +84,12 @@ double copy_bandwidth(std::size_t bytes, int threads) {
 /// Exact items: each item's denominators are cleared (a positive factor: the
 /// results are projective), then the generic formulas run on 128-bit integers,
 /// with no gcd and no division. The bit bound of the inputs proves there is no
-/// overflow; items beyond it would need GMP (counted, none in this benchmark).
-struct ExactItem {
-  static long lcm_of(const std::int32_t* d, int k) {
-    long l = 1;
-    for (int j = 0; j < k; ++j) l = std::lcm(l, static_cast<long>(d[j]));
-    return l;
-  }
-};
+/// overflow; items beyond it would need GMP (counted per row, none in this benchmark).
+long lcm_of(const std::int32_t* d, int k) {
+  long l = 1;
+  for (int j = 0; j < k; ++j) l = std::lcm(l, static_cast<long>(d[j]));
+  return l;
+}
 
 int bits(Int x) {
   if (x < 0) x = -x;
@@ -176,17 +175,17 @@ json run_bench(const BenchOptions& opt) {
     Vec4Batch<Int> pi(n, 4);
     AffineBatch<Int> M(n, 12);
     P.setZero(), R.setZero(), B.setZero(), pi.setZero(), M.setZero();
-    std::vector<long> beyond_bound(static_cast<std::size_t>(std::max(T, 1)), 0);
+    std::atomic<long> beyond_bound{0};  // items of the current row beyond the 128-bit bound
     auto load = [&](Eigen::Index i, Mat4<Int>& a, Vec4<Int>& l, bool light) {
       std::int32_t d[10];
       for (int k = 0; k < 10; ++k) d[k] = qa.den(i, k);
-      const long la = ExactItem::lcm_of(d, 10);
+      const long la = lcm_of(d, 10);
       for (int k = 0; k < 10; ++k) {
         const Int v = Int(qa.num(i, k)) * (la / qa.den(i, k));
         a(kSymRow[k], kSymCol[k]) = a(kSymCol[k], kSymRow[k]) = v;
       }
       for (int k = 0; k < 4; ++k) d[k] = ql.den(i, k);
-      const long ll = ExactItem::lcm_of(d, light ? 3 : 4);
+      const long ll = lcm_of(d, light ? 3 : 4);
       for (int k = 0; k < 4; ++k) l(k) = Int(ql.num(i, k)) * (ll / ql.den(i, k));
       if (light) l(3) = Int(ll);  // the point (x, y, z, 1) times its common denominator
       else if (l(2) == 0) l(2) = Int(ll);
@@ -198,7 +197,7 @@ json run_bench(const BenchOptions& opt) {
         load(i, a, l, true);
         // bit bound: |P| < 2^(3 bits(A) + 2 bits(L) + 5) must fit in 127 bits
         if (3 * bits(max_abs(a)) + 2 * bits(max_abs(l)) + 5 > 126) {
-          ++beyond_bound[0];
+          ++beyond_bound;
           continue;
         }
         const Vec4<Int> p = polar_plane<Int>(a, l);
@@ -213,7 +212,7 @@ json run_bench(const BenchOptions& opt) {
       for (Eigen::Index i = b; i < e; ++i) {
         load(i, a, pl, false);
         if (bits(max_abs(a)) + 6 * bits(max_abs(pl)) + 8 > 126) {
-          ++beyond_bound[0];
+          ++beyond_bound;
           continue;
         }
         const Mat4<Int> m = scaled_mirror_matrix<Int>(pl);
@@ -222,15 +221,17 @@ json run_bench(const BenchOptions& opt) {
         scatter_sym(B, i, mirror_image<Int>(a, m));
       }
     };
-    say("bench: shadow exact");
-    add_row("shadow", "exact", "direct", median_time(opt.repeats, [&] { parallel_for(n, T, shadow_exact); }),
-            (10 + 4) * 8 + (10 + 4 + 10) * 16,
-            {{"arithmetic", "128-bit integers after clearing each item's denominators (bit bound checked)"}});
-    say("bench: reflection exact");
-    add_row("reflection", "exact", "direct", median_time(opt.repeats, [&] { parallel_for(n, T, reflection_exact); }),
-            (10 + 4) * 8 + (12 + 10) * 16,
-            {{"arithmetic", "128-bit integers, division-free (n.n) M, bit bound checked"}});
-    if (beyond_bound[0] > 0) rows.back()["items_beyond_bit_bound"] = beyond_bound[0];
+    auto exact_row = [&](const char* op, auto& kernel, std::size_t bytes, const char* arithmetic) {
+      say(std::string("bench: ") + op + " exact");
+      beyond_bound = 0;
+      add_row(op, "exact", "direct", median_time(opt.repeats, [&] { parallel_for(n, T, kernel); }), bytes,
+              {{"arithmetic", arithmetic}});
+      if (beyond_bound > 0) rows.back()["items_beyond_bit_bound"] = beyond_bound.load() / opt.repeats;
+    };
+    exact_row("shadow", shadow_exact, (10 + 4) * 8 + (10 + 4 + 10) * 16,
+              "128-bit integers after clearing each item's denominators (bit bound checked)");
+    exact_row("reflection", reflection_exact, (10 + 4) * 8 + (12 + 10) * 16,
+              "128-bit integers, division-free (n.n) M, bit bound checked");
   }
   // cost ratios against double/direct
   for (auto& r : rows) {

@@ -131,6 +131,9 @@ std::vector<RunSpec> run_specs() {
           {"float128", Method::paper, std::nullopt, "float128/paper"}};
 }
 
+/// Positions in run_specs() of the naive world-frame double run and of the default (robust) double run.
+constexpr std::size_t kNaiveRun = 2, kDefaultRun = 3;
+
 const char* kColors[] = {"#9edae5", "#17becf", "#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#98df8a", "#9467bd", "#c5b0d5"};
 
 /// Max first-order distance of the points (already in the result's frame) from Qm.
@@ -217,23 +220,8 @@ json run_stress(const StressOptions& opt) {
         if (nB != 0) kappa = to_measure(Q(max_abs(Mat4<Q>(aM.transpose() * A.cwiseAbs() * aM)) / nB));
       }
       const double pred = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
-      // The floor: the exact result in the robust path's frame, correctly rounded to double (with the same
-      // exact power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
-      double floor_err = INFINITY;
-      std::optional<Vec3<Q>> robust_origin;
-      {
-        const ResultSet rob = computed_results(sc, *parse_precision("double"), Method::direct, std::nullopt);
-        robust_origin = fam.reflection ? rob.reflections[0].origin : rob.shadows[0].origin;
-        const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
-        std::vector<RootPoint> local;
-        for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
-        const Mat4<Q> exact_local = fam.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
-                                                   : quadric_to_local(ref.shadows[0].result.P, o);
-        const Mat4<double> rounded = rounded_scaled<double>(exact_local);
-        if (all_finite(rounded)) floor_err = max_distance(local, exact_matrix(rounded)) / size;
-      }
-      const double target = std::max(1e-9, 10 * floor_err);
       json runs = json::array();
+      std::optional<Vec3<Q>> robust_origin;  // the frame of the default double run
       for (std::size_t r = 0; r < specs.size(); ++r) {
         const RunSpec& spec = specs[r];
         json run{{"run", spec.label}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
@@ -254,6 +242,7 @@ json run_stress(const StressOptions& opt) {
             for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
             ge = max_distance(local, got) / size;
             run["frame"] = origin ? "local" : "world";
+            if (r == kDefaultRun) robust_origin = origin;
           }
         } catch (const InputError& e) {
           status = std::string("refused: ") + e.problem;
@@ -265,10 +254,23 @@ json run_stress(const StressOptions& opt) {
         geo[r].push_back(ge);
         mat[r].push_back(me);
       }
+      // The floor: the exact result in the default run's frame, correctly rounded to double (with the same
+      // exact power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
+      double floor_err = INFINITY;
+      {
+        const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
+        std::vector<RootPoint> local;
+        for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
+        const Mat4<Q> exact_local = fam.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
+                                                   : quadric_to_local(ref.shadows[0].result.P, o);
+        const Mat4<double> rounded = rounded_scaled<double>(exact_local);
+        if (all_finite(rounded)) floor_err = max_distance(local, exact_matrix(rounded)) / size;
+      }
+      const double target = std::max(1e-9, 10 * floor_err);
       params.push_back(v);
       predicted.push_back(pred);
       floors.push_back(floor_err);
-      const double robust = geo[3].back();  // double/direct (default)
+      const double robust = geo[kDefaultRun].back();
       const bool meets = robust <= target;
       all_meet = all_meet && meets;
       points.push_back({{"param", v},
@@ -307,7 +309,7 @@ json run_stress(const StressOptions& opt) {
     plot.x_label = fam.parameter;
     plot.y_label = "max distance of exact points / object size";
     for (std::size_t r = 0; r < specs.size(); ++r) {
-      PlotSeries s{specs[r].label, kColors[r], {}, true, true, r == 2, {}};
+      PlotSeries s{specs[r].label, kColors[r], {}, true, true, r == kNaiveRun, {}};
       for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[r][i]);
       plot.series.push_back(s);
     }
@@ -317,8 +319,8 @@ json run_stress(const StressOptions& opt) {
     PlotSeries pred_series{"eps_double * kappa (first-order estimate)", "#7f7f7f", {}, true, false, true, {}};
     for (std::size_t i = 0; i < params.size(); ++i) pred_series.points.emplace_back(params[i], predicted[i]);
     plot.series.push_back(pred_series);
-    if (!breakdown["double/direct/world (naive)"].is_null())
-      plot.x_marks.emplace_back(breakdown["double/direct/world (naive)"].get<double>(), "naive double > 1e-9");
+    if (!breakdown[specs[kNaiveRun].label].is_null())
+      plot.x_marks.emplace_back(breakdown[specs[kNaiveRun].label].get<double>(), "naive double > 1e-9");
     plot.height = 520;
     plot.width = 900;
     svgs.emplace_back(fam.name, render_svg(plot));
