@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -166,6 +167,14 @@ void print_bench(const json& doc) {
                r["precision"].get<std::string>(), r["method"].get<std::string>(), r["items_per_s"].get<double>(),
                r["ns_per_item"].get<double>(), r["bytes_per_item"].get<int>(), r["roofline_fraction"].get<double>(),
                r["cost_vs_double_direct"].get<double>());
+}
+
+/// Progress lines on stderr, once a command has run for more than two seconds.
+std::function<void(const std::string&)> progress_after_two_seconds() {
+  const auto start = std::chrono::steady_clock::now();
+  return [start](const std::string& line) {
+    if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
+  };
 }
 
 /// Wraps text at `width` columns with an indent.
@@ -323,10 +332,7 @@ int main(int argc, char** argv) {
       AuditOptions opt;
       opt.out_dir = out_dir;
       opt.batch_seconds = batch_ms / 1000;
-      const auto start = std::chrono::steady_clock::now();
-      opt.progress = [&](const std::string& line) {
-        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
-      };
+      opt.progress = progress_after_two_seconds();
       const json doc = run_audit(sc, opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_audit(doc, out_dir);
@@ -350,10 +356,7 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.families = families;
       opt.samples = stress_samples;
-      const auto start = std::chrono::steady_clock::now();
-      opt.progress = [&](const std::string& line) {
-        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
-      };
+      opt.progress = progress_after_two_seconds();
       const json doc = run_stress(opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_stress(doc, out_dir);

@@ -131,6 +131,4 @@ std::optional<Rational> parse_rational(std::string_view text, std::string& error
   return Rational(*p / *q);
 }
 
-std::string rational_text(const Rational& q) { return q.str(); }
-
 }  // namespace qverify

@@ -239,8 +239,4 @@ std::string read_text_file(const std::string& file, std::size_t max_bytes) {
   return ss.str();
 }
 
-JsonNode read_json_file(const std::string& file, const JsonLimits& limits) {
-  return parse_json_tree(read_text_file(file, limits.max_bytes), file, limits);
-}
-
 }  // namespace qverify

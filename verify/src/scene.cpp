@@ -244,119 +244,117 @@ std::vector<Pair> read_requests(const Reader& r, const JsonNode* n, const std::s
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& file) {
-  {
-    const JsonNode root = parse_json_tree(text, file);
-    Reader r(file);
-    Scene sc;
-    sc.file = file;
-    r.object(root, "");
-    r.keys(root, "", {"format", "name", "quadrics", "lights", "mirrors", "requests", "camera"});
-    const std::string format = r.string(r.required(root, "", "format"), "format");
-    if (format != "qverify-scene/1") r.fail("format", "unsupported format \"" + format + "\" (expected \"qverify-scene/1\")");
-    if (const JsonNode* nm = root.find("name")) sc.name = r.string(*nm, "name");
-    else {
-      const auto slash = file.find_last_of('/');
-      sc.name = file.substr(slash == std::string::npos ? 0 : slash + 1);
-    }
-
-    std::map<std::string, std::string> ids;  // id -> path of its first use
-    auto read_id = [&](const JsonNode& obj, const std::string& path) {
-      const std::string id = r.string(r.required(obj, path, "id"), join(path, "id"));
-      if (id.empty()) r.fail(join(path, "id"), "id must be a non-empty string");
-      const auto [it, fresh] = ids.emplace(id, path);
-      if (!fresh) r.fail(join(path, "id"), "duplicate id \"" + id + "\" (already used by " + it->second + ")");
-      return id;
-    };
-
-    const JsonNode& qs = r.array(r.required(root, "", "quadrics"), "quadrics");
-    std::map<std::string, std::size_t> qindex, lindex, mindex;
-    for (std::size_t i = 0; i < qs.items.size(); ++i) {
-      const std::string p = at("quadrics", i);
-      r.object(qs.items[i], p);
-      QuadricSpec q = read_quadric(r, qs.items[i], p);
-      q.id = read_id(qs.items[i], p);
-      qindex[q.id] = i;
-      sc.quadrics.push_back(std::move(q));
-    }
-    if (const JsonNode* ls = root.find("lights")) {
-      r.array(*ls, "lights");
-      for (std::size_t i = 0; i < ls->items.size(); ++i) {
-        const std::string p = at("lights", i);
-        const JsonNode& n = r.object(ls->items[i], p);
-        r.keys(n, p, {"id", "position", "direction"});
-        LightSpec l;
-        l.path = p;
-        const JsonNode* pos = n.find("position");
-        const JsonNode* dir = n.find("direction");
-        if (pos && dir) r.fail(join(p, "direction"), "a light has either \"position\" or \"direction\", not both");
-        if (!pos && !dir) r.fail(p, "missing \"position\" (point light) or \"direction\" (parallel light)");
-        l.parallel = dir != nullptr;
-        l.xyz = r.numbers(pos ? *pos : *dir, join(p, pos ? "position" : "direction"), 3);
-        if (dir) r.nonzero_vector(l.xyz, join(p, "direction"), "direction");
-        l.id = read_id(n, p);
-        lindex[l.id] = i;
-        sc.lights.push_back(std::move(l));
-      }
-    }
-    if (const JsonNode* ms = root.find("mirrors")) {
-      r.array(*ms, "mirrors");
-      for (std::size_t i = 0; i < ms->items.size(); ++i) {
-        const std::string p = at("mirrors", i);
-        const JsonNode& n = r.object(ms->items[i], p);
-        r.keys(n, p, {"id", "plane"});
-        MirrorSpec m;
-        m.path = p;
-        m.plane = r.numbers(r.required(n, p, "plane"), join(p, "plane"), 4);
-        if (m.plane[0].value == 0 && m.plane[1].value == 0 && m.plane[2].value == 0)
-          r.fail(join(p, "plane"), "the normal (a, b, c) of a mirror plane must be non-zero");
-        m.id = read_id(n, p);
-        mindex[m.id] = i;
-        sc.mirrors.push_back(std::move(m));
-      }
-    }
-    const JsonNode* req = root.find("requests");
-    if (req) {
-      r.object(*req, "requests");
-      r.keys(*req, "requests", {"shadows", "reflections"});
-    }
-    sc.shadows = read_requests(r, req ? req->find("shadows") : nullptr, "requests.shadows", "light", qindex, lindex, "light");
-    sc.reflections =
-        read_requests(r, req ? req->find("reflections") : nullptr, "requests.reflections", "mirror", qindex, mindex, "mirror");
-
-    if (const JsonNode* cam = root.find("camera")) {
-      const std::string p = "camera";
-      r.object(*cam, p);
-      r.keys(*cam, p, {"eye", "look_at", "up", "fov_y_deg", "width", "height"});
-      sc.has_camera = true;
-      CameraSpec& c = sc.camera;
-      c.eye = r.numbers(r.required(*cam, p, "eye"), "camera.eye", 3);
-      c.look_at = r.numbers(r.required(*cam, p, "look_at"), "camera.look_at", 3);
-      if (const JsonNode* up = cam->find("up")) c.up = r.numbers(*up, "camera.up", 3);
-      else c.up = {Num{0, "camera.up", ""}, Num{0, "camera.up", ""}, Num{1, "camera.up", ""}};
-      if (const JsonNode* f = cam->find("fov_y_deg")) c.fov_y_deg = r.number(*f, "camera.fov_y_deg");
-      else c.fov_y_deg = Num{40, "camera.fov_y_deg", ""};
-      if (!(c.fov_y_deg.value > 0 && c.fov_y_deg.value < 180)) r.fail("camera.fov_y_deg", "must be in (0, 180) degrees");
-      auto pixels = [&](const char* key, long dflt) {
-        const JsonNode* n = cam->find(key);
-        if (!n) return dflt;
-        const Num v = r.number(*n, join(p, key));
-        if (!(v.value >= 1 && v.value <= 16384) || denominator(v.value) != 1)
-          r.fail(join(p, key), "must be a whole number of pixels from 1 to 16384");
-        return static_cast<long>(numerator(v.value).convert_to<long>());
-      };
-      c.width = pixels("width", 640);
-      c.height = pixels("height", 480);
-      Vec3<Rational> e, l, u;
-      for (int i = 0; i < 3; ++i) {
-        e(i) = c.eye[static_cast<std::size_t>(i)].value;
-        l(i) = c.look_at[static_cast<std::size_t>(i)].value;
-        u(i) = c.up[static_cast<std::size_t>(i)].value;
-      }
-      if (e == l) r.fail("camera.look_at", "look_at must differ from eye");
-      if ((l - e).cross(u) == Vec3<Rational>::Zero()) r.fail("camera.up", "up must not be parallel to the viewing direction");
-    }
-    return sc;
+  const JsonNode root = parse_json_tree(text, file);
+  Reader r(file);
+  Scene sc;
+  sc.file = file;
+  r.object(root, "");
+  r.keys(root, "", {"format", "name", "quadrics", "lights", "mirrors", "requests", "camera"});
+  const std::string format = r.string(r.required(root, "", "format"), "format");
+  if (format != "qverify-scene/1") r.fail("format", "unsupported format \"" + format + "\" (expected \"qverify-scene/1\")");
+  if (const JsonNode* nm = root.find("name")) sc.name = r.string(*nm, "name");
+  else {
+    const auto slash = file.find_last_of('/');
+    sc.name = file.substr(slash == std::string::npos ? 0 : slash + 1);
   }
+
+  std::map<std::string, std::string> ids;  // id -> path of its first use
+  auto read_id = [&](const JsonNode& obj, const std::string& path) {
+    const std::string id = r.string(r.required(obj, path, "id"), join(path, "id"));
+    if (id.empty()) r.fail(join(path, "id"), "id must be a non-empty string");
+    const auto [it, fresh] = ids.emplace(id, path);
+    if (!fresh) r.fail(join(path, "id"), "duplicate id \"" + id + "\" (already used by " + it->second + ")");
+    return id;
+  };
+
+  const JsonNode& qs = r.array(r.required(root, "", "quadrics"), "quadrics");
+  std::map<std::string, std::size_t> qindex, lindex, mindex;
+  for (std::size_t i = 0; i < qs.items.size(); ++i) {
+    const std::string p = at("quadrics", i);
+    r.object(qs.items[i], p);
+    QuadricSpec q = read_quadric(r, qs.items[i], p);
+    q.id = read_id(qs.items[i], p);
+    qindex[q.id] = i;
+    sc.quadrics.push_back(std::move(q));
+  }
+  if (const JsonNode* ls = root.find("lights")) {
+    r.array(*ls, "lights");
+    for (std::size_t i = 0; i < ls->items.size(); ++i) {
+      const std::string p = at("lights", i);
+      const JsonNode& n = r.object(ls->items[i], p);
+      r.keys(n, p, {"id", "position", "direction"});
+      LightSpec l;
+      l.path = p;
+      const JsonNode* pos = n.find("position");
+      const JsonNode* dir = n.find("direction");
+      if (pos && dir) r.fail(join(p, "direction"), "a light has either \"position\" or \"direction\", not both");
+      if (!pos && !dir) r.fail(p, "missing \"position\" (point light) or \"direction\" (parallel light)");
+      l.parallel = dir != nullptr;
+      l.xyz = r.numbers(pos ? *pos : *dir, join(p, pos ? "position" : "direction"), 3);
+      if (dir) r.nonzero_vector(l.xyz, join(p, "direction"), "direction");
+      l.id = read_id(n, p);
+      lindex[l.id] = i;
+      sc.lights.push_back(std::move(l));
+    }
+  }
+  if (const JsonNode* ms = root.find("mirrors")) {
+    r.array(*ms, "mirrors");
+    for (std::size_t i = 0; i < ms->items.size(); ++i) {
+      const std::string p = at("mirrors", i);
+      const JsonNode& n = r.object(ms->items[i], p);
+      r.keys(n, p, {"id", "plane"});
+      MirrorSpec m;
+      m.path = p;
+      m.plane = r.numbers(r.required(n, p, "plane"), join(p, "plane"), 4);
+      if (m.plane[0].value == 0 && m.plane[1].value == 0 && m.plane[2].value == 0)
+        r.fail(join(p, "plane"), "the normal (a, b, c) of a mirror plane must be non-zero");
+      m.id = read_id(n, p);
+      mindex[m.id] = i;
+      sc.mirrors.push_back(std::move(m));
+    }
+  }
+  const JsonNode* req = root.find("requests");
+  if (req) {
+    r.object(*req, "requests");
+    r.keys(*req, "requests", {"shadows", "reflections"});
+  }
+  sc.shadows = read_requests(r, req ? req->find("shadows") : nullptr, "requests.shadows", "light", qindex, lindex, "light");
+  sc.reflections =
+      read_requests(r, req ? req->find("reflections") : nullptr, "requests.reflections", "mirror", qindex, mindex, "mirror");
+
+  if (const JsonNode* cam = root.find("camera")) {
+    const std::string p = "camera";
+    r.object(*cam, p);
+    r.keys(*cam, p, {"eye", "look_at", "up", "fov_y_deg", "width", "height"});
+    sc.has_camera = true;
+    CameraSpec& c = sc.camera;
+    c.eye = r.numbers(r.required(*cam, p, "eye"), "camera.eye", 3);
+    c.look_at = r.numbers(r.required(*cam, p, "look_at"), "camera.look_at", 3);
+    if (const JsonNode* up = cam->find("up")) c.up = r.numbers(*up, "camera.up", 3);
+    else c.up = {Num{0, "camera.up", ""}, Num{0, "camera.up", ""}, Num{1, "camera.up", ""}};
+    if (const JsonNode* f = cam->find("fov_y_deg")) c.fov_y_deg = r.number(*f, "camera.fov_y_deg");
+    else c.fov_y_deg = Num{40, "camera.fov_y_deg", ""};
+    if (!(c.fov_y_deg.value > 0 && c.fov_y_deg.value < 180)) r.fail("camera.fov_y_deg", "must be in (0, 180) degrees");
+    auto pixels = [&](const char* key, long dflt) {
+      const JsonNode* n = cam->find(key);
+      if (!n) return dflt;
+      const Num v = r.number(*n, join(p, key));
+      if (!(v.value >= 1 && v.value <= 16384) || denominator(v.value) != 1)
+        r.fail(join(p, key), "must be a whole number of pixels from 1 to 16384");
+      return static_cast<long>(numerator(v.value).convert_to<long>());
+    };
+    c.width = pixels("width", 640);
+    c.height = pixels("height", 480);
+    Vec3<Rational> e, l, u;
+    for (int i = 0; i < 3; ++i) {
+      e(i) = c.eye[static_cast<std::size_t>(i)].value;
+      l(i) = c.look_at[static_cast<std::size_t>(i)].value;
+      u(i) = c.up[static_cast<std::size_t>(i)].value;
+    }
+    if (e == l) r.fail("camera.look_at", "look_at must differ from eye");
+    if ((l - e).cross(u) == Vec3<Rational>::Zero()) r.fail("camera.up", "up must not be parallel to the viewing direction");
+  }
+  return sc;
 }
 
 Scene load_scene(const std::string& file) { return parse_scene(read_text_file(file, JsonLimits{}.max_bytes), file); }

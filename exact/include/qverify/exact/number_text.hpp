@@ -29,7 +29,4 @@ std::optional<Rational> parse_decimal(std::string_view text, std::string& error,
 std::optional<Rational> parse_rational(std::string_view text, std::string& error,
                                        const NumberLimits& limits = {});
 
-/// "p/q" or "n", lowest terms.
-std::string rational_text(const Rational& q);
-
 }  // namespace qverify

@@ -55,9 +55,6 @@ inline Vec4<Rational> plane_from_local(const Vec4<Rational>& p, const Vec3<Ratio
 inline Vec4<Rational> point_to_local(const Vec4<Rational>& L, const Vec3<Rational>& o) {
   return translation<Rational>(Vec3<Rational>(-o)) * L;
 }
-inline Mat4<Rational> map_from_local(const Mat4<Rational>& M, const Vec3<Rational>& o) {
-  return translation<Rational>(o) * M * translation<Rational>(Vec3<Rational>(-o));
-}
 
 /// Exact power-of-two exponent e with 2^e <= x < 2^(e+1) (x > 0).
 long floor_log2(const Rational& x);

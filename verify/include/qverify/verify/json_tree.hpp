@@ -38,7 +38,4 @@ JsonNode parse_json_tree(const std::string& text, const std::string& file, const
 /// Reads a whole file, refusing files larger than max_bytes (InputError).
 std::string read_text_file(const std::string& file, std::size_t max_bytes);
 
-/// Reads a file (size-limited) and parses it.
-JsonNode read_json_file(const std::string& file, const JsonLimits& limits = {});
-
 }  // namespace qverify
