@@ -1,4 +1,6 @@
 // qverify command line: see shared/spec/cli.md for the contract.
+#include <qverify/exact/number_text.hpp>
+#include <qverify/render/render.hpp>
 #include <qverify/verify/eval.hpp>
 #include <qverify/verify/paper_audit.hpp>
 #include <qverify/verify/adaptive.hpp>
@@ -210,6 +212,115 @@ void print_paper(const std::vector<AuditEntry>& entries) {
   }
 }
 
+// ------------------------------------------------------------------ render
+
+struct RenderArgs {
+  std::string out, ids, diff, method = "transforms", box, frame = "camera";
+  bool compare = false;
+  int threads = 0, repeat = 3;
+  long max_checked = 2000;
+  double min_agreement = 0.999;
+};
+
+json pixel_json(const render::Renderer& r, const render::PixelId& id) {
+  return {{"surface", id.surface}, {"mirror", id.mirror}, {"shadowed", id.shadowed}, {"reads", r.describe(id)}};
+}
+
+void write_image(const std::string& file, const render::Image& img, const std::vector<std::uint8_t>& rgb) {
+  try {
+    render::write_png(file, img.width, img.height, rgb);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
+  render::RenderOptions opt;
+  opt.threads = a.threads;
+  opt.camera_frame = a.frame == "camera";
+  if (!a.box.empty()) {
+    std::string err;
+    const auto v = parse_rational(a.box, err);
+    if (!v || *v <= 0) throw UsageError("--box: expected a positive number, got \"" + a.box + "\"" + (err.empty() ? "" : " (" + err + ")"));
+    opt.has_box_half = true;
+    opt.box_half = *v;
+  }
+  const render::Renderer r(sc, opt);
+  const auto& cam = r.camera();
+  if (!a.compare) {
+    if (a.out.empty()) throw UsageError("render: --out image.png is required (or --compare)");
+    const auto method = a.method == "raytrace" ? render::RenderMethod::raytrace : render::RenderMethod::transforms;
+    const render::Image img = r.render(method);
+    write_image(a.out, img, img.rgb);
+    if (!a.ids.empty()) write_image(a.ids, img, render::id_image(img));
+    if (as_json) {
+      std::cout << json{{"format", "qverify-render/1"}, {"method", render::method_word(method)}, {"width", cam.width},
+                        {"height", cam.height}, {"pixels", static_cast<long>(img.ids.size())},
+                        {"seconds", {{render::method_word(method), img.seconds}}}, {"threads", r.threads()},
+                        {"left_out", r.left_out()}}
+                       .dump(2)
+                << "\n";
+    } else {
+      fmt::print("rendered {} ({}x{}) by {} in {:.3f} s on {} threads\n", a.out, cam.width, cam.height,
+                 render::method_word(method), img.seconds, r.threads());
+      for (const auto& l : r.left_out()) fmt::print("left out: {}\n", l);
+    }
+    return kOk;
+  }
+  const render::Comparison c = render::compare_methods(r, a.repeat, a.max_checked);
+  if (!a.out.empty()) write_image(a.out, c.transforms_image, c.transforms_image.rgb);
+  if (!a.ids.empty()) write_image(a.ids, c.transforms_image, render::id_image(c.transforms_image));
+  if (!a.diff.empty()) write_image(a.diff, c.transforms_image, c.diff_rgb);
+  const bool pass = c.agreement >= a.min_agreement;
+  if (as_json) {
+    json px = json::array();
+    for (const auto& p : c.checked) {
+      if (px.size() >= 50) break;
+      json e{{"x", p.x}, {"y", p.y}, {"transforms", pixel_json(r, p.transforms)}, {"raytrace", pixel_json(r, p.raytrace)}};
+      if (p.certified.decided)
+        e["certified"] = {{"id", pixel_json(r, p.certified.truth)}, {"bits", p.certified.bits},
+                          {"right", p.certified.truth == p.transforms ? "transforms"
+                                    : p.certified.truth == p.raytrace ? "raytrace" : "neither"}};
+      else e["certified"] = nullptr;
+      px.push_back(e);
+    }
+    json doc{{"format", "qverify-render/1"},
+             {"pixels", c.pixels},
+             {"agreement", c.agreement},
+             {"disagreeing", c.disagreeing},
+             {"seconds", {{"transforms", c.seconds_transforms}, {"raytrace", c.seconds_raytrace}}},
+             {"speedup", c.seconds_transforms > 0 ? c.seconds_raytrace / c.seconds_transforms : 0.0},
+             {"width", cam.width},
+             {"height", cam.height},
+             {"threads", r.threads()},
+             {"certified", {{"checked", static_cast<long>(c.checked.size())}, {"transforms_right", c.transforms_right},
+                            {"raytrace_right", c.raytrace_right}, {"neither", c.neither}, {"undecided", c.undecided},
+                            {"unchecked", c.unchecked}, {"methods_differ_exactly", c.methods_differ_exactly}}},
+             {"disagreements", px},
+             {"left_out", r.left_out()}};
+    std::cout << doc.dump(2) << "\n";
+  } else {
+    fmt::print("scene        {} ({}x{}, {} threads)\n", sc.file, cam.width, cam.height, r.threads());
+    fmt::print("agreement    {:.6f}% of {} pixels ({} disagree)\n", 100 * c.agreement, c.pixels, c.disagreeing);
+    fmt::print("seconds      transforms {:.4f}   raytrace {:.4f}   raytrace/transforms {:.2f}x (fastest of {})\n",
+               c.seconds_transforms, c.seconds_raytrace,
+               c.seconds_transforms > 0 ? c.seconds_raytrace / c.seconds_transforms : 0.0, std::max(1, a.repeat));
+    fmt::print("certified    {} checked: transforms right {}, raytrace right {}, neither {}, undecided {}{}\n",
+               c.checked.size(), c.transforms_right, c.raytrace_right, c.neither, c.undecided,
+               c.unchecked ? fmt::format(", {} not checked", c.unchecked) : std::string());
+    if (c.methods_differ_exactly)
+      fmt::print("WARNING      {} pixels differ between the methods even in certified arithmetic\n", c.methods_differ_exactly);
+    for (std::size_t i = 0; i < c.checked.size() && i < 10; ++i) {
+      const auto& p = c.checked[i];
+      fmt::print("  pixel ({}, {}): transforms: {}; raytrace: {}; certified: {}\n", p.x, p.y, r.describe(p.transforms),
+                 r.describe(p.raytrace), p.certified.decided ? r.describe(p.certified.truth) : "undecided");
+    }
+    for (const auto& l : r.left_out()) fmt::print("left out: {}\n", l);
+    if (!pass) fmt::print("FAIL: agreement below {}\n", a.min_agreement);
+  }
+  return pass ? kOk : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -288,6 +399,28 @@ int main(int argc, char** argv) {
   bool strict = false;
   paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
   paper->add_flag("--strict", strict, "Exit 1 when a printed formula fails its definition (errata found)");
+
+  CLI::App* render_cmd = app.add_subcommand("render", "Ray-cast the scene's camera view: shadows and mirror content from the "
+                                                    "transforms (P, polar plane, B) or by classic shadow/reflection rays");
+  RenderArgs rargs;
+  render_cmd->add_option("SCENE", scene_file, "Scene file (qverify-scene/1) with a camera")->required();
+  render_cmd->add_option("--out", rargs.out, "PNG image to write (with --compare: the transforms image)");
+  render_cmd->add_option("--method", rargs.method, "transforms | raytrace")->capture_default_str()->check(
+      CLI::IsMember({"transforms", "raytrace"}));
+  render_cmd->add_option("--ids", rargs.ids, "PNG of the ID buffer (one colour per surface, mirror and shadow set)");
+  render_cmd->add_flag("--compare", rargs.compare, "Render by both methods, compare the ID buffers, certify disagreeing pixels");
+  render_cmd->add_option("--diff", rargs.diff, "With --compare: PNG with the disagreeing pixels in red");
+  render_cmd->add_option("--box", rargs.box, "Half side of the clipping cube around look_at (default: |eye - look_at|_inf / 2)");
+  render_cmd->add_option("--frame", rargs.frame, "camera (origin at look_at, moved exactly before rounding) | world")
+      ->capture_default_str()->check(CLI::IsMember({"camera", "world"}));
+  render_cmd->add_option("--threads", rargs.threads, "Threads (0: all)")->capture_default_str()->check(CLI::Range(0, 256));
+  render_cmd->add_option("--repeat", rargs.repeat, "With --compare: renders per method, the fastest is timed")
+      ->capture_default_str()->check(CLI::Range(1, 100));
+  render_cmd->add_option("--max-checked", rargs.max_checked, "With --compare: disagreeing pixels to certify at most")
+      ->capture_default_str()->check(CLI::Range(0L, 100000000L));
+  render_cmd->add_option("--min-agreement", rargs.min_agreement, "With --compare: exit 1 below this agreement fraction")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  render_cmd->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
 
   try {
     app.parse(argc, argv);
@@ -369,6 +502,7 @@ int main(int argc, char** argv) {
       else print_bench(doc);
       return kOk;
     }
+    if (render_cmd->parsed()) return run_render(load_scene(scene_file), rargs, as_json);
     if (paper->parsed()) {
       const auto entries = audit_paper();
       if (as_json) std::cout << audit_json(entries).dump(2) << "\n";

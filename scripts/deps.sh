@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages qverify needs when any is missing (as root),
 # or says which ones to install. Sourced by ./qverify and ./run-tests.
-QVERIFY_PACKAGES=(g++ cmake make libeigen3-dev libboost-dev libgmp-dev libmpfr-dev libcgal-dev
+QVERIFY_PACKAGES=(g++ cmake make libeigen3-dev libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libpng-dev libcgal-dev
                   catch2 nlohmann-json3-dev libcli11-dev libfmt-dev libbenchmark-dev)
 
 qverify_install_deps() {

@@ -1,4 +1,6 @@
 // The CLI contract (shared/spec/cli.md): JSON shapes, number encodings, exit codes.
+#include "cli_run.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <catch2/catch.hpp>
@@ -13,25 +15,9 @@
 #include <sys/wait.h>
 
 namespace {
-
-struct Run {
-  int code = -1;
-  std::string out;
-};
-
-/// Runs the qverify binary; stdout captured, stderr to /dev/null.
-Run run(const std::string& args) {
-  Run r;
-  const std::string cmd = std::string(QVERIFY_EXE) + " " + args + " 2>/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p);
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using qverify_test::run;
+using qverify_test::Run;
+using qverify_test::temp_file;
 
 std::string scene(const char* name) { return std::string(QVERIFY_SCENES) + "/" + name; }
 
@@ -115,15 +101,6 @@ TEST_CASE("bad input and usage exit 2 with nothing on stdout", "[cli]") {
   CHECK(run("eval --help").code == 0);
 }
 
-namespace {
-std::string temp_file(const std::string& name, const std::string& content) {
-  const auto dir = std::filesystem::temp_directory_path() / ("qverify-tests-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
-  std::ofstream(path) << content;
-  return path.string();
-}
-}  // namespace
 
 TEST_CASE("verify --precision exact proves every sampled point of the examples", "[cli][verify]") {
   for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {

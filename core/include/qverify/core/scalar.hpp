@@ -80,10 +80,13 @@ template <class S> inline bool negligible(const S& q, const S& scale) {
 
 /// A symmetric 4x4 matrix from its upper triangle: m(i, j) = m(j, i) = f(i, j)
 /// for i <= j (ten evaluations instead of sixteen; exactly symmetric).
+/// No self-assignment on the diagonal: Boost's mpfi backend turns x = x into NaN.
 template <class S, class F> inline Mat4<S> symmetric_from(F&& f) {
   Mat4<S> m;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i; j < 4; ++j) m(i, j) = m(j, i) = f(i, j);
+  for (int i = 0; i < 4; ++i) {
+    m(i, i) = f(i, i);
+    for (int j = i + 1; j < 4; ++j) m(i, j) = m(j, i) = f(i, j);
+  }
   return m;
 }
 
