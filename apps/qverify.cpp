@@ -18,6 +18,8 @@
 #include <functional>
 #include <iostream>
 #include <sstream>
+#include <map>
+#include <tuple>
 
 namespace {
 
@@ -272,7 +274,18 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
   if (!a.ids.empty()) write_image(a.ids, c.transforms_image, render::id_image(c.transforms_image));
   if (!a.diff.empty()) write_image(a.diff, c.transforms_image, c.diff_rgb);
   const bool pass = c.agreement >= a.min_agreement;
+  // the disagreements grouped by what each method drew and what is certified true
+  std::map<std::tuple<std::string, std::string, std::string>, long> kinds;
+  for (const auto& p : c.checked)
+    ++kinds[{r.describe(p.transforms), r.describe(p.raytrace),
+             p.certified.decided ? r.describe(p.certified.truth) : std::string("undecided")}];
+  std::vector<std::pair<long, std::tuple<std::string, std::string, std::string>>> by_count;
+  for (const auto& [k, n] : kinds) by_count.push_back({n, k});
+  std::sort(by_count.begin(), by_count.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
   if (as_json) {
+    json kinds_json = json::array();
+    for (const auto& [n, k] : by_count)
+      kinds_json.push_back({{"pixels", n}, {"transforms", std::get<0>(k)}, {"raytrace", std::get<1>(k)}, {"certified", std::get<2>(k)}});
     json px = json::array();
     for (const auto& p : c.checked) {
       if (px.size() >= 50) break;
@@ -296,6 +309,7 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
              {"certified", {{"checked", static_cast<long>(c.checked.size())}, {"transforms_right", c.transforms_right},
                             {"raytrace_right", c.raytrace_right}, {"neither", c.neither}, {"undecided", c.undecided},
                             {"unchecked", c.unchecked}, {"methods_differ_exactly", c.methods_differ_exactly}}},
+             {"kinds", kinds_json},
              {"disagreements", px},
              {"left_out", r.left_out()}};
     std::cout << doc.dump(2) << "\n";
@@ -310,10 +324,9 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
                c.unchecked ? fmt::format(", {} not checked", c.unchecked) : std::string());
     if (c.methods_differ_exactly)
       fmt::print("WARNING      {} pixels differ between the methods even in certified arithmetic\n", c.methods_differ_exactly);
-    for (std::size_t i = 0; i < c.checked.size() && i < 10; ++i) {
-      const auto& p = c.checked[i];
-      fmt::print("  pixel ({}, {}): transforms: {}; raytrace: {}; certified: {}\n", p.x, p.y, r.describe(p.transforms),
-                 r.describe(p.raytrace), p.certified.decided ? r.describe(p.certified.truth) : "undecided");
+    for (std::size_t i = 0; i < by_count.size() && i < 12; ++i) {
+      const auto& [n, k] = by_count[i];
+      fmt::print("  {:>6} px  transforms: {}; raytrace: {}; certified: {}\n", n, std::get<0>(k), std::get<1>(k), std::get<2>(k));
     }
     for (const auto& l : r.left_out()) fmt::print("left out: {}\n", l);
     if (!pass) fmt::print("FAIL: agreement below {}\n", a.min_agreement);
