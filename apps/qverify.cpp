@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
   add_common(eval);
   double tolerance = 0;
   eval->add_option("--tolerance", tolerance,
-                   "Adaptive mode: escalate each item double -> interval -> exact until its result is certified within "
+                   "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
                    "this relative tolerance (double output; per-item 'certified' says by which stage)")
       ->check(CLI::Range(0.0, 1.0));
 

@@ -6,6 +6,8 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <limits>
+#include <qverify/exact/mpfi.hpp>
 
 namespace qverify {
 
@@ -14,37 +16,102 @@ using Q = Rational;
 
 namespace {
 
-/// Largest |entry| of an interval matrix (upper bounds).
-template <class D> double interval_scale(const Eigen::MatrixBase<D>& m) {
-  double s = 0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) s = std::max({s, std::abs(m(i).inf()), std::abs(m(i).sup())});
+/// Bits of the MPFR-interval stage.
+constexpr unsigned kMpfiBits = 256;
+
+using IntervalMatrix = Eigen::Matrix<Interval, Eigen::Dynamic, Eigen::Dynamic>;
+using MpfiMatrix = Eigen::Matrix<Mpfi, Eigen::Dynamic, Eigen::Dynamic>;
+using ExactMatrix = Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// A certified enclosure [lo_i, hi_i] of every entry of an exact result, as rationals.
+struct Enclosure {
+  std::vector<Q> lo, hi;
+};
+
+Q mpfr_to_q(const mpfr_t x) {
+  Q r;
+  mpfr_get_q(r.backend().data(), x);
+  return r;
+}
+
+Enclosure enclosure(const IntervalMatrix& m) {
+  Enclosure e;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    e.lo.push_back(to_rational(m(i).inf()));
+    e.hi.push_back(to_rational(m(i).sup()));
+  }
+  return e;
+}
+
+Enclosure enclosure(const MpfiMatrix& m) {
+  Enclosure e;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const mpfi_srcptr x = m(i).backend().data();
+    mpfr_t b;
+    mpfr_init2(b, mpfi_get_prec(x));
+    mpfi_get_left(b, x);
+    e.lo.push_back(mpfr_to_q(b));
+    mpfi_get_right(b, x);
+    e.hi.push_back(mpfr_to_q(b));
+    mpfr_clear(b);
+  }
+  return e;
+}
+
+Enclosure enclosure(const ExactMatrix& m) {
+  Enclosure e;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    e.lo.push_back(m(i));
+    e.hi.push_back(m(i));
+  }
+  return e;
+}
+
+/// A lower bound of the largest |entry| of the exact result.
+Q scale_lower_bound(const Enclosure& e) {
+  Q s = 0;
+  for (std::size_t i = 0; i < e.lo.size(); ++i) {
+    if (e.lo[i] > 0) s = std::max(s, e.lo[i]);
+    else if (e.hi[i] < 0) s = std::max(s, Q(-e.hi[i]));
+  }
   return s;
 }
 
-/// Largest half-width of an interval matrix relative to its scale.
-template <class D> double relative_halfwidth(const Eigen::MatrixBase<D>& m) {
-  const double s = interval_scale(m);
-  if (s == 0) return 0;
-  double w = 0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) w = std::max(w, (m(i).sup() - m(i).inf()) / 2);
-  return w / s;
-}
-
-/// Is every entry of x within the enclosure widened by tol * scale?
-template <class DX, class DI> bool inside(const Eigen::MatrixBase<DX>& x, const Eigen::MatrixBase<DI>& enc, double tol) {
-  const double slack = tol * interval_scale(enc);
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    const double v = x(i);
-    if (!(v >= enc(i).inf() - slack && v <= enc(i).sup() + slack)) return false;
+/// A certified bound of max_i |x_i - exact_i| / max_i |exact_i| (infinite when unknown).
+double certified_error(const Eigen::MatrixXd& x, const Enclosure& e) {
+  Q worst = 0;
+  for (std::size_t i = 0; i < e.lo.size(); ++i) {
+    const double v = x(static_cast<Eigen::Index>(i));
+    if (!std::isfinite(v)) return std::numeric_limits<double>::infinity();
+    const Q q = to_rational(v);
+    worst = std::max({worst, Q(abs(q - e.lo[i])), Q(abs(e.hi[i] - q))});
   }
-  return true;
+  if (worst == 0) return 0;
+  const Q s = scale_lower_bound(e);
+  if (s == 0) return std::numeric_limits<double>::infinity();
+  RoundingReport rep;
+  const double b = round_rational<double>(Q(worst / s), rep);
+  return rep.inexact ? std::nextafter(b, std::numeric_limits<double>::infinity()) : b;  // rounded up
 }
 
-template <class D> auto midpoints(const Eigen::MatrixBase<D>& m) {
+template <class D> Eigen::MatrixXd midpoints(const Eigen::MatrixBase<D>& m) {
   return m.unaryExpr([](const Interval& x) { return (x.inf() + x.sup()) / 2; }).eval();
 }
 
-template <class D> auto rounded(const Eigen::MatrixBase<D>& m) {
+Eigen::MatrixXd midpoints(const MpfiMatrix& m) {
+  Eigen::MatrixXd r(m.rows(), m.cols());
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const mpfi_srcptr x = m(i).backend().data();
+    mpfr_t mid;
+    mpfr_init2(mid, mpfi_get_prec(x));
+    mpfi_mid(mid, x);
+    r(i) = mpfr_get_d(mid, MPFR_RNDN);
+    mpfr_clear(mid);
+  }
+  return r;
+}
+
+Eigen::MatrixXd rounded(const ExactMatrix& m) {
   return m.unaryExpr([](const Q& x) {
              RoundingReport rep;
              return round_rational<double>(x, rep);
@@ -52,44 +119,48 @@ template <class D> auto rounded(const Eigen::MatrixBase<D>& m) {
       .eval();
 }
 
-using IntervalMatrix = Eigen::Matrix<Interval, Eigen::Dynamic, Eigen::Dynamic>;
-using ExactMatrix = Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>;
-
 /// One output of an item (a 4x4 matrix or a plane) at every stage of the ladder.
 struct Part {
   const char* key;
   Eigen::MatrixXd dbl;
   IntervalMatrix enc;
+  std::function<MpfiMatrix()> mpfi;    ///< evaluated only when the item reaches the MPFR stage
   std::function<ExactMatrix()> exact;  ///< evaluated only when the item reaches the exact stage
 };
 
-/// Certifies one item within tol: its double result if every part lies in its enclosure widened by
-/// tol x scale (and the enclosures are that narrow), else the enclosures' midpoints if their half-width
-/// is that small, else the exact result rounded to double. Writes the parts and `certified` into j and
-/// returns the stage.
+/// Certifies one item within tol: at each stage a double candidate for every part and a certified
+/// enclosure of the exact result; the stage certifies when every candidate entry is within
+/// tol x (largest |exact entry|) of every point of the enclosure. Stages: the double result
+/// (enclosure: interval), the interval midpoints, the MPFI midpoints (256 bits), the exact result
+/// rounded. Writes the parts and `certified` into j and returns the stage.
 std::string certify(json& j, const std::vector<Part>& parts, double tol) {
-  double hw = 0;
-  bool dbl_ok = true;
-  for (const Part& p : parts) {
-    hw = std::max(hw, relative_halfwidth(p.enc));
-    dbl_ok = dbl_ok && all_finite(p.dbl) && inside(p.dbl, p.enc, tol);
+  using Candidate = std::function<std::pair<Eigen::MatrixXd, Enclosure>(const Part&)>;
+  const std::vector<std::pair<std::string, Candidate>> stages = {
+      {"double", [](const Part& p) { return std::make_pair(p.dbl, enclosure(p.enc)); }},
+      {"interval", [](const Part& p) { return std::make_pair(midpoints(p.enc), enclosure(p.enc)); }},
+      {"mpfr", [](const Part& p) {
+         const MpfiMatrix m = p.mpfi();
+         return std::make_pair(midpoints(m), enclosure(m));
+       }},
+      {"exact", [](const Part& p) {
+         const ExactMatrix e = p.exact();
+         return std::make_pair(rounded(e), enclosure(e));
+       }}};
+  for (const auto& [name, candidate] : stages) {
+    double bound = 0;
+    std::vector<Eigen::MatrixXd> values;
+    for (const Part& p : parts) {
+      auto [x, enc] = candidate(p);
+      bound = std::max(bound, certified_error(x, enc));
+      values.push_back(std::move(x));
+    }
+    if (bound <= tol || name == "exact") {
+      for (std::size_t k = 0; k < parts.size(); ++k) j[parts[k].key] = matrix_json(values[k]);
+      j["certified"] = {{"by", name}, {"relative_error_bound", bound}};
+      return name;
+    }
   }
-  std::string by;
-  double bound = 0;
-  if (dbl_ok && hw <= tol) {
-    by = "double";
-    bound = 2 * hw + tol;
-  } else if (hw <= tol) {
-    by = "interval";
-    bound = hw;
-    for (const Part& p : parts) j[p.key] = matrix_json(midpoints(p.enc));
-  } else {
-    by = "exact";
-    bound = std::ldexp(1.0, -53);
-    for (const Part& p : parts) j[p.key] = matrix_json(rounded(p.exact()));
-  }
-  j["certified"] = {{"by", by}, {"relative_error_bound", bound}};
-  return by;
+  return "exact";  // not reached
 }
 
 }  // namespace
@@ -104,6 +175,14 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     if (!ex) ex = evaluate<Q>(sc, method, Frame::world);
     return *ex;
   };
+  std::optional<Evaluation<Mpfi>> mp;  // likewise
+  auto mpfi = [&]() -> const Evaluation<Mpfi>& {
+    if (!mp) {
+      set_mpfi_bits(kMpfiBits);
+      mp = evaluate<Mpfi>(sc, method, Frame::world);
+    }
+    return *mp;
+  };
   json doc;
   doc["format"] = "qverify-eval/1";
   doc["scene"] = sc.name;
@@ -111,11 +190,12 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
   doc["method"] = method_name(method);
   doc["frame"] = "world";
   doc["adaptive"] = {{"tolerance", tol},
-                     {"ladder", "double -> interval -> exact"},
-                     {"rule", "an item is certified when every entry is within tolerance x (largest |entry|) of the "
-                              "exact result of the same formula: the double result if it lies in the interval "
-                              "enclosure widened by that amount, else the enclosure's midpoints if its half-width is "
-                              "that small, else the exact result rounded to double"}};
+                     {"ladder", "double -> interval -> mpfr (MPFI intervals, 256 bits) -> exact"},
+                     {"rule", "an item is certified when every output entry is within tolerance x (largest |entry|) "
+                              "of the exact result of the same formula, for every point of a certified enclosure of "
+                              "that result: the double result (against the interval enclosure), else the interval "
+                              "midpoints, else the MPFI midpoints rounded to double, else the exact result rounded "
+                              "to double; relative_error_bound is the certified bound"}};
   json shadows = json::array();
   std::map<std::string, int> count;
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
@@ -124,10 +204,13 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     json j = shadow_json(sc, dd);
     j["status"] = exact().shadows[k].result.status();  // statuses: exact
     ++count[certify(j,
-                    {{"P", dd.result.P, ii.P, [&] { return ExactMatrix(exact().shadows[k].result.P); }},
+                    {{"P", dd.result.P, ii.P, [&] { return MpfiMatrix(mpfi().shadows[k].result.P); },
+                      [&] { return ExactMatrix(exact().shadows[k].result.P); }},
                      {"polar_plane", dd.result.polar_plane, ii.polar_plane,
+                      [&] { return MpfiMatrix(mpfi().shadows[k].result.polar_plane); },
                       [&] { return ExactMatrix(exact().shadows[k].result.polar_plane); }},
-                     {"R", dd.result.R, ii.R, [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
+                     {"R", dd.result.R, ii.R, [&] { return MpfiMatrix(mpfi().shadows[k].result.R); },
+                      [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
                     tol)];
     shadows.push_back(j);
   }
@@ -138,8 +221,10 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     json j = reflection_json(sc, dd);
     j["status"] = exact().reflections[k].result.status();
     ++count[certify(j,
-                    {{"M", dd.M, ii.M, [&] { return ExactMatrix(exact().reflections[k].M); }},
-                     {"B", dd.result.B, ii.result.B, [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
+                    {{"M", dd.M, ii.M, [&] { return MpfiMatrix(mpfi().reflections[k].M); },
+                      [&] { return ExactMatrix(exact().reflections[k].M); }},
+                     {"B", dd.result.B, ii.result.B, [&] { return MpfiMatrix(mpfi().reflections[k].result.B); },
+                      [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
                     tol)];
     reflections.push_back(j);
   }

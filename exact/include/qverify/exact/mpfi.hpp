@@ -12,6 +12,7 @@
 /// disagreeing pixels (render/) and the MPFR stage of the adaptive ladder.
 
 #include <qverify/core/scalar.hpp>
+#include <qverify/exact/rounding.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #include <boost/multiprecision/mpfi.hpp>
@@ -34,6 +35,14 @@ inline unsigned set_mpfi_bits(unsigned bits) {
 inline Mpfi enclose_mpfi(const Rational& q) {
   Mpfi r;
   mpfi_set_q(r.backend().data(), q.backend().data());
+  return r;
+}
+
+/// Inputs of a typed scene in Mpfi: their enclosure (inexact when not a point).
+template <> inline Mpfi round_rational<Mpfi>(const Rational& q, RoundingReport& rep) {
+  Mpfi r = enclose_mpfi(q);
+  if (!mpfi_bounded_p(r.backend().data())) rep.overflow = true;
+  else if (!mpfr_equal_p(&r.backend().data()->left, &r.backend().data()->right)) rep.inexact = true;
   return r;
 }
 

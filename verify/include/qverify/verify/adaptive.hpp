@@ -1,10 +1,11 @@
 #pragma once
 /// \file adaptive.hpp
 /// `qverify eval --tolerance T`: each item escalates double -> interval ->
-/// exact until its result is *certified* within T (relative to its largest
-/// entry) of the exact result of the same formula. The document says, per item,
-/// which stage certified it. (There is no MPFR stage: certifying an MPFR result
-/// needs MPFR intervals, MPFI, which qverify does not depend on.)
+/// mpfr (MPFI intervals, 256 bits) -> exact until its double result is
+/// *certified* within T (relative to its largest entry) of the exact result of
+/// the same formula: every entry within T x scale of every point of a
+/// certified enclosure of the exact result. The document says, per item, which
+/// stage certified it and the certified bound.
 
 #include <qverify/verify/eval.hpp>
 
