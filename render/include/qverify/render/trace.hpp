@@ -255,10 +255,12 @@ template <class S> bool shadow_ray_blocked(const Mat4<S>& A, const Vec4<S>& L, c
 }
 
 /// Transforms: the point-in-shadow-volume test of the file comment.
+/// The cheap test first: a point on the light's side of the polar plane is
+/// shadowed only from inside the solid of A (never on A itself).
 template <class S> bool in_shadow_volume(const Occluder<S>& oc, const Mat4<S>& A, const Vec3<S>& x, bool self) {
-  if (decide_sign<S>(form_at<S>(oc.P, x)) >= 0) return false;
-  if (oc.side * decide_sign<S>(plane_at<S>(oc.pi, x)) < 0) return true;
-  return !self && oc.side * decide_sign<S>(form_at<S>(A, x)) < 0;
+  auto inside_cone = [&] { return decide_sign<S>(form_at<S>(oc.P, x)) < 0; };
+  if (oc.side * decide_sign<S>(plane_at<S>(oc.pi, x)) < 0) return inside_cone();
+  return !self && oc.side * decide_sign<S>(form_at<S>(A, x)) < 0 && inside_cone();
 }
 
 /// The traced pixel: its id and, for shading, the surface point x, the
