@@ -45,7 +45,8 @@ RenderData<S> build(const TypedScene<S>& ts, const Plan& plan, const Vec3<S>& bo
   for (const Vec4<S>& pl : ts.planes) rd.mirrors.push_back(MirrorData<S>{pl, mirror_matrix<S>(pl), {}});
   for (const Pair& p : plan.reflections) {
     MirrorData<S>& md = rd.mirrors[p.other];
-    md.images.push_back(MirrorImage<S>{static_cast<int>(p.quadric), mirror_image<S>(ts.A[p.quadric], md.M)});
+    md.images.push_back(MirrorImage<S>{static_cast<int>(p.quadric), mirror_image<S>(ts.A[p.quadric], md.M),
+                                        EyeForm<S>{Vec3<S>::Zero(), S(0)}});
   }
   return rd;
 }

@@ -24,10 +24,9 @@ using Mpfi = boost::multiprecision::number<boost::multiprecision::mpfi_float_bac
 /// Sets the precision (bits of each bound) of newly created `Mpfi` values to
 /// at least `bits`, returns the precision used (see set_mpfr_bits).
 inline unsigned set_mpfi_bits(unsigned bits) {
-  unsigned d10 = 1;
-  while (boost::multiprecision::detail::digits10_2_2(d10) < bits) ++d10;
-  Mpfi::default_precision(d10);
-  return static_cast<unsigned>(boost::multiprecision::detail::digits10_2_2(d10));
+  const DigitsForBits p = digits_for_bits(bits);
+  Mpfi::default_precision(p.digits10);
+  return p.bits;
 }
 
 /// The tightest enclosure of q at the current Mpfi precision (exact when q is

@@ -30,11 +30,21 @@ using Mpfr = boost::multiprecision::number<boost::multiprecision::mpfr_float_bac
 /// `bits` bits and returns the precision actually used. Boost 1.74 sets MPFR
 /// precision in decimal digits (d10 -> digits10_2_2(d10) bits), so the working
 /// precision is the smallest such value >= bits; reports state it.
-inline unsigned set_mpfr_bits(unsigned bits) {
+/// The smallest Boost precision in decimal digits whose binary precision is at
+/// least `bits`, and that binary precision (shared by Mpfr and Mpfi).
+struct DigitsForBits {
+  unsigned digits10, bits;
+};
+inline DigitsForBits digits_for_bits(unsigned bits) {
   unsigned d10 = 1;
   while (boost::multiprecision::detail::digits10_2_2(d10) < bits) ++d10;
-  Mpfr::default_precision(d10);
-  return static_cast<unsigned>(boost::multiprecision::detail::digits10_2_2(d10));
+  return {d10, static_cast<unsigned>(boost::multiprecision::detail::digits10_2_2(d10))};
+}
+
+inline unsigned set_mpfr_bits(unsigned bits) {
+  const DigitsForBits p = digits_for_bits(bits);
+  Mpfr::default_precision(p.digits10);
+  return p.bits;
 }
 
 /// Human-readable name of a scalar type of the ladder.

@@ -302,7 +302,7 @@ template <class S> Traced<S> trace(const RenderData<S>& rd, RenderMethod method,
       nq, [&](int k) { return Q(k, &rd.A[static_cast<std::size_t>(k)], &rd.A_eye[static_cast<std::size_t>(k)]); }, o, d, zero,
       [&](int q, const S& t) { return in_box<S>(rd, q, Vec3<S>(o + t * d)); });
   int mirror = -1;
-  S tm;
+  S tm(0);
   for (std::size_t m = 0; m < rd.mirrors.size(); ++m) {
     const Vec4<S>& pl = rd.mirrors[m].plane;
     const S nd = pl.template head<3>().dot(d);
