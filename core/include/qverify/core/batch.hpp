@@ -96,6 +96,18 @@ template <class F> void parallel_for(Eigen::Index n, int threads, F&& f) {
   for (auto& th : pool) th.join();
 }
 
+/// item(i) for every i in [0, n) on `threads` threads; each thread runs
+/// `setup()` first (its result lives for the thread's chunk) and fences its
+/// non-temporal stores at the end.
+template <class Setup, class Item> void for_each_item(Eigen::Index n, int threads, Setup& setup, Item&& item) {
+  parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
+    auto guard = setup();
+    (void)guard;
+    for (Eigen::Index i = b; i < e; ++i) item(i);
+    store_fence();
+  });
+}
+
 /// P, pi and R of every item (quadric A.row(i), light L.row(i)) by `method`.
 /// Method paper on an item whose frame does not exist uses the direct formulas.
 /// `setup` runs once per thread before its chunk (e.g. to set a rounding mode).
@@ -106,29 +118,24 @@ void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, Sy
   P.resize(n, 10);
   pi.resize(n, 4);
   R.resize(n, 10);
-  parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
-    auto guard = setup();
-    (void)guard;
-    for (Eigen::Index i = b; i < e; ++i) {
-      const Mat4<S> a = gather_sym(A, i);
-      const Vec4<S> l = L.row(i).transpose();
-      if (method == Method::paper) {
-        const PaperFrame<S> f = paper_frame<S>(l);
-        if (!f.singular) {
-          const Mat4<S> C = paper_C<S>(a, f);
-          const Vec4<S> s = paper_S<S>(C);
-          store_sym(P, i, paper_P<S>(paper_D<S>(C), f));
-          store_vec4(pi, i, paper_polar_plane<S>(s, f));
-          store_sym(R, i, paper_R<S>(s, f));
-          continue;
-        }
+  for_each_item(n, threads, setup, [&](Eigen::Index i) {
+    const Mat4<S> a = gather_sym(A, i);
+    const Vec4<S> l = L.row(i).transpose();
+    if (method == Method::paper) {
+      const PaperFrame<S> f = paper_frame<S>(l);
+      if (!f.singular) {
+        const Mat4<S> C = paper_C<S>(a, f);
+        const Vec4<S> s = paper_S<S>(C);
+        store_sym(P, i, paper_P<S>(paper_D<S>(C), f));
+        store_vec4(pi, i, paper_polar_plane<S>(s, f));
+        store_sym(R, i, paper_R<S>(s, f));
+        return;
       }
-      const Vec4<S> p = polar_plane<S>(a, l);
-      store_sym(P, i, tangent_cone_from_polar<S>(a, l, p));
-      store_vec4(pi, i, p);
-      store_sym(R, i, terminator_quadric_from_polar<S>(l, p));
     }
-    store_fence();
+    const Vec4<S> p = polar_plane<S>(a, l);
+    store_sym(P, i, tangent_cone_from_polar<S>(a, l, p));
+    store_vec4(pi, i, p);
+    store_sym(R, i, terminator_quadric_from_polar<S>(l, p));
   });
 }
 
@@ -147,21 +154,16 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
   const Eigen::Index n = A.rows();
   M.resize(n, 12);
   B.resize(n, 10);
-  parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
-    auto guard = setup();
-    (void)guard;
-    for (Eigen::Index i = b; i < e; ++i) {
-      const Mat4<S> a = gather_sym(A, i);
-      const Vec4<S> pl = planes.row(i).transpose();
-      const Mat4<S> m = scaled ? scaled_mirror_matrix<S>(pl) : mirror_matrix<S>(pl);
-      S rows[12];
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) rows[4 * r + c] = m(r, c);
-      store_row<S, 12>(&M(i, 0), rows);
-      store_sym(B, i, scaled ? mirror_image<S>(a, m)
-                             : method == Method::paper ? mirror_image_paper<S>(a, m) : mirror_image_of_plane<S>(a, pl));
-    }
-    store_fence();
+  for_each_item(n, threads, setup, [&](Eigen::Index i) {
+    const Mat4<S> a = gather_sym(A, i);
+    const Vec4<S> pl = planes.row(i).transpose();
+    const Mat4<S> m = scaled ? scaled_mirror_matrix<S>(pl) : mirror_matrix<S>(pl);
+    S rows[12];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) rows[4 * r + c] = m(r, c);
+    store_row<S, 12>(&M(i, 0), rows);
+    store_sym(B, i, scaled ? mirror_image<S>(a, m)
+                           : method == Method::paper ? mirror_image_paper<S>(a, m) : mirror_image_of_plane<S>(a, pl));
   });
 }
 
