@@ -244,7 +244,6 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
     std::string err;
     const auto v = parse_rational(a.box, err);
     if (!v || *v <= 0) throw UsageError("--box: expected a positive number, got \"" + a.box + "\"" + (err.empty() ? "" : " (" + err + ")"));
-    opt.has_box_half = true;
     opt.box_half = *v;
   }
   const render::Renderer r(sc, opt);

@@ -60,41 +60,24 @@ template <class S> void attach_eye(RenderData<S>& rd, const Vec3<S>& eye) {
     for (auto& im : m.images) im.B_eye = eye_form<S>(im.B, eye);
 }
 
-template <class T, class S, class F> Vec4<T> cast4(const Vec4<S>& v, F&& f) {
-  Vec4<T> r;
-  for (int i = 0; i < 4; ++i) r(i) = f(v(i));
-  return r;
-}
-template <class T, class S, class F> Vec3<T> cast3(const Vec3<S>& v, F&& f) {
-  Vec3<T> r;
-  for (int i = 0; i < 3; ++i) r(i) = f(v(i));
-  return r;
-}
-template <class T, class S, class F> Mat4<T> cast44(const Mat4<S>& m, F&& f) {
-  Mat4<T> r;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) r(i, j) = f(m(i, j));
-  return r;
-}
-
 /// Entry by entry conversion (Rational -> Mpfi enclosures).
 template <class T, class S, class F> RenderData<T> convert(const RenderData<S>& in, F&& f) {
+  auto eye = [&](const EyeForm<S>& e) { return EyeForm<T>{e.q.unaryExpr(f), f(e.c)}; };
   RenderData<T> out;
-  out.eye = cast3<T>(in.eye, f);
-  for (const auto& A : in.A) out.A.push_back(cast44<T>(A, f));
-  for (const auto& e : in.A_eye) out.A_eye.push_back(EyeForm<T>{cast3<T>(e.q, f), f(e.c)});
+  out.eye = in.eye.unaryExpr(f);
+  for (const auto& A : in.A) out.A.push_back(A.unaryExpr(f));
+  for (const auto& e : in.A_eye) out.A_eye.push_back(eye(e));
   out.clipped = in.clipped;
-  out.box_lo = cast3<T>(in.box_lo, f);
-  out.box_hi = cast3<T>(in.box_hi, f);
+  out.box_lo = in.box_lo.unaryExpr(f);
+  out.box_hi = in.box_hi.unaryExpr(f);
   for (const auto& l : in.lights) {
-    LightData<T> ld{cast4<T>(l.L, f), {}};
-    for (const auto& o : l.occluders) ld.occluders.push_back(Occluder<T>{o.quadric, cast44<T>(o.P, f), cast4<T>(o.pi, f), o.side});
+    LightData<T> ld{l.L.unaryExpr(f), {}};
+    for (const auto& o : l.occluders) ld.occluders.push_back(Occluder<T>{o.quadric, o.P.unaryExpr(f), o.pi.unaryExpr(f), o.side});
     out.lights.push_back(std::move(ld));
   }
   for (const auto& m : in.mirrors) {
-    MirrorData<T> md{cast4<T>(m.plane, f), cast44<T>(m.M, f), {}};
-    for (const auto& im : m.images)
-      md.images.push_back(MirrorImage<T>{im.quadric, cast44<T>(im.B, f), EyeForm<T>{cast3<T>(im.B_eye.q, f), f(im.B_eye.c)}});
+    MirrorData<T> md{m.plane.unaryExpr(f), m.M.unaryExpr(f), {}};
+    for (const auto& im : m.images) md.images.push_back(MirrorImage<T>{im.quadric, im.B.unaryExpr(f), eye(im.B_eye)});
     out.mirrors.push_back(std::move(md));
   }
   return out;
@@ -124,7 +107,7 @@ Renderer::Renderer(const Scene& sc, const RenderOptions& opts) : scene_(sc) {
     throw InputError(sc.file, "lights", "render supports at most 63 lights (one ID bit each)");
 
   // ---- exact decisions: what takes part
-  const TypedScene<Rational> tq = typed_scene<Rational>(sc);
+  TypedScene<Rational> tq = typed_scene<Rational>(sc);
   Plan plan;
   for (const Mat4<Rational>& A : tq.A)
     plan.clipped.push_back(!conic_is_empty<Rational>(Mat3<Rational>(A.topLeftCorner<3, 3>())));
@@ -153,16 +136,17 @@ Renderer::Renderer(const Scene& sc, const RenderOptions& opts) : scene_(sc) {
     look(i) = c.look_at[static_cast<std::size_t>(i)].value;
     up(i) = c.up[static_cast<std::size_t>(i)].value;
   }
-  Rational half = opts.box_half;
-  if (!opts.has_box_half) {
-    half = 0;
+  Rational half = 0;
+  if (opts.box_half) {
+    half = *opts.box_half;
+  } else {
     for (int i = 0; i < 3; ++i) half = std::max(half, Rational(abs(eye(i) - look(i))));
     half /= 2;  // the eye stays outside the box
   }
   // The camera frame: the scene moved, exactly, so that look_at is the origin
   // (x = x' + look_at: A' = T^T A T, L' = T^-1 L, planes n.x' + (d + n.look_at)).
   // Rounded once from there, small scenes far from the world origin keep their digits.
-  TypedScene<Rational> tl = tq;
+  TypedScene<Rational>& tl = tq;
   Vec3<Rational> shift = Vec3<Rational>::Zero();
   if (opts.camera_frame) {
     shift = look;
@@ -172,7 +156,6 @@ Renderer::Renderer(const Scene& sc, const RenderOptions& opts) : scene_(sc) {
     for (auto& L : tl.L) L.head<3>() -= L(3) * look;
     for (auto& pl : tl.planes) pl(3) += pl.head<3>().dot(look);
   }
-  exact_ = build<Rational>(tl, plan, Vec3<Rational>(look - shift), half);
 
   // ---- double: the scene rounded once, then the core's formulas in double
   const auto t0 = Clock::now();
@@ -198,8 +181,14 @@ Renderer::Renderer(const Scene& sc, const RenderOptions& opts) : scene_(sc) {
   dbl_ = build<double>(td, plan, look_d, dbl(half, "camera"));
   attach_eye<double>(dbl_, eye_d);
   prep_seconds_ = seconds_since(t0);
-  // the certified twin traces the same double rays: its eye is eye_d, exactly
-  attach_eye<Rational>(exact_, Vec3<Rational>(Rational(eye_d(0)), Rational(eye_d(1)), Rational(eye_d(2))));
+  // The certified twin, built when a pixel is first certified. It traces the same
+  // double rays: its eye is eye_d, exactly.
+  make_exact_ = [tl = std::move(tl), plan, centre = Vec3<Rational>(look - shift), half,
+                 eye_q = Vec3<Rational>(Rational(eye_d(0)), Rational(eye_d(1)), Rational(eye_d(2)))] {
+    RenderData<Rational> rd = build<Rational>(tl, plan, centre, half);
+    attach_eye<Rational>(rd, eye_q);
+    return rd;
+  };
 
   cam_.width = static_cast<int>(c.width);
   cam_.height = static_cast<int>(c.height);
@@ -295,8 +284,10 @@ Certified Renderer::certify(int px, int py) const {
   for (unsigned bits : {128u, 512u, 2048u}) {
     const unsigned used = set_mpfi_bits(bits);
     auto& slot = certified_cache_[used];
-    if (!slot)
-      slot = std::make_shared<RenderData<Mpfi>>(convert<Mpfi>(exact_, [](const Rational& q) { return enclose_mpfi(q); }));
+    if (!slot) {
+      if (!exact_) exact_ = make_exact_();
+      slot = std::make_shared<RenderData<Mpfi>>(convert<Mpfi>(*exact_, [](const Rational& q) { return enclose_mpfi(q); }));
+    }
     const Vec3<Mpfi> d(Mpfi(dd(0)), Mpfi(dd(1)), Mpfi(dd(2)));
     try {
       c.truth = trace<Mpfi>(*slot, RenderMethod::raytrace, d).id;

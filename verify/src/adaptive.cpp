@@ -46,14 +46,8 @@ Enclosure enclosure(const IntervalMatrix& m) {
 Enclosure enclosure(const MpfiMatrix& m) {
   Enclosure e;
   for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const mpfi_srcptr x = m(i).backend().data();
-    mpfr_t b;
-    mpfr_init2(b, mpfi_get_prec(x));
-    mpfi_get_left(b, x);
-    e.lo.push_back(mpfr_to_q(b));
-    mpfi_get_right(b, x);
-    e.hi.push_back(mpfr_to_q(b));
-    mpfr_clear(b);
+    e.lo.push_back(mpfr_to_q(mpfi_lower(m(i)).backend().data()));
+    e.hi.push_back(mpfr_to_q(mpfi_upper(m(i)).backend().data()));
   }
   return e;
 }

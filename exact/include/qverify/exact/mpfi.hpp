@@ -45,14 +45,16 @@ template <> inline Mpfi round_rational<Mpfi>(const Rational& q, RoundingReport& 
   return r;
 }
 
-/// Lower and upper bounds, and the width hi - lo (0 when the value is exact).
+/// The lower and upper bound, exactly (at the interval's own precision).
 inline Mpfr mpfi_lower(const Mpfi& x) {
   Mpfr r;
+  mpfr_set_prec(r.backend().data(), mpfi_get_prec(x.backend().data()));
   mpfi_get_left(r.backend().data(), x.backend().data());
   return r;
 }
 inline Mpfr mpfi_upper(const Mpfi& x) {
   Mpfr r;
+  mpfr_set_prec(r.backend().data(), mpfi_get_prec(x.backend().data()));
   mpfi_get_right(r.backend().data(), x.backend().data());
   return r;
 }

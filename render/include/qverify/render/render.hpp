@@ -27,7 +27,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,8 +37,7 @@
 namespace qverify::render {
 
 struct RenderOptions {
-  bool has_box_half = false;
-  Rational box_half;  ///< half side of the clipping cube (exact)
+  std::optional<Rational> box_half;  ///< half side of the clipping cube (exact); default in the file comment
   int threads = 0;    ///< 0: all hardware threads
   /// Work in the camera frame (origin at look_at, moved exactly before the one
   /// rounding to double) rather than in the world frame as written.
@@ -92,7 +93,8 @@ class Renderer {
   const Scene& scene_;
   Camera cam_;
   RenderData<double> dbl_;
-  RenderData<Rational> exact_;
+  std::function<RenderData<Rational>()> make_exact_;
+  mutable std::optional<RenderData<Rational>> exact_;
   double prep_seconds_ = 0;
   int threads_ = 1;
   std::vector<std::array<double, 3>> colours_;

@@ -46,11 +46,11 @@
 
 #include <qverify/core/scalar.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
-#include <optional>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace qverify::render {
