@@ -33,6 +33,11 @@
   template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
   template Mat4<S> scaled_mirror_matrix<S>(const Vec4<S>&);                                                   \
   template Mat4<S> mirror_image_of_plane<S>(const Mat4<S>&, const Vec4<S>&);                                  \
+  template Vec4<S> mirror_direction<S>(const Vec4<S>&);                                                        \
+  template Mat4<S> mirror_matrix_from<S>(const Vec4<S>&, const Vec4<S>&);                                      \
+  template Mat4<S> mirror_image_from<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);                        \
+  template S ordered_dot<S, 4>(const Vec4<S>&, const Vec4<S>&);                                                \
+  template Vec4<S> ordered_product<S>(const Mat4<S>&, const Vec4<S>&);                                         \
   template ReflectionResult<S> reflection_in_plane<S>(const Mat4<S>&, const Vec4<S>&, Method);                 \
   template Mat4<S> gather_sym<S>(const SymBatch<S>&, Eigen::Index);                                            \
   template void scatter_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                    \
@@ -67,3 +72,23 @@
 
 QVERIFY_INSTANTIATE_CORE(double)
 QVERIFY_INSTANTIATE_CORE(qverify::Rational)
+
+// The formulas the batch runs on SIMD packs (core/pack.hpp, exact/interval_pack.hpp): the
+// direct route, instantiated for every pack type.
+#define QVERIFY_INSTANTIATE_PACKED(S)                                                                        \
+  namespace qverify {                                                                                        \
+  template Vec4<S> polar_plane<S>(const Mat4<S>&, const Vec4<S>&);                                           \
+  template Mat4<S> tangent_cone<S>(const Mat4<S>&, const Vec4<S>&);                                          \
+  template Mat4<S> tangent_cone_from_polar<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);               \
+  template Vec4<S> frame_plane<S>(const Vec4<S>&);                                                           \
+  template Mat4<S> terminator_quadric<S>(const Mat4<S>&, const Vec4<S>&);                                    \
+  template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
+  template Vec4<S> mirror_direction<S>(const Vec4<S>&);                                                      \
+  template Mat4<S> mirror_matrix<S>(const Vec4<S>&);                                                         \
+  template Mat4<S> mirror_matrix_from<S>(const Vec4<S>&, const Vec4<S>&);                                    \
+  template Mat4<S> mirror_image_from<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);                      \
+  template Mat4<S> mirror_image_of_plane<S>(const Mat4<S>&, const Vec4<S>&);                                 \
+  template Mat4<S> mirror_image<S>(const Mat4<S>&, const Mat4<S>&);                                          \
+  }
+
+QVERIFY_INSTANTIATE_PACKED(qverify::DoublePack)

@@ -7,14 +7,25 @@
 /// i's ten entries (A00 A01 A02 A03 A11 A12 A13 A22 A23 A33) are contiguous; a
 /// batch of 4-vectors is `n x 4`. (Row-major rather than one array per entry:
 /// a column layout streams 38 arrays at once, more than the hardware
-/// prefetchers and write-combining buffers track; measured by `qverify bench`.) Item i is gathered into fixed-size Eigen
-/// matrices, computed by the *same* generic functions as a single item
-/// (tangent_cone, polar_plane, terminator_quadric, the paper's route,
-/// mirror_matrix, mirror_image) and scattered back: one implementation of
-/// every formula. Matrices only: the status words are per-item decisions
-/// (shadow_flags), computed when wanted.
+/// prefetchers and write-combining buffers track; measured by `qverify bench`.)
+///
+/// One implementation of every formula: the items are computed by the *same*
+/// generic functions as a single item (polar_plane, tangent_cone_from_polar,
+/// terminator_quadric_from_polar, mirror_matrix, mirror_image_of_plane, the
+/// paper's route), instantiated either with the scalar itself, one item at a
+/// time, or with a SIMD pack of W items ("lanes", pack.hpp): the direct route
+/// in double runs W = 2 items per instruction on SSE2 (4 with AVX, 8 with
+/// AVX-512), the certified intervals likewise (exact/interval_pack.hpp).
+/// Entry k of W consecutive rows is gathered into one pack and the results are
+/// transposed back into rows on the way out. The packed results are bitwise
+/// the single-item results (tests/test_batch.cpp). The paper route runs one
+/// item at a time (it is the reference route, not the fast one).
+///
+/// Matrices only: the status words are per-item decisions (shadow_flags),
+/// computed when wanted.
 
 #include <qverify/core/mirror.hpp>
+#include <qverify/core/pack.hpp>
 #include <qverify/core/shadow.hpp>
 
 #include <algorithm>
@@ -96,14 +107,149 @@ template <class F> void parallel_for(Eigen::Index n, int threads, F&& f) {
   for (auto& th : pool) th.join();
 }
 
-/// item(i) for every i in [0, n) on `threads` threads; each thread runs
-/// `setup()` first (its result lives for the thread's chunk) and fences its
-/// non-temporal stores at the end.
-template <class Setup, class Item> void for_each_item(Eigen::Index n, int threads, Setup& setup, Item&& item) {
+// ----------------------------------------------------------------------- lanes
+
+/// Inline everything an item calls: GCC otherwise keeps the formulas of a pack
+/// out of line, and the per-item call overhead doubles the time (measured).
+#if defined(__GNUC__)
+#define QVERIFY_FLATTEN __attribute__((flatten))
+#else
+#define QVERIFY_FLATTEN
+#endif
+
+/// Lanes of width 1: an item is computed with the scalar itself.
+template <class S> struct ScalarLanes {
+  using Scalar = S;
+  using Pack = S;
+  static constexpr int width = 1;
+  /// Entries 0..N-1 of the rows starting at row0 (rows `stride` scalars apart).
+  template <int N> static void load(const S* row0, Eigen::Index, S (&v)[N]) {
+    for (int k = 0; k < N; ++k) v[k] = row0[k];
+  }
+  /// Writes v[0..N) to the row(s) starting at row0.
+  template <int N> static void store(S* row0, Eigen::Index, const S (&v)[N]) { store_row<S, N>(row0, v); }
+  /// Set for the duration of a run of packs (e.g. the rounding mode).
+  struct Guard {};
+  /// Faults: a pack computation that cannot be trusted (e.g. a NaN in an
+  /// interval pack) makes the batch recompute its span item by item.
+  static void clear_faults() {}
+  static bool faulted() { return false; }
+};
+
+/// The lanes a batch of S runs on: ScalarLanes unless a pack exists for S
+/// (double here, CGAL intervals in exact/interval_pack.hpp).
+template <class S, class Enable = void> struct BatchLanes : ScalarLanes<S> {};
+
+/// Doubles, W rows at a time. Rows of 4, 10 and 12 doubles start 16-byte
+/// aligned in Eigen's storage, so entries (k, k+1) of a row are one aligned
+/// pair: W pairs are transposed into two packs (to/from_lane_pairs) and the
+/// results are streamed back (non-temporal: they are not read again soon).
+template <> struct BatchLanes<double> : ScalarLanes<double> {
+  using Pack = DoublePack;
+  static constexpr int width = static_cast<int>(DoublePack::size());
+  template <int N> static void load(const double* row0, Eigen::Index stride, Pack (&v)[N]) {
+#if defined(__SSE2__)
+    if constexpr (N % 2 == 0) {
+      if (aligned_rows(row0, stride)) {
+        for (int k = 0; k < N; k += 2) {
+          __m128d in[width];
+          for (int j = 0; j < width; ++j) in[j] = _mm_load_pd(row0 + j * stride + k);
+          from_lane_pairs(in, v[k], v[k + 1]);
+        }
+        return;
+      }
+    }
+#endif
+    for (int k = 0; k < N; ++k) v[k] = Pack([&](auto j) { return row0[j * stride + k]; });
+  }
+  template <int N> static void store(double* row0, Eigen::Index stride, const Pack (&v)[N]) {
+#if defined(__SSE2__)
+    if constexpr (N % 2 == 0) {
+      if (aligned_rows(row0, stride)) {
+        for (int k = 0; k < N; k += 2) {
+          __m128d out[width];
+          to_lane_pairs(v[k], v[k + 1], out);
+          for (int j = 0; j < width; ++j) _mm_stream_pd(row0 + j * stride + k, out[j]);
+        }
+        return;
+      }
+    }
+#endif
+    for (int j = 0; j < width; ++j) {
+      double r[N];
+      for (int k = 0; k < N; ++k) r[k] = v[k][j];
+      store_row<double, N>(row0 + j * stride, r);
+    }
+  }
+
+ private:
+  static bool aligned_rows(const double* row0, Eigen::Index stride) {
+    return (reinterpret_cast<std::uintptr_t>(row0) & 15) == 0 && stride % 2 == 0;
+  }
+};
+
+/// The symmetric matrices of the lanes starting at row `row0` of a SymBatch.
+template <class Ln> Mat4<typename Ln::Pack> load_sym_lanes(const typename Ln::Scalar* row0) {
+  typename Ln::Pack v[10];
+  Ln::template load<10>(row0, 10, v);
+  Mat4<typename Ln::Pack> m;
+  for (int k = 0; k < 10; ++k) {
+    m(kSymRow[k], kSymCol[k]) = v[k];
+    if (kSymRow[k] != kSymCol[k]) m(kSymCol[k], kSymRow[k]) = v[k];
+  }
+  return m;
+}
+template <class Ln> Vec4<typename Ln::Pack> load_vec4_lanes(const typename Ln::Scalar* row0) {
+  typename Ln::Pack v[4];
+  Ln::template load<4>(row0, 4, v);
+  return Vec4<typename Ln::Pack>(v[0], v[1], v[2], v[3]);
+}
+template <class Ln> void store_sym_lanes(typename Ln::Scalar* row0, const Mat4<typename Ln::Pack>& m) {
+  const typename Ln::Pack v[10] = {m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 1), m(1, 2), m(1, 3), m(2, 2), m(2, 3), m(3, 3)};
+  Ln::template store<10>(row0, 10, v);
+}
+template <class Ln> void store_vec4_lanes(typename Ln::Scalar* row0, const Vec4<typename Ln::Pack>& p) {
+  const typename Ln::Pack v[4] = {p(0), p(1), p(2), p(3)};
+  Ln::template store<4>(row0, 4, v);
+}
+
+/// item(lanes, i) over [0, n) on `threads` threads: blocks of Ln::width items
+/// at a time, the rest (and every block whose pack computation gave up) with
+/// ScalarLanes. A block gives up by a MixedLanes decision (pack.hpp) or by a
+/// fault of its span (Ln::faulted). Each thread runs `setup()` first (its
+/// result lives for the thread's chunk) and fences its non-temporal stores at
+/// the end.
+template <class Ln, class Setup, class Item> void for_each_block(Eigen::Index n, int threads, Setup& setup, Item&& item) {
+  using S = typename Ln::Scalar;
+  constexpr int W = Ln::width;
   parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
     auto guard = setup();
     (void)guard;
-    for (Eigen::Index i = b; i < e; ++i) item(i);
+    Eigen::Index i = b;
+    if constexpr (W > 1) {
+      constexpr Eigen::Index span = 64 * W;  // items between two fault checks
+      while (e - i >= W) {
+        const Eigen::Index stop = i + std::min<Eigen::Index>(span, (e - i) / W * W);
+        bool redo = false;
+        {
+          typename Ln::Guard lanes_guard;
+          (void)lanes_guard;
+          Ln::clear_faults();
+          for (Eigen::Index j = i; j < stop; j += W) {
+            try {
+              item(Ln{}, j);
+            } catch (const MixedLanes&) {
+              redo = true;
+            }
+          }
+          redo = redo || Ln::faulted();
+        }
+        if (redo)
+          for (Eigen::Index j = i; j < stop; ++j) item(ScalarLanes<S>{}, j);
+        i = stop;
+      }
+    }
+    for (; i < e; ++i) item(ScalarLanes<S>{}, i);
     store_fence();
   });
 }
@@ -118,25 +264,31 @@ void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, Sy
   P.resize(n, 10);
   pi.resize(n, 4);
   R.resize(n, 10);
-  for_each_item(n, threads, setup, [&](Eigen::Index i) {
-    const Mat4<S> a = gather_sym(A, i);
-    const Vec4<S> l = L.row(i).transpose();
-    if (method == Method::paper) {
-      const PaperFrame<S> f = paper_frame<S>(l);
-      if (!f.singular) {
-        const Mat4<S> C = paper_C<S>(a, f);
-        const Vec4<S> s = paper_S<S>(C);
-        store_sym(P, i, paper_P<S>(paper_D<S>(C), f));
-        store_vec4(pi, i, paper_polar_plane<S>(s, f));
-        store_sym(R, i, paper_R<S>(s, f));
-        return;
+  auto item = [&](auto lanes, Eigen::Index i) QVERIFY_FLATTEN {
+    using Ln = decltype(lanes);
+    using T = typename Ln::Pack;
+    const Mat4<T> a = load_sym_lanes<Ln>(&A(i, 0));
+    const Vec4<T> l = load_vec4_lanes<Ln>(&L(i, 0));
+    if constexpr (Ln::width == 1) {
+      if (method == Method::paper) {
+        const PaperFrame<T> f = paper_frame<T>(l);
+        if (!f.singular) {
+          const Mat4<T> C = paper_C<T>(a, f);
+          const Vec4<T> s = paper_S<T>(C);
+          store_sym_lanes<Ln>(&P(i, 0), paper_P<T>(paper_D<T>(C), f));
+          store_vec4_lanes<Ln>(&pi(i, 0), paper_polar_plane<T>(s, f));
+          store_sym_lanes<Ln>(&R(i, 0), paper_R<T>(s, f));
+          return;
+        }
       }
     }
-    const Vec4<S> p = polar_plane<S>(a, l);
-    store_sym(P, i, tangent_cone_from_polar<S>(a, l, p));
-    store_vec4(pi, i, p);
-    store_sym(R, i, terminator_quadric_from_polar<S>(l, p));
-  });
+    const Vec4<T> p = polar_plane<T>(a, l);
+    store_sym_lanes<Ln>(&P(i, 0), tangent_cone_from_polar<T>(a, l, p));
+    store_vec4_lanes<Ln>(&pi(i, 0), p);
+    store_sym_lanes<Ln>(&R(i, 0), terminator_quadric_from_polar<T>(l, p));
+  };
+  if (method == Method::paper) for_each_block<ScalarLanes<S>>(n, threads, setup, item);
+  else for_each_block<BatchLanes<S>>(n, threads, setup, item);
 }
 
 template <class S>
@@ -154,17 +306,24 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
   const Eigen::Index n = A.rows();
   M.resize(n, 12);
   B.resize(n, 10);
-  for_each_item(n, threads, setup, [&](Eigen::Index i) {
-    const Mat4<S> a = gather_sym(A, i);
-    const Vec4<S> pl = planes.row(i).transpose();
-    const Mat4<S> m = scaled ? scaled_mirror_matrix<S>(pl) : mirror_matrix<S>(pl);
-    S rows[12];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) rows[4 * r + c] = m(r, c);
-    store_row<S, 12>(&M(i, 0), rows);
-    store_sym(B, i, scaled ? mirror_image<S>(a, m)
-                           : method == Method::paper ? mirror_image_paper<S>(a, m) : mirror_image_of_plane<S>(a, pl));
-  });
+  auto item = [&](auto lanes, Eigen::Index i) QVERIFY_FLATTEN {
+    using Ln = decltype(lanes);
+    using T = typename Ln::Pack;
+    const Mat4<T> a = load_sym_lanes<Ln>(&A(i, 0));
+    const Vec4<T> pl = load_vec4_lanes<Ln>(&planes(i, 0));
+    const Vec4<T> u = scaled ? Vec4<T>::Zero().eval() : mirror_direction<T>(pl);  // the one division
+    const Mat4<T> m = scaled ? scaled_mirror_matrix<T>(pl) : mirror_matrix_from<T>(u, pl);
+    const T rows[12] = {m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 0), m(1, 1),
+                        m(1, 2), m(1, 3), m(2, 0), m(2, 1), m(2, 2), m(2, 3)};
+    Ln::template store<12>(&M(i, 0), 12, rows);
+    if constexpr (Ln::width == 1) {
+      if (scaled) return store_sym_lanes<Ln>(&B(i, 0), mirror_image<T>(a, m));
+      if (method == Method::paper) return store_sym_lanes<Ln>(&B(i, 0), mirror_image_paper<T>(a, m));
+    }
+    store_sym_lanes<Ln>(&B(i, 0), mirror_image_from<T>(a, u, pl));
+  };
+  if (method == Method::paper || scaled) for_each_block<ScalarLanes<S>>(n, threads, setup, item);
+  else for_each_block<BatchLanes<S>>(n, threads, setup, item);
 }
 
 template <class S>

@@ -13,17 +13,29 @@
 
 namespace qverify {
 
+/// The mirror matrix is a rank-one update of the identity, M = E - u w^T,
+/// with w = (n, d) the mirror plane and u = 2 (n, 0) / (n.n) (eq. (9)):
+/// this returns u, the one division of the reflection. Precondition: n != 0.
+template <class S> Vec4<S> mirror_direction(const Vec4<S>& plane) {
+  const Vec3<S> n = plane.template head<3>();
+  const S k = S(2) / ordered_dot<S, 3>(n, n);
+  return Vec4<S>(k * n(0), k * n(1), k * n(2), S(0));
+}
+
+/// M = E - u w^T from u = mirror_direction(w), entry by entry.
+template <class S> Mat4<S> mirror_matrix_from(const Vec4<S>& u, const Vec4<S>& plane) {
+  Mat4<S> M = Mat4<S>::Identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) M(i, j) = M(i, j) - u(i) * plane(j);
+  return M;
+}
+
 /// Eq. (9), the mirror matrix, corrected for a non-unit normal:
-///   M = [[I - 2 n n^T / (n.n), -2 d n / (n.n)], [0 0 0 1]].
+///   M = [[I - 2 n n^T / (n.n), -2 d n / (n.n)], [0 0 0 1]] = E - u w^T.
 /// M M = I (eq. (11)'s M = M^{-1}) and M fixes its plane pointwise.
 /// Precondition: n != 0.
 template <class S> Mat4<S> mirror_matrix(const Vec4<S>& plane) {
-  const Vec3<S> n = plane.template head<3>();
-  const S k = S(2) / n.squaredNorm();
-  Mat4<S> M = Mat4<S>::Identity();
-  M.template topLeftCorner<3, 3>() -= k * (n * n.transpose());
-  M.template topRightCorner<3, 1>() = -(k * plane(3)) * n;
-  return M;
+  return mirror_matrix_from<S>(mirror_direction<S>(plane), plane);
 }
 
 /// (n.n) times the mirror matrix, division-free (for exact integer types):
@@ -58,15 +70,17 @@ template <class S> Mat4<S> mirror_image_paper(const Mat4<S>& A, const Mat4<S>& M
 /// u = 2 (n, 0) / (n.n); hence
 ///   B = M^T A M = A - w a^T - a w^T + (u^T a) w w^T,   a = A u,
 /// about half the multiplications of two 4x4 products, and the same B exactly
-/// in exact arithmetic (tests check the identity).
-template <class S> Mat4<S> mirror_image_of_plane(const Mat4<S>& A, const Vec4<S>& plane) {
-  const Vec3<S> n = plane.template head<3>();
-  const S k = S(2) / n.squaredNorm();
-  const Vec4<S> u(k * n(0), k * n(1), k * n(2), S(0));
-  const Vec4<S> a = A * u;
-  const S alpha = u.dot(a);
+/// in exact arithmetic (tests check the identity). `u` = mirror_direction(plane).
+template <class S> Mat4<S> mirror_image_from(const Mat4<S>& A, const Vec4<S>& u, const Vec4<S>& plane) {
+  const Vec4<S> a = ordered_product<S>(A, u);
+  const S alpha = ordered_dot<S, 4>(u, a);
   return symmetric_from<S>(
       [&](int i, int j) { return S(A(i, j) - plane(i) * a(j) - a(i) * plane(j) + alpha * plane(i) * plane(j)); });
+}
+
+/// B of eq. (11) for the mirror `plane` by the rank-one form (mirror_image_from).
+template <class S> Mat4<S> mirror_image_of_plane(const Mat4<S>& A, const Vec4<S>& plane) {
+  return mirror_image_from<S>(A, mirror_direction<S>(plane), plane);
 }
 
 template <class S> struct ReflectionResult {

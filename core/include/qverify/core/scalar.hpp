@@ -11,6 +11,15 @@
 ///    has epsilon 0, so every tolerance `k * epsilon` collapses to an exact
 ///    zero test and "approximately equal" becomes "equal".
 
+// GCC 12: <x86intrin.h> (pulled in by <experimental/simd>, pack.hpp) leaves a new
+// optimisation node behind its target pragmas; functions defined before it and
+// functions defined after it then refuse to inline into each other ("optimization
+// level attribute mismatch"), and the interval packs ran 5x slower. Including it
+// first puts every qverify function on the same side.
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#include <x86intrin.h>
+#endif
+
 #include <Eigen/Core>
 #include <Eigen/LU>        // determinant(), inverse()
 #include <Eigen/Geometry>  // cross()
@@ -76,6 +85,24 @@ template <class S> inline S status_tolerance() { return S(64) * Eigen::NumTraits
 /// `|q| <= tol * scale` with the core's status tolerance; `q == 0` for exact types.
 template <class S> inline bool negligible(const S& q, const S& scale) {
   return !qverify::less_than<S>(S(status_tolerance<S>() * scale), abs_of<S>(q));
+}
+
+/// a . b summed left to right, ((a0 b0 + a1 b1) + a2 b2) + ...: one evaluation
+/// order for every scalar type. Eigen's own dot products and matrix-vector
+/// products reorder the sum when they vectorise (double) and not otherwise
+/// (a SIMD pack as the scalar, pack.hpp), so the direct formulas use this and
+/// a batch computed W items at a time is bitwise the single-item result.
+template <class S, int N> inline S ordered_dot(const Eigen::Matrix<S, N, 1>& a, const Eigen::Matrix<S, N, 1>& b) {
+  S sum = a(0) * b(0);
+  for (int k = 1; k < N; ++k) sum = sum + a(k) * b(k);
+  return sum;
+}
+
+/// A x with every row summed by ordered_dot.
+template <class S> inline Vec4<S> ordered_product(const Mat4<S>& A, const Vec4<S>& x) {
+  Vec4<S> y;
+  for (int i = 0; i < 4; ++i) y(i) = ordered_dot<S, 4>(A.row(i).transpose(), x);
+  return y;
 }
 
 /// A symmetric 4x4 matrix from its upper triangle: m(i, j) = m(j, i) = f(i, j)

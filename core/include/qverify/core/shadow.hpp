@@ -29,12 +29,13 @@ enum class Method { direct, paper };
 // ---------------------------------------------------------------- direct route
 
 /// Polar plane of L with respect to A: pi = A L. Its intersection with A is the
-/// terminator (the points where rays from L graze A).
-template <class S> Vec4<S> polar_plane(const Mat4<S>& A, const Vec4<S>& L) { return A * L; }
+/// terminator (the points where rays from L graze A). (Sums in a fixed order:
+/// ordered_product.)
+template <class S> Vec4<S> polar_plane(const Mat4<S>& A, const Vec4<S>& L) { return ordered_product<S>(A, L); }
 
 /// The tangent cone from a precomputed polar plane AL = A L (batches reuse it).
 template <class S> Mat4<S> tangent_cone_from_polar(const Mat4<S>& A, const Vec4<S>& L, const Vec4<S>& AL) {
-  const S s = L.dot(AL);
+  const S s = ordered_dot<S, 4>(L, AL);
   return symmetric_from<S>([&](int i, int j) { return S(s * A(i, j) - AL(i) * AL(j)); });
 }
 
@@ -43,7 +44,7 @@ template <class S> Mat4<S> tangent_cone_from_polar(const Mat4<S>& A, const Vec4<
 /// P L = 0 (L is its apex) and P agrees with A on the polar plane up to the
 /// factor L^T A L, so P contains the terminator.
 template <class S> Mat4<S> tangent_cone(const Mat4<S>& A, const Vec4<S>& L) {
-  return tangent_cone_from_polar<S>(A, L, Vec4<S>(A * L));
+  return tangent_cone_from_polar<S>(A, L, polar_plane<S>(A, L));
 }
 
 /// The plane that the paper's frame change N = T M sends to infinity (row 4 of

@@ -1,0 +1,145 @@
+#pragma once
+/// \file pack.hpp
+/// A SIMD pack as a scalar type: the batch API (batch.hpp) runs the *same*
+/// generic formulas on W items at once by instantiating them with a pack whose
+/// arithmetic is lane-wise. No formula is written twice: `tangent_cone<double>`
+/// and `tangent_cone<DoublePack>` are one template.
+///
+/// The pack is the standard library's `std::experimental::native_simd<double>`
+/// (Parallelism TS v2, libstdc++ >= 11): W = 2 with the x86-64 baseline (SSE2),
+/// 4 with AVX, 8 with AVX-512, whatever the build targets. Its lane-wise +, -,
+/// *, / are the IEEE operations of the scalar, so with the fixed summation
+/// order of the direct formulas (ordered_dot) every lane is bitwise the
+/// single-item double result.
+///
+/// Decisions. A formula that branches on a scalar (frame_plane asks whether
+/// L_w = 0) cannot branch per lane. ScalarOps<DoublePack> answers a question
+/// when every lane gives the same answer and throws MixedLanes otherwise; the
+/// batch then computes that block item by item. Nothing is ever decided for a
+/// lane by another lane's value.
+
+#include <qverify/core/scalar.hpp>
+
+#include <experimental/simd>
+#include <limits>
+
+namespace qverify {
+
+namespace stdx = std::experimental;
+
+/// W doubles in one register: the native SIMD width of the build.
+using DoublePack = stdx::native_simd<double>;
+
+/// Thrown by a decision whose lanes disagree (see the file comment).
+struct MixedLanes {};
+
+/// The one answer of all lanes of a mask, or MixedLanes.
+template <class Mask> inline bool uniform(const Mask& m) {
+  if (stdx::all_of(m)) return true;
+  if (stdx::none_of(m)) return false;
+  throw MixedLanes{};
+}
+
+/// Hides a value's origin from the optimiser (no instruction is emitted).
+/// Interval packs need it: with the rounding mode set upward, (-x) * y and
+/// -(x * y) differ, and a compiler assuming round-to-nearest may rewrite one
+/// into the other. CGAL's Interval_nt does the same (IA_opacify).
+inline DoublePack opaque(DoublePack x) {
+  typedef double Vec __attribute__((vector_size(sizeof(DoublePack))));
+  Vec v = static_cast<Vec>(x);
+  asm("" : "+v"(v));
+  return DoublePack(v);
+}
+
+/// Lane-wise max by the hardware instruction (MAXPD), which raises the IEEE
+/// invalid flag when an operand is NaN. (Not stdx::max: libstdc++ compiles it
+/// with finite-math-only, which both leaves NaN behaviour open and, as a
+/// function-specific optimisation attribute, stops GCC from inlining its
+/// callers.)
+inline DoublePack pack_max(const DoublePack& a, const DoublePack& b) {
+#if defined(__AVX512F__)
+  return DoublePack(_mm512_max_pd(static_cast<__m512d>(a), static_cast<__m512d>(b)));
+#elif defined(__AVX__)
+  return DoublePack(_mm256_max_pd(static_cast<__m256d>(a), static_cast<__m256d>(b)));
+#elif defined(__SSE2__)
+  return DoublePack(_mm_max_pd(static_cast<__m128d>(a), static_cast<__m128d>(b)));
+#else
+  DoublePack r = b;
+  stdx::where(a > b, r) = a;  // an ordered signalling comparison: NaN raises invalid
+  return r;
+#endif
+}
+
+#if defined(__SSE2__)
+/// Lanes to pairs and back, the transposition of a batch's rows (each row
+/// holding two consecutive entries, or one CGAL interval {-lo, hi}):
+/// out[j] = (a_j, b_j) for every lane j.
+inline void to_lane_pairs(const DoublePack& a, const DoublePack& b, __m128d (&out)[DoublePack::size()]) {
+#if defined(__AVX__) && !defined(__AVX512F__)
+  const __m256d x = static_cast<__m256d>(a), y = static_cast<__m256d>(b);
+  const __m256d lo = _mm256_unpacklo_pd(x, y), hi = _mm256_unpackhi_pd(x, y);  // (a0 b0 a2 b2), (a1 b1 a3 b3)
+  out[0] = _mm256_castpd256_pd128(lo);
+  out[1] = _mm256_castpd256_pd128(hi);
+  out[2] = _mm256_extractf128_pd(lo, 1);
+  out[3] = _mm256_extractf128_pd(hi, 1);
+#elif !defined(__AVX__)
+  const __m128d x = static_cast<__m128d>(a), y = static_cast<__m128d>(b);
+  out[0] = _mm_unpacklo_pd(x, y);
+  out[1] = _mm_unpackhi_pd(x, y);
+#else
+  for (std::size_t j = 0; j < DoublePack::size(); ++j) out[j] = _mm_set_pd(b[j], a[j]);
+#endif
+}
+
+/// The inverse of to_lane_pairs: a_j, b_j from in[j] = (a_j, b_j).
+inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack& a, DoublePack& b) {
+#if defined(__AVX__) && !defined(__AVX512F__)
+  const __m256d x = _mm256_set_m128d(in[2], in[0]), y = _mm256_set_m128d(in[3], in[1]);
+  a = DoublePack(_mm256_unpacklo_pd(x, y));
+  b = DoublePack(_mm256_unpackhi_pd(x, y));
+#elif !defined(__AVX__)
+  a = DoublePack(_mm_unpacklo_pd(in[0], in[1]));
+  b = DoublePack(_mm_unpackhi_pd(in[0], in[1]));
+#else
+  a = DoublePack([&](auto j) { return _mm_cvtsd_f64(in[j]); });
+  b = DoublePack([&](auto j) { return _mm_cvtsd_f64(_mm_unpackhi_pd(in[j], in[j])); });
+#endif
+}
+#endif
+
+template <> struct ScalarOps<DoublePack> {
+  using P = DoublePack;
+  static constexpr bool interval = false;
+  static bool exact() { return false; }
+  static bool less(const P& a, const P& b) { return uniform(a < b); }
+  static bool is_zero(const P& a) { return uniform(a == P(0)); }
+  static P abs(const P& x) { return stdx::abs(x); }
+  static bool finite(const P& x) { return stdx::all_of(stdx::isfinite(x)); }
+};
+
+}  // namespace qverify
+
+namespace Eigen {
+/// The pack as an Eigen scalar: Eigen's scalar (non-vectorised) code paths,
+/// whose every operation is one SIMD instruction on the pack.
+template <> struct NumTraits<qverify::DoublePack> : GenericNumTraits<double> {
+  using P = qverify::DoublePack;
+  typedef P Real;
+  typedef P NonInteger;
+  typedef P Nested;
+  typedef P Literal;
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 0,
+    ReadCost = 1,
+    AddCost = 1,
+    MulCost = 1
+  };
+  static P epsilon() { return P(std::numeric_limits<double>::epsilon()); }
+  static P dummy_precision() { return P(NumTraits<double>::dummy_precision()); }
+  static P highest() { return P(std::numeric_limits<double>::max()); }
+  static P lowest() { return P(std::numeric_limits<double>::lowest()); }
+};
+}  // namespace Eigen
