@@ -162,8 +162,9 @@ void print_stress(const json& doc, const std::string& dir) {
 }
 
 void print_bench(const json& doc) {
-  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run)\n\n", doc["n"].get<long>(),
-             doc["threads"].get<int>(), doc["memory_bandwidth_gbps"].get<double>());
+  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({})\n\n",
+             doc["n"].get<long>(), doc["threads"].get<int>(), doc["memory_bandwidth_gbps"].get<double>(),
+             doc["simd"]["lanes"].get<int>(), doc["simd"]["instruction_set"].get<std::string>());
   fmt::print("{:<11} {:<10} {:<7} {:>14} {:>10} {:>8} {:>9} {:>10}\n", "op", "precision", "method", "items/s", "ns/item",
              "bytes", "roofline", "x double");
   for (const auto& r : doc["rows"])

@@ -2,6 +2,10 @@
 #include "laws.hpp"
 
 #include <qverify/core/batch.hpp>
+#include <qverify/exact/interval.hpp>
+
+#include <cfenv>
+#include <limits>
 
 using namespace qverify;
 using Q = Rational;
@@ -17,7 +21,9 @@ template <class S> bool same_upper(const SymBatch<S>& X, Eigen::Index i, const M
 
 template <class S> void check_batch_equals_items(int threads) {
   test::RandomRationals rng(5);
-  const Eigen::Index n = 3000;  // above the single-thread cut-off, so threads really split the work
+  // above the single-thread cut-off, so threads really split the work; odd, so that chunks end
+  // in items that do not fill a pack
+  const Eigen::Index n = 3001;
   SymBatch<S> A(n, 10);
   Vec4Batch<S> L(n, 4), planes(n, 4);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -87,4 +93,158 @@ TEST_CASE("the exact integer path: cleared denominators give the same quadrics u
     CHECK(proportional(to_q(Ms), mirror_matrix<Q>(plane), Factor::positive, Q(0)));
     CHECK(proportional(to_q(mirror_image<Int>(Ai, Ms)), mirror_image<Q>(A, mirror_matrix<Q>(plane)), Factor::positive, Q(0)));
   }
+}
+
+// ------------------------------------------------------------------------------------------
+// SIMD packs: the batch runs the same formulas W items at a time (core/pack.hpp,
+// exact/interval_pack.hpp).
+
+TEST_CASE("a pack decides only when all its lanes agree", "[batch][pack]") {
+  const DoublePack zero(0), one(1);
+  CHECK(equals_zero<DoublePack>(zero));
+  CHECK_FALSE(equals_zero<DoublePack>(one));
+  CHECK(less_than<DoublePack>(zero, one));
+  if (DoublePack::size() > 1) {
+    const DoublePack mixed([](auto j) { return j == 0 ? 0.0 : 1.0; });
+    CHECK_THROWS_AS(equals_zero<DoublePack>(mixed), MixedLanes);
+    CHECK_THROWS_AS(less_than<DoublePack>(mixed, DoublePack(0.5)), MixedLanes);
+  }
+}
+
+namespace {
+using IF = CGAL::Interval_nt<false>;
+
+template <class I> bool same_bounds(const I& a, const I& b) {
+  auto same = [](double x, double y) { return x == y || (x != x && y != y); };
+  return same(a.inf(), b.inf()) && same(a.sup(), b.sup());
+}
+
+/// m rounded to double, as exact rationals (inputs whose exact results are known).
+template <int R, int C> Eigen::Matrix<Rational, R, C> through_double(const Eigen::Matrix<Rational, R, C>& m) {
+  const Eigen::Matrix<double, R, C> d = test::to_scalar<double>(m);
+  return d.unaryExpr([](double x) { return to_rational(x); });
+}
+
+double as_double(const Rational& q) { return q.convert_to<double>(); }  // exact for these inputs
+
+IF pack_lane(const IntervalPack& p, int j) { return IF(-double(p.nlo[j]), double(p.hi[j])); }
+
+/// A random interval: a point, or two random doubles in order (either sign, or around 0).
+IF random_interval(std::mt19937_64& g) {
+  std::uniform_real_distribution<double> u(-4, 4);
+  const double a = u(g), b = u(g);
+  switch (g() % 4) {
+    case 0: return IF(a);
+    case 1: return IF(std::min(a, b), std::max(a, b));
+    case 2: return IF(std::fabs(a) / 8 + 1e-3, std::fabs(a) / 8 + 1e-3 + std::fabs(b));  // positive
+    default: return IF(-std::fabs(a) - std::fabs(b) - 1e-3, -std::fabs(a) - 1e-3);       // negative
+  }
+}
+}  // namespace
+
+TEST_CASE("interval packs give CGAL's bounds, operation by operation", "[batch][pack]") {
+  CGAL::Protect_FPU_rounding<true> upward;
+  std::mt19937_64 g(11);
+  constexpr int W = static_cast<int>(DoublePack::size());
+  int divisions = 0, refused = 0;
+  for (int t = 0; t < 20000; ++t) {
+    IF a[W], b[W];
+    for (int j = 0; j < W; ++j) a[j] = random_interval(g), b[j] = random_interval(g);
+    const IntervalPack pa{DoublePack([&](auto j) { return -a[j].inf(); }), DoublePack([&](auto j) { return a[j].sup(); })};
+    const IntervalPack pb{DoublePack([&](auto j) { return -b[j].inf(); }), DoublePack([&](auto j) { return b[j].sup(); })};
+    const IntervalPack sum = pa + pb, diff = pa - pb, prod = pa * pb, neg = -pa;
+    for (int j = 0; j < W; ++j) {
+      CHECK(same_bounds(pack_lane(sum, j), a[j] + b[j]));
+      CHECK(same_bounds(pack_lane(diff, j), a[j] - b[j]));
+      CHECK(same_bounds(pack_lane(prod, j), a[j] * b[j]));
+      CHECK(same_bounds(pack_lane(neg, j), -a[j]));
+    }
+    bool all_positive = true, all_negative = true;
+    for (int j = 0; j < W; ++j) all_positive &= b[j].inf() > 0, all_negative &= b[j].sup() < 0;
+    if (all_positive || all_negative) {
+      ++divisions;
+      const IntervalPack quot = pa / pb;
+      for (int j = 0; j < W; ++j) CHECK(same_bounds(pack_lane(quot, j), a[j] / b[j]));
+    } else {
+      ++refused;
+      CHECK_THROWS_AS(pa / pb, MixedLanes);  // a divisor that may contain 0 (or mixed signs): item by item
+    }
+  }
+  CHECK(divisions > 1000);
+  CHECK(refused > 1000);
+}
+
+namespace {
+/// Batches of CGAL intervals by packs, against the same formulas item by item with CGAL's
+/// Interval_nt (bound for bound), and against the exact results (enclosure).
+template <class I> void check_interval_batch(bool with_faults) {
+  test::RandomRationals rng(21);
+  const Eigen::Index n = 2051;
+  SymBatch<I> A(n, 10);
+  Vec4Batch<I> L(n, 4), planes(n, 4);
+  std::vector<Mat4<Rational>> Aq(n);
+  std::vector<Vec4<Rational>> Lq(n), Pq(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    // inputs exact in double, so that the exact results of the double inputs are known
+    Aq[i] = through_double(rng.symmetric());
+    Lq[i] = through_double(rng.vec4());
+    Lq[i](3) = i % 5 == 0 ? 0 : 1;  // parallel and point lights share packs: mixed decisions
+    Pq[i] = through_double(rng.vec4());
+    if (i % 9 == 0) Pq[i](0) = Pq[i](1) = Pq[i](2) = 0, Pq[i](2) = i % 2 ? 1 : -1;
+    if (Pq[i].head<3>().isZero()) Pq[i](0) = 1;
+    for (int k = 0; k < 10; ++k) A(i, k) = I(as_double(Aq[i](kSymRow[k], kSymCol[k])));
+    for (int k = 0; k < 4; ++k) L(i, k) = I(as_double(Lq[i](k))), planes(i, k) = I(as_double(Pq[i](k)));
+  }
+  if (with_faults) {
+    const double inf = std::numeric_limits<double>::infinity(), big = 1e300;
+    A(100, 0) = I(1, inf);                   // a non-finite input: its block goes item by item
+    A(201, 4) = I(big), L(201, 0) = I(big);  // overflow: inf * 0 = NaN raises invalid
+    A(202, 7) = I(-big, big);
+    planes(303, 0) = I(-1e-200, 1e-200);     // a divisor n.n that contains 0
+  }
+  auto upward = [] { return CGAL::Protect_FPU_rounding<true>(); };
+  SymBatch<I> P, R, B;
+  Vec4Batch<I> pi;
+  AffineBatch<I> M;
+  shadow_batch<I>(A, L, Method::direct, P, pi, R, 2, upward);
+  reflection_batch<I>(A, planes, Method::direct, M, B, 2, false, upward);
+  CGAL::Protect_FPU_rounding<true> guard;
+  long enclosed = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Mat4<I> a = gather_sym(A, i);
+    const Vec4<I> l = L.row(i).transpose(), pl = planes.row(i).transpose();
+    const Vec4<I> p = polar_plane<I>(a, l);
+    const Mat4<I> Pi = tangent_cone_from_polar<I>(a, l, p), Ri = terminator_quadric_from_polar<I>(l, p);
+    const Mat4<I> Mi = mirror_matrix<I>(pl), Bi = mirror_image_of_plane<I>(a, pl);
+    bool same = true;
+    for (int k = 0; k < 10; ++k) {
+      same &= same_bounds(P(i, k), Pi(kSymRow[k], kSymCol[k])) && same_bounds(R(i, k), Ri(kSymRow[k], kSymCol[k])) &&
+              same_bounds(B(i, k), Bi(kSymRow[k], kSymCol[k]));
+    }
+    for (int k = 0; k < 4; ++k) same &= same_bounds(pi(i, k), p(k));
+    for (int k = 0; k < 12; ++k) same &= same_bounds(M(i, k), Mi(k / 4, k % 4));
+    CHECK(same);
+    if (!with_faults && i % 7 == 0) {  // the exact results lie in the intervals
+      const Mat4<Rational> Pe = tangent_cone<Rational>(Aq[i], Lq[i]), Be = mirror_image_of_plane<Rational>(Aq[i], Pq[i]);
+      bool inside = true;
+      for (int k = 0; k < 10; ++k) {
+        const Rational pe = Pe(kSymRow[k], kSymCol[k]), be = Be(kSymRow[k], kSymCol[k]);
+        inside &= to_rational(P(i, k).inf()) <= pe && pe <= to_rational(P(i, k).sup());
+        inside &= to_rational(B(i, k).inf()) <= be && be <= to_rational(B(i, k).sup());
+      }
+      CHECK(inside);
+      ++enclosed;
+    }
+  }
+  if (!with_faults) CHECK(enclosed > 250);
+}
+}  // namespace
+
+TEST_CASE("interval batches by packs equal CGAL item by item and enclose the exact results", "[batch][pack]") {
+  check_interval_batch<CGAL::Interval_nt<false>>(false);
+  check_interval_batch<CGAL::Interval_nt<true>>(false);
+}
+
+TEST_CASE("interval batches: non-finite inputs, overflow and a divisor around 0 fall back to CGAL", "[batch][pack]") {
+  check_interval_batch<CGAL::Interval_nt<false>>(true);
 }

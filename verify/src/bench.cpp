@@ -98,6 +98,21 @@ int bits(Int x) {
   return b;
 }
 
+/// The widest x86 vector extension this build was compiled for.
+const char* instruction_set() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__)
+  return "AVX2";
+#elif defined(__AVX__)
+  return "AVX";
+#elif defined(__SSE2__)
+  return "SSE2";
+#else
+  return "scalar";
+#endif
+}
+
 }  // namespace
 
 json run_bench(const BenchOptions& opt) {
@@ -143,7 +158,8 @@ json run_bench(const BenchOptions& opt) {
               median_time(opt.repeats, [&] { reflection_batch<double>(A, planes, m, M, B, T); }), (10 + 4) * 8 + (12 + 10) * 8);
     }
   }
-  {  // ---- certified intervals: Interval_nt<false> with the rounding mode set once per thread
+  {  // ---- certified intervals: Interval_nt<false> with the rounding mode set once per thread;
+     //      the batch runs them as IntervalPack, W per instruction (exact/interval_pack.hpp)
     using I = CGAL::Interval_nt<false>;
     auto guard = [] { return CGAL::Protect_FPU_rounding<true>(); };
     SymBatch<I> A(n, 10);
@@ -246,6 +262,9 @@ json run_bench(const BenchOptions& opt) {
           {"bandwidth_method", "parallel memcpy of as many bytes as the double shadow row moves (read + write), best of 3"},
           {"inputs", "random rationals p/q, |p| <= 20, 1 <= q <= 9 (doubles: rounded once; exact: as p and q)"},
           {"timing", "median of " + std::to_string(opt.repeats) + " runs over all n items, outputs pre-allocated"},
+          {"simd", {{"lanes", DoublePack::size()},
+                    {"instruction_set", instruction_set()},
+                    {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
           {"rows", rows}};
 }
 

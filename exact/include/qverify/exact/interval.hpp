@@ -37,3 +37,7 @@ template <bool P> struct qverify::ScalarOps<CGAL::Interval_nt<P>> {
   static S abs(const S& x) { return CGAL::abs(x); }
   static bool finite(const S& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); }
 };
+
+// Batches of intervals run on SIMD packs wherever Interval_nt is known, so that
+// every translation unit sees the same BatchLanes specialisation.
+#include <qverify/exact/interval_pack.hpp>
