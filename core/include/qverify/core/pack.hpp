@@ -119,11 +119,11 @@ template <> struct ScalarOps<DoublePack> {
 
 }  // namespace qverify
 
-namespace Eigen {
-/// The pack as an Eigen scalar: Eigen's scalar (non-vectorised) code paths,
-/// whose every operation is one SIMD instruction on the pack.
-template <> struct NumTraits<qverify::DoublePack> : GenericNumTraits<double> {
-  using P = qverify::DoublePack;
+namespace qverify {
+/// Eigen's traits of a pack of doubles P (DoublePack, IntervalPack): Eigen's
+/// scalar (non-vectorised) code paths, whose every operation is one SIMD
+/// operation on the pack; constants are broadcast.
+template <class P, int MulCostOfPack> struct PackNumTraits : Eigen::GenericNumTraits<double> {
   typedef P Real;
   typedef P NonInteger;
   typedef P Nested;
@@ -135,11 +135,15 @@ template <> struct NumTraits<qverify::DoublePack> : GenericNumTraits<double> {
     RequireInitialization = 0,
     ReadCost = 1,
     AddCost = 1,
-    MulCost = 1
+    MulCost = MulCostOfPack
   };
   static P epsilon() { return P(std::numeric_limits<double>::epsilon()); }
-  static P dummy_precision() { return P(NumTraits<double>::dummy_precision()); }
+  static P dummy_precision() { return P(Eigen::NumTraits<double>::dummy_precision()); }
   static P highest() { return P(std::numeric_limits<double>::max()); }
   static P lowest() { return P(std::numeric_limits<double>::lowest()); }
 };
+}  // namespace qverify
+
+namespace Eigen {
+template <> struct NumTraits<qverify::DoublePack> : qverify::PackNumTraits<qverify::DoublePack, 1> {};
 }  // namespace Eigen

@@ -170,24 +170,5 @@ template <bool Protected> struct BatchLanes<CGAL::Interval_nt<Protected>> : Scal
 }  // namespace qverify
 
 namespace Eigen {
-template <> struct NumTraits<qverify::IntervalPack> : GenericNumTraits<double> {
-  using P = qverify::IntervalPack;
-  typedef P Real;
-  typedef P NonInteger;
-  typedef P Nested;
-  typedef P Literal;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 0,
-    ReadCost = 2,
-    AddCost = 2,
-    MulCost = 8
-  };
-  static P epsilon() { return P(std::numeric_limits<double>::epsilon()); }
-  static P dummy_precision() { return P(NumTraits<double>::dummy_precision()); }
-  static P highest() { return P(std::numeric_limits<double>::max()); }
-  static P lowest() { return P(std::numeric_limits<double>::lowest()); }
-};
+template <> struct NumTraits<qverify::IntervalPack> : qverify::PackNumTraits<qverify::IntervalPack, 4> {};
 }  // namespace Eigen
