@@ -2,6 +2,7 @@
 // rational: every member must compile for both (the generic code has one body).
 #include <qverify/core/batch.hpp>
 #include <qverify/core/core.hpp>
+#include <qverify/exact/interval.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #define QVERIFY_INSTANTIATE_CORE(S)                                                                          \
@@ -41,7 +42,9 @@
   template ReflectionResult<S> reflection_in_plane<S>(const Mat4<S>&, const Vec4<S>&, Method);                 \
   template Mat4<S> gather_sym<S>(const SymBatch<S>&, Eigen::Index);                                            \
   template void scatter_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                    \
-  template void store_sym<S>(SymBatch<S>&, Eigen::Index, const Mat4<S>&);                                      \
+  template Mat4<S> load_sym_lanes<ScalarLanes<S>>(const S*);                                                  \
+  template void store_sym_lanes<ScalarLanes<S>>(S*, const Mat4<S>&);                                           \
+  template void store_vec4_lanes<ScalarLanes<S>>(S*, const Vec4<S>&);                                          \
   template void shadow_batch<S>(const SymBatch<S>&, const Vec4Batch<S>&, Method, SymBatch<S>&, Vec4Batch<S>&, \
                                 SymBatch<S>&, int);                                                           \
   template void reflection_batch<S>(const SymBatch<S>&, const Vec4Batch<S>&, Method, AffineBatch<S>&,          \
@@ -92,3 +95,4 @@ QVERIFY_INSTANTIATE_CORE(qverify::Rational)
   }
 
 QVERIFY_INSTANTIATE_PACKED(qverify::DoublePack)
+QVERIFY_INSTANTIATE_PACKED(qverify::IntervalPack)

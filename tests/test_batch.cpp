@@ -152,12 +152,13 @@ TEST_CASE("interval packs give CGAL's bounds, operation by operation", "[batch][
     for (int j = 0; j < W; ++j) a[j] = random_interval(g), b[j] = random_interval(g);
     const IntervalPack pa{DoublePack([&](auto j) { return -a[j].inf(); }), DoublePack([&](auto j) { return a[j].sup(); })};
     const IntervalPack pb{DoublePack([&](auto j) { return -b[j].inf(); }), DoublePack([&](auto j) { return b[j].sup(); })};
-    const IntervalPack sum = pa + pb, diff = pa - pb, prod = pa * pb, neg = -pa;
+    const IntervalPack sum = pa + pb, diff = pa - pb, prod = pa * pb, neg = -pa, abs = abs_of<IntervalPack>(pa);
     for (int j = 0; j < W; ++j) {
       CHECK(same_bounds(pack_lane(sum, j), a[j] + b[j]));
       CHECK(same_bounds(pack_lane(diff, j), a[j] - b[j]));
       CHECK(same_bounds(pack_lane(prod, j), a[j] * b[j]));
       CHECK(same_bounds(pack_lane(neg, j), -a[j]));
+      CHECK(same_bounds(pack_lane(abs, j), CGAL::abs(a[j])));
     }
     bool all_positive = true, all_negative = true;
     for (int j = 0; j < W; ++j) all_positive &= b[j].inf() > 0, all_negative &= b[j].sup() < 0;

@@ -49,11 +49,8 @@ template <class S> using AffineBatch = Eigen::Matrix<S, Eigen::Dynamic, 12, Eige
 constexpr int kSymRow[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kSymCol[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
 
-template <class S> Mat4<S> gather_sym(const SymBatch<S>& X, Eigen::Index i) {
-  Mat4<S> m;
-  for (int k = 0; k < 10; ++k) m(kSymRow[k], kSymCol[k]) = m(kSymCol[k], kSymRow[k]) = X(i, k);
-  return m;
-}
+/// Plain (cached) stores of item i's symmetric matrix; gather_sym, its reverse,
+/// is load_sym_lanes with ScalarLanes (below).
 template <class S> void scatter_sym(SymBatch<S>& X, Eigen::Index i, const Mat4<S>& m) {
   for (int k = 0; k < 10; ++k) X(i, k) = m(kSymRow[k], kSymCol[k]);
 }
@@ -79,16 +76,6 @@ inline void store_fence() {
 #if defined(__SSE2__)
   _mm_sfence();
 #endif
-}
-
-template <class S> void store_sym(SymBatch<S>& X, Eigen::Index i, const Mat4<S>& m) {
-  S v[10];
-  for (int k = 0; k < 10; ++k) v[k] = m(kSymRow[k], kSymCol[k]);
-  store_row<S, 10>(&X(i, 0), v);
-}
-template <class S> void store_vec4(Vec4Batch<S>& X, Eigen::Index i, const Vec4<S>& p) {
-  const S v[4] = {p(0), p(1), p(2), p(3)};
-  store_row<S, 4>(&X(i, 0), v);
 }
 
 /// Runs f(begin, end) over [0, n) on `threads` threads (contiguous chunks).
@@ -205,12 +192,18 @@ template <class Ln> Vec4<typename Ln::Pack> load_vec4_lanes(const typename Ln::S
   return Vec4<typename Ln::Pack>(v[0], v[1], v[2], v[3]);
 }
 template <class Ln> void store_sym_lanes(typename Ln::Scalar* row0, const Mat4<typename Ln::Pack>& m) {
-  const typename Ln::Pack v[10] = {m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 1), m(1, 2), m(1, 3), m(2, 2), m(2, 3), m(3, 3)};
+  typename Ln::Pack v[10];
+  for (int k = 0; k < 10; ++k) v[k] = m(kSymRow[k], kSymCol[k]);
   Ln::template store<10>(row0, 10, v);
 }
 template <class Ln> void store_vec4_lanes(typename Ln::Scalar* row0, const Vec4<typename Ln::Pack>& p) {
   const typename Ln::Pack v[4] = {p(0), p(1), p(2), p(3)};
   Ln::template store<4>(row0, 4, v);
+}
+
+/// Item i's symmetric matrix.
+template <class S> Mat4<S> gather_sym(const SymBatch<S>& X, Eigen::Index i) {
+  return load_sym_lanes<ScalarLanes<S>>(&X(i, 0));
 }
 
 /// item(lanes, i) over [0, n) on `threads` threads: blocks of Ln::width items
