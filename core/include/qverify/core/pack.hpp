@@ -58,7 +58,9 @@ inline DoublePack opaque(DoublePack x) {
 /// callers.)
 inline DoublePack pack_max(const DoublePack& a, const DoublePack& b) {
 #if defined(__AVX512F__)
-  return DoublePack(_mm512_max_pd(static_cast<__m512d>(a), static_cast<__m512d>(b)));
+  // The all-lanes mask form: GCC 12.2's _mm512_max_pd trips -Wuninitialized (GCC PR 105593).
+  return DoublePack(_mm512_mask_max_pd(static_cast<__m512d>(b), static_cast<__mmask8>(0xff), static_cast<__m512d>(a),
+                                       static_cast<__m512d>(b)));
 #elif defined(__AVX__)
   return DoublePack(_mm256_max_pd(static_cast<__m256d>(a), static_cast<__m256d>(b)));
 #elif defined(__SSE2__)
@@ -75,34 +77,54 @@ inline DoublePack pack_max(const DoublePack& a, const DoublePack& b) {
 /// holding two consecutive entries, or one CGAL interval {-lo, hi}):
 /// out[j] = (a_j, b_j) for every lane j.
 inline void to_lane_pairs(const DoublePack& a, const DoublePack& b, __m128d (&out)[DoublePack::size()]) {
-#if defined(__AVX__) && !defined(__AVX512F__)
+#if defined(__AVX512F__)
+  // Vector shuffles rather than the AVX-512 unpack/extract intrinsics, which GCC 12.2 flags
+  // with -Wuninitialized (GCC PR 105593); the same instructions come out.
+  typedef double V8 __attribute__((vector_size(64)));
+  typedef double V4 __attribute__((vector_size(32)));
+  const V8 x = static_cast<V8>(static_cast<__m512d>(a)), y = static_cast<V8>(static_cast<__m512d>(b));
+  const V8 lo = __builtin_shufflevector(x, y, 0, 8, 2, 10, 4, 12, 6, 14);  // (a0 b0 a2 b2 ..)
+  const V8 hi = __builtin_shufflevector(x, y, 1, 9, 3, 11, 5, 13, 7, 15);  // (a1 b1 a3 b3 ..)
+  const V4 quarters[4] = {__builtin_shufflevector(lo, lo, 0, 1, 2, 3), __builtin_shufflevector(hi, hi, 0, 1, 2, 3),
+                          __builtin_shufflevector(lo, lo, 4, 5, 6, 7), __builtin_shufflevector(hi, hi, 4, 5, 6, 7)};
+  for (int q = 0; q < 2; ++q) {
+    out[4 * q + 0] = _mm256_castpd256_pd128(quarters[2 * q]);
+    out[4 * q + 1] = _mm256_castpd256_pd128(quarters[2 * q + 1]);
+    out[4 * q + 2] = _mm256_extractf128_pd(quarters[2 * q], 1);
+    out[4 * q + 3] = _mm256_extractf128_pd(quarters[2 * q + 1], 1);
+  }
+#elif defined(__AVX__)
   const __m256d x = static_cast<__m256d>(a), y = static_cast<__m256d>(b);
   const __m256d lo = _mm256_unpacklo_pd(x, y), hi = _mm256_unpackhi_pd(x, y);  // (a0 b0 a2 b2), (a1 b1 a3 b3)
   out[0] = _mm256_castpd256_pd128(lo);
   out[1] = _mm256_castpd256_pd128(hi);
   out[2] = _mm256_extractf128_pd(lo, 1);
   out[3] = _mm256_extractf128_pd(hi, 1);
-#elif !defined(__AVX__)
+#else
   const __m128d x = static_cast<__m128d>(a), y = static_cast<__m128d>(b);
   out[0] = _mm_unpacklo_pd(x, y);
   out[1] = _mm_unpackhi_pd(x, y);
-#else
-  for (std::size_t j = 0; j < DoublePack::size(); ++j) out[j] = _mm_set_pd(b[j], a[j]);
 #endif
 }
 
 /// The inverse of to_lane_pairs: a_j, b_j from in[j] = (a_j, b_j).
 inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack& a, DoublePack& b) {
-#if defined(__AVX__) && !defined(__AVX512F__)
+#if defined(__AVX512F__)
+  typedef double V8 __attribute__((vector_size(64)));
+  typedef double V4 __attribute__((vector_size(32)));
+  const V4 x0 = _mm256_set_m128d(in[2], in[0]), x1 = _mm256_set_m128d(in[6], in[4]);  // (a0 b0 a2 b2), (a4 b4 a6 b6)
+  const V4 y0 = _mm256_set_m128d(in[3], in[1]), y1 = _mm256_set_m128d(in[7], in[5]);  // (a1 b1 a3 b3), (a5 b5 a7 b7)
+  const V8 x = __builtin_shufflevector(x0, x1, 0, 1, 2, 3, 4, 5, 6, 7);
+  const V8 y = __builtin_shufflevector(y0, y1, 0, 1, 2, 3, 4, 5, 6, 7);
+  a = DoublePack(static_cast<__m512d>(__builtin_shufflevector(x, y, 0, 8, 2, 10, 4, 12, 6, 14)));
+  b = DoublePack(static_cast<__m512d>(__builtin_shufflevector(x, y, 1, 9, 3, 11, 5, 13, 7, 15)));
+#elif defined(__AVX__)
   const __m256d x = _mm256_set_m128d(in[2], in[0]), y = _mm256_set_m128d(in[3], in[1]);
   a = DoublePack(_mm256_unpacklo_pd(x, y));
   b = DoublePack(_mm256_unpackhi_pd(x, y));
-#elif !defined(__AVX__)
+#else
   a = DoublePack(_mm_unpacklo_pd(in[0], in[1]));
   b = DoublePack(_mm_unpackhi_pd(in[0], in[1]));
-#else
-  a = DoublePack([&](auto j) { return _mm_cvtsd_f64(in[j]); });
-  b = DoublePack([&](auto j) { return _mm_cvtsd_f64(_mm_unpackhi_pd(in[j], in[j])); });
 #endif
 }
 #endif
