@@ -34,7 +34,7 @@
   template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
   template Mat4<S> scaled_mirror_matrix<S>(const Vec4<S>&);                                                   \
   template Mat4<S> mirror_image_of_plane<S>(const Mat4<S>&, const Vec4<S>&);                                  \
-  template Vec4<S> mirror_direction<S>(const Vec4<S>&);                                                        \
+  template Vec4<S> mirror_half_direction<S>(const Vec4<S>&);                                                        \
   template Mat4<S> mirror_matrix_from<S>(const Vec4<S>&, const Vec4<S>&);                                      \
   template Mat4<S> mirror_image_from<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);                        \
   template S ordered_dot<S, 4>(const Vec4<S>&, const Vec4<S>&);                                                \
@@ -86,7 +86,7 @@ QVERIFY_INSTANTIATE_CORE(qverify::Rational)
   template Vec4<S> frame_plane<S>(const Vec4<S>&);                                                           \
   template Mat4<S> terminator_quadric<S>(const Mat4<S>&, const Vec4<S>&);                                    \
   template Mat4<S> terminator_quadric_from_polar<S>(const Vec4<S>&, const Vec4<S>&);                         \
-  template Vec4<S> mirror_direction<S>(const Vec4<S>&);                                                      \
+  template Vec4<S> mirror_half_direction<S>(const Vec4<S>&);                                                      \
   template Mat4<S> mirror_matrix<S>(const Vec4<S>&);                                                         \
   template Mat4<S> mirror_matrix_from<S>(const Vec4<S>&, const Vec4<S>&);                                    \
   template Mat4<S> mirror_image_from<S>(const Mat4<S>&, const Vec4<S>&, const Vec4<S>&);                      \

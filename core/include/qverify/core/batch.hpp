@@ -304,8 +304,8 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
     using T = typename Ln::Pack;
     const Mat4<T> a = load_sym_lanes<Ln>(&A(i, 0));
     const Vec4<T> pl = load_vec4_lanes<Ln>(&planes(i, 0));
-    const Vec4<T> u = scaled ? Vec4<T>::Zero().eval() : mirror_direction<T>(pl);  // the one division
-    const Mat4<T> m = scaled ? scaled_mirror_matrix<T>(pl) : mirror_matrix_from<T>(u, pl);
+    const Vec4<T> h = scaled ? Vec4<T>::Zero().eval() : mirror_half_direction<T>(pl);  // the one division
+    const Mat4<T> m = scaled ? scaled_mirror_matrix<T>(pl) : mirror_matrix_from<T>(h, pl);
     const T rows[12] = {m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 0), m(1, 1),
                         m(1, 2), m(1, 3), m(2, 0), m(2, 1), m(2, 2), m(2, 3)};
     Ln::template store<12>(&M(i, 0), 12, rows);
@@ -313,7 +313,7 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
       if (scaled) return store_sym_lanes<Ln>(&B(i, 0), mirror_image<T>(a, m));
       if (method == Method::paper) return store_sym_lanes<Ln>(&B(i, 0), mirror_image_paper<T>(a, m));
     }
-    store_sym_lanes<Ln>(&B(i, 0), mirror_image_from<T>(a, u, pl));
+    store_sym_lanes<Ln>(&B(i, 0), mirror_image_from<T>(a, h, pl));
   };
   if (method == Method::paper || scaled) for_each_block<ScalarLanes<S>>(n, threads, setup, item);
   else for_each_block<BatchLanes<S>>(n, threads, setup, item);
