@@ -20,19 +20,24 @@ qverify_install_deps() {
   { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >&2
 }
 
+# Runs a command with its output kept in a log that is shown (on stderr) only
+# when the command fails; returns the command's status.
+qverify_quietly() {
+  local log status=0
+  log="$(mktemp)"
+  "$@" >"$log" 2>&1 || status=$?
+  if [ "$status" -ne 0 ]; then cat "$log" >&2; fi
+  rm -f "$log"
+  return "$status"
+}
+
 # Configures the release tree if needed and builds the given targets (quietly,
 # the log is shown on failure). Build output never reaches stdout.
 qverify_build() {
   local root="$1"; shift
-  local dir="$root/build/release" log
-  log="$(mktemp)"
+  local dir="$root/build/release"
   if [ ! -f "$dir/CMakeCache.txt" ]; then
-    if ! (cd "$root" && cmake --preset release "${QVERIFY_CMAKE_ARGS[@]}") >"$log" 2>&1; then
-      cat "$log" >&2; rm -f "$log"; return 1
-    fi
+    qverify_quietly cmake -S "$root" --preset release "${QVERIFY_CMAKE_ARGS[@]}" || return 1
   fi
-  if ! cmake --build "$dir" -j "$(nproc)" "$@" >"$log" 2>&1; then
-    cat "$log" >&2; rm -f "$log"; return 1
-  fi
-  rm -f "$log"
+  qverify_quietly cmake --build "$dir" -j "$(nproc)" "$@"
 }
