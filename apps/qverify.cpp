@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -172,6 +173,18 @@ void print_bench(const json& doc) {
                r["precision"].get<std::string>(), r["method"].get<std::string>(), r["items_per_s"].get<double>(),
                r["ns_per_item"].get<double>(), r["bytes_per_item"].get<int>(), r["roofline_fraction"].get<double>(),
                r["cost_vs_double_direct"].get<double>());
+}
+
+/// MemAvailable of /proc/meminfo in bytes, or 0 where there is none.
+std::size_t available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::size_t kb = 0;
+  while (in >> key >> kb) {
+    if (key == "MemAvailable:") return kb * 1024;
+    in.ignore(256, '\n');
+  }
+  return 0;
 }
 
 /// Progress lines on stderr, once a command has run for more than two seconds.
@@ -405,7 +418,7 @@ int main(int argc, char** argv) {
   BenchOptions bench_opt;
   bench->add_option("--n", bench_opt.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
   bench->add_option("--threads", bench_opt.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
-  bench->add_option("--repeats", bench_opt.repeats, "Runs per row (median)")->capture_default_str()->check(CLI::Range(1, 50));
+  bench->add_option("--repeats", bench_opt.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(CLI::Range(1, 50));
   bench->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
 
   CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
@@ -509,6 +522,11 @@ int main(int argc, char** argv) {
       return kOk;
     }
     if (bench->parsed()) {
+      const double need = static_cast<double>(bench_bytes_per_item()) * static_cast<double>(bench_opt.n);
+      if (const std::size_t have = available_memory(); have > 0 && need > 0.95 * static_cast<double>(have))
+        throw UsageError(fmt::format("bench: --n {} needs about {:.1f} GB of memory ({} bytes per item), and {:.1f} GB "
+                                     "are available; use a smaller --n",
+                                     bench_opt.n, need / 1e9, bench_bytes_per_item(), static_cast<double>(have) / 1e9));
       bench_opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
       const json doc = run_bench(bench_opt);
       if (as_json) std::cout << doc.dump(2) << "\n";

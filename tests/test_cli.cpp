@@ -5,9 +5,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <set>
+#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -253,7 +255,7 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
 }
 
 TEST_CASE("bench --json reports plausible rows against the bandwidth measured in the same run", "[cli][bench]") {
-  const Run r = run("bench --n 500000 --repeats 1 --json");
+  const Run r = run("bench --n 500000 --repeats 2 --json");
   REQUIRE(r.code == 0);
   const auto doc = nlohmann::json::parse(r.out);
   CHECK(doc["format"] == "qverify-bench/1");
@@ -268,7 +270,16 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
                 row["method"].get<std::string>());
     CHECK(row["items_per_s"].get<double>() > 0);
     CHECK(row["roofline_fraction"].get<double>() < 1.5);  // no row far above the measured limit
+    // the fraction is items/s over (bandwidth / bytes per item), from the document's own figures
+    CHECK(row["roofline_fraction"].get<double>() ==
+          Approx(row["items_per_s"].get<double>() * row["bytes_per_item"].get<double>() /
+                 (doc["memory_bandwidth_gbps"].get<double>() * 1e9)));
+    // every run is listed, and the row is the best of them
+    REQUIRE(row["ns_per_item_runs"].size() == 2);
+    const auto runs = row["ns_per_item_runs"].get<std::vector<double>>();
+    CHECK(row["ns_per_item"].get<double>() == Approx(*std::min_element(runs.begin(), runs.end())));
   }
+  CHECK(doc["memory_bandwidth_gbps_runs"].size() == 2);
   for (const char* k : {"shadow/double/direct", "shadow/double/paper", "shadow/interval/direct", "shadow/exact/direct",
                         "reflection/double/direct", "reflection/double/paper", "reflection/interval/direct",
                         "reflection/exact/direct"})

@@ -15,9 +15,12 @@ namespace qverify {
 struct BenchOptions {
   long n = 10000000;
   int threads = static_cast<int>(std::thread::hardware_concurrency());
-  int repeats = 3;
+  int repeats = 5;  ///< rounds: each row is timed once per round, best of
   std::function<void(const std::string&)> progress;
 };
+
+/// Memory a run of `qverify bench` takes per item (the buffers of its largest phase).
+std::size_t bench_bytes_per_item();
 
 /// The `qverify-bench/1` document.
 nlohmann::ordered_json run_bench(const BenchOptions& opt);
