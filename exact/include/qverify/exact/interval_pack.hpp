@@ -139,6 +139,7 @@ template <bool Protected> struct BatchLanes<CGAL::Interval_nt<Protected>> : Scal
   /// With SSE2 an Interval_nt is one register {-lo, hi}: W of them transpose
   /// into the packs (-lo, hi) (from/to_lane_pairs).
   template <int N> static void load(const Scalar* row0, Eigen::Index stride, Pack (&v)[N]) {
+    prefetch_rows<N, width>(row0, stride);
     for (int k = 0; k < N; ++k) {
       DoublePack nlo, hi;
 #if defined(CGAL_USE_SSE2) && defined(__SSE2__)
