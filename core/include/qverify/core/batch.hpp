@@ -72,15 +72,16 @@ template <class S, int N> inline void store_row(S* dst, const S (&v)[N]) {
 }
 
 /// Software prefetch of the input rows a pack will load `kPrefetchBlocks` blocks
-/// later: N entries of `Rows` rows from row0 (rows `stride` scalars apart). The
-/// hardware prefetchers stop at every 4 KiB page, and a block of interval packs
-/// does enough arithmetic between loads that their latency showed: the interval
-/// rows of `qverify bench` went from 20-23 to 13-15 ns per item (2 threads,
-/// AVX-512, runs interleaved with the commit before). The double rows are at the
-/// bandwidth limit either way. Addresses past the end are harmless: a prefetch
-/// does not fault, and the address is formed as an integer (no out-of-range
-/// pointer arithmetic).
-/// The prefetch is an asm statement on x86: GCC deletes loops of __builtin_prefetch
+/// later: the span of `Rows` rows from row0 (rows `stride` scalars apart, N
+/// entries read from each; the batches' rows are contiguous, stride == N, and
+/// the span is then exactly the block). The hardware prefetchers stop at every
+/// 4 KiB page, and a block of interval packs does enough arithmetic between
+/// loads that their latency showed: the interval rows of `qverify bench` went
+/// from 20-23 to 13-15 ns per item (2 threads, AVX-512, runs interleaved with
+/// the commit before). The double rows are at the bandwidth limit either way.
+/// Addresses past the end are harmless: a prefetch does not fault, and the
+/// address is formed as an integer (no out-of-range pointer arithmetic). On x86
+/// the prefetch is an asm statement: GCC deletes loops of __builtin_prefetch
 /// whose trip count it does not fold (a loop without side effects).
 inline void prefetch_line(std::uintptr_t address) {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -95,14 +96,8 @@ constexpr int kPrefetchBlocks = 8;
 template <int N, int Rows, class S> inline void prefetch_rows(const S* row0, Eigen::Index stride) {
   constexpr std::uintptr_t line = 64;
   const std::uintptr_t ahead = reinterpret_cast<std::uintptr_t>(row0) + sizeof(S) * stride * Rows * kPrefetchBlocks;
-  if (stride == N) {  // the rows are one contiguous block
-    for (std::uintptr_t a = ahead & ~(line - 1); a < ahead + sizeof(S) * N * Rows; a += line) prefetch_line(a);
-  } else {
-    for (int j = 0; j < Rows; ++j) {
-      const std::uintptr_t b = ahead + sizeof(S) * stride * j;
-      for (std::uintptr_t a = b & ~(line - 1); a < b + sizeof(S) * N; a += line) prefetch_line(a);
-    }
-  }
+  const std::uintptr_t end = ahead + sizeof(S) * (stride * (Rows - 1) + N);
+  for (std::uintptr_t a = ahead & ~(line - 1); a < end; a += line) prefetch_line(a);
 }
 
 /// Orders the non-temporal stores of this thread before its results are read.
