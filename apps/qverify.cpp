@@ -72,6 +72,21 @@ void print_matrix(const char* name, const json& m) {
   }
 }
 
+/// The item's error bound, and in words whether it may miss the accuracy target.
+void print_accuracy(const json& item, const json& doc) {
+  if (!item.contains("error_bound")) return;
+  const double T = doc["accuracy"].get<double>();
+  const bool inaccurate = std::find(item["flags"].begin(), item["flags"].end(), "inaccurate") != item["flags"].end();
+  if (item["error_bound"].is_null())
+    fmt::print("    error bound: none ({}){}\n", item.contains("reason") ? item["reason"].get<std::string>() : "",
+               inaccurate ? "; INACCURATE: the result may be off by more than the accuracy target" : "");
+  else if (inaccurate)
+    fmt::print("    INACCURATE: error bound {:.3g} of the object size exceeds the accuracy target {:.3g}\n",
+               item["error_bound"].get<double>(), T);
+  else
+    fmt::print("    accurate: error bound {:.3g} of the object size (target {:.3g})\n", item["error_bound"].get<double>(), T);
+}
+
 void print_eval(const json& doc) {
   fmt::print("scene      {}\nprecision  {}   method {}\n", doc["scene"].get<std::string>(),
              doc["precision"].get<std::string>(), doc["method"].get<std::string>());
@@ -81,12 +96,14 @@ void print_eval(const json& doc) {
     print_matrix("P", s["P"]);
     print_matrix("polar_plane", s["polar_plane"]);
     print_matrix("R", s["R"]);
+    print_accuracy(s, doc);
   }
   for (const auto& r : doc["reflections"]) {
     fmt::print("\nreflection  {} in {}: {}\n", r["quadric"].get<std::string>(), r["mirror"].get<std::string>(),
                r["status"].get<std::string>());
     print_matrix("M", r["M"]);
     print_matrix("B", r["B"]);
+    print_accuracy(r, doc);
   }
   if (!doc["skipped"].empty()) {
     fmt::print("\nleft out ({}):\n", doc["skipped"].size());
@@ -101,25 +118,27 @@ void print_eval(const json& doc) {
 }
 
 void print_verify(const json& doc) {
-  fmt::print("scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}\n\n",
+  fmt::print("scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}   accuracy target {}\n\n",
              doc["scene"].get<std::string>(), doc["precision"].get<std::string>(), doc["method"].get<std::string>(),
-             doc["source"].get<std::string>(), doc["samples"].get<int>(), doc["seed"].get<std::uint64_t>());
-  fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>10} {:>11} {:>11} {:>11} {:>8}\n", "kind", "quadric", "with", "status",
-             "points", "tolerance", "max resid.", "max dist.", "proved", "");
+             doc["source"].get<std::string>(), doc["samples"].get<int>(), doc["seed"].get<std::uint64_t>(),
+             doc["accuracy"].get<double>() == 0 ? std::string("0 (exact proof)") : fmt::format("{:.3g}", doc["accuracy"].get<double>()));
+  fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", "kind", "quadric", "with", "status",
+             "points", "geo. error", "obj. size", "proved", "rounding");
+  auto num = [](const json& c, const char* k) {
+    return !c.contains(k) ? std::string("-") : c[k].is_null() ? std::string("inf") : fmt::format("{:.2e}", c[k].get<double>());
+  };
   for (const auto& c : doc["checks"]) {
     const std::string other = c.contains("light") ? c["light"].get<std::string>() : c["mirror"].get<std::string>();
-    double res = 0, dist = 0;
-    for (const char* k : {"on_A", "on_P", "on_R", "on_B"})
-      if (c.contains(k)) {
-        res = std::max(res, c[k]["max_residual"].get<double>());
-        dist = std::max(dist, c[k]["max_distance"].get<double>());
-      }
-    fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>10.2e} {:>11.2e} {:>11.2e} {:>11}\n", c["kind"].get<std::string>(),
+    fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", c["kind"].get<std::string>(),
                c["quadric"].get<std::string>(), other, c["status"].get<std::string>(),
-               c.contains("points") ? c["points"].get<int>() : 0, c.contains("tolerance") ? c["tolerance"].get<double>() : 0.0,
-               res, dist, c.contains("proved_exactly") ? std::to_string(c["proved_exactly"].get<int>()) : "-");
+               c.contains("points") ? c["points"].get<int>() : 0, num(c, "geometric_error"), num(c, "object_size"),
+               c.contains("proved_exactly") ? std::to_string(c["proved_exactly"].get<int>()) : "-",
+               !c.contains("consistent_with_precision") ? "-" : c["consistent_with_precision"].get<bool>() ? "as good" : "worse");
     if (c.contains("reason")) fmt::print("            {}\n", c["reason"].get<std::string>());
   }
+  fmt::print("\npass = geometric error <= accuracy target{}; 'rounding' says whether the residuals are as small as "
+             "this precision can make them (information only)\n",
+             doc["accuracy"].get<double>() == 0 ? " (exact: every residual exactly zero)" : "");
   fmt::print("\n{} passed, {} failed, {} skipped\n", doc["passed"].get<int>(), doc["failed"].get<int>(),
              doc["skipped"].get<int>());
 }
@@ -371,6 +390,15 @@ int main(int argc, char** argv) {
 
   CLI::App* eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
   add_common(eval);
+  double accuracy = kDefaultAccuracy;
+  auto add_accuracy = [&](CLI::App* sub) {
+    sub->add_option("--accuracy", accuracy,
+                    "Accuracy target T: largest geometric error (distance of exact points from the result, relative "
+                    "to the object's size) that passes; items whose error bound exceeds it are flagged inaccurate")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+  };
+  add_accuracy(eval);
   double tolerance = 0;
   eval->add_option("--tolerance", tolerance,
                    "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
@@ -386,6 +414,7 @@ int main(int argc, char** argv) {
   std::string candidate;
   verify->add_option("--samples", samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
   verify->add_option("--seed", seed, "Seed of the deterministic sampler")->capture_default_str();
+  add_accuracy(verify);
   verify->add_option("--candidate", candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
 
   CLI::App* audit = app.add_subcommand("audit", "Precision audit of one scene: error against run time over the whole "
@@ -470,7 +499,7 @@ int main(int argc, char** argv) {
         throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
                          "result rounded to double is that far); use --precision exact");
       const json doc = tolerance > 0 ? adaptive_eval_document(sc, method, tolerance)
-                                     : eval_document(sc, prec, method, frame_of(frame_text));
+                                     : eval_document(sc, prec, method, frame_of(frame_text), AccuracyOptions{accuracy});
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_eval(doc);
       return kOk;
@@ -479,12 +508,13 @@ int main(int argc, char** argv) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);
       const Scene sc = load_scene(scene_file);
-      const ResultSet rs = candidate.empty() ? computed_results(sc, prec, method, frame_of(frame_text)) : candidate_results(sc, candidate, prec);
-      int failed = 0;
-      const json doc = verify_document(sc, rs, VerifyOptions{samples, seed}, failed);
-      if (as_json) std::cout << doc.dump(2) << "\n";
-      else print_verify(doc);
-      return failed > 0 ? 1 : kOk;
+      const ResultSet rs = candidate.empty()
+                               ? computed_results(sc, prec, method, frame_of(frame_text), AccuracyOptions{accuracy, samples, seed})
+                               : candidate_results(sc, candidate, prec);
+      const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
+      if (as_json) std::cout << v.document.dump(2) << "\n";
+      else print_verify(v.document);
+      return v.failed > 0 ? 1 : kOk;
     }
     if (audit->parsed()) {
       const Scene sc = load_scene(scene_file);

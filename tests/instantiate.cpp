@@ -10,8 +10,6 @@
   template bool is_exact<S>();                                                                               \
   template S abs_of<S>(const S&);                                                                            \
   template int sign_of<S>(const S&);                                                                         \
-  template S status_tolerance<S>();                                                                          \
-  template bool negligible<S>(const S&, const S&);                                                           \
   template Mat4<S> plane_pair<S>(const Vec4<S>&, const Vec4<S>&);                                            \
   template Mat4<S> centred_quadric<S>(const Mat3<S>&, const Vec3<S>&, const S&);                             \
   template Mat4<S> quadric_from_coefficients<S>(const S&, const S&, const S&, const S&, const S&, const S&,   \
@@ -23,10 +21,14 @@
   template Mat4<S> cone_quadric<S>(const Vec3<S>&, const Vec3<S>&, const S&);                                \
   template S minor3<S>(const Mat4<S>&, const int[3], const int[3]);                                          \
   template Mat4<S> adjugate4<S>(const Mat4<S>&);                                                             \
-  template bool is_degenerate_quadric<S>(const Mat4<S>&);                                                    \
+  template Truth degenerate_quadric<S>(const Mat4<S>&);                                                      \
+  template Truth light_on_surface<S>(const Mat4<S>&, const Vec4<S>&);                                        \
+  template Truth silhouette_empty<S>(const Mat4<S>&, const Vec4<S>&);                                        \
+  template StatusDecision shadow_status<S>(const Mat4<S>&, const Vec4<S>&);                                  \
+  template Truth reflection_degenerate<S>(const Mat4<S>&);                                                   \
   template Eigen::Matrix<S, 4, 3> plane_basis<S>(const Vec4<S>&);                                           \
   template Mat3<S> conic_on_plane<S>(const Mat4<S>&, const Vec4<S>&);                                        \
-  template bool conic_is_empty<S>(const Mat3<S>&);                                                           \
+  template Truth conic_definite<S>(const Mat3<S>&);                                                          \
   template bool is_symmetric<S>(const Mat4<S>&, const S&);                                                   \
   template Vec4<S> polar_plane<S>(const Mat4<S>&, const Vec4<S>&);                                           \
   template Mat4<S> tangent_cone<S>(const Mat4<S>&, const Vec4<S>&);                                          \

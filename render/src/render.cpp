@@ -110,7 +110,7 @@ Renderer::Renderer(const Scene& sc, const RenderOptions& opts) : scene_(sc) {
   TypedScene<Rational> tq = typed_scene<Rational>(sc);
   Plan plan;
   for (const Mat4<Rational>& A : tq.A)
-    plan.clipped.push_back(!conic_is_empty<Rational>(Mat3<Rational>(A.topLeftCorner<3, 3>())));
+    plan.clipped.push_back(conic_definite<Rational>(Mat3<Rational>(A.topLeftCorner<3, 3>())) != Truth::yes);
   for (const Pair& p : sc.shadows) {
     const unsigned flags = shadow_flags<Rational>(tq.A[p.quadric], tq.L[p.other]);
     const auto bad = flags & (static_cast<unsigned>(ShadowFlag::degenerate_quadric) |

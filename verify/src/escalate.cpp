@@ -16,7 +16,7 @@ template <class S> ReflectionItem<S> escalated_reflection(const PreparedReflecti
   const Mat4<Float128> A = rounded_scaled<Float128>(pr.exact->first);
   const Mat4<Float128> G = rounded_scaled<Float128>(pr.exact->second);
   ReflectionItem<S> item{pr.pair, pr.M, {}, pr.origin};
-  item.result.degenerate = is_degenerate_quadric<Float128>(A);
+  set_reflection_status(item.result, reflection_degenerate<Float128>(A));
   item.result.B = narrow<S>(Mat4<Float128>(mirror_image<Float128>(A, G)));
   item.escalated = "float128";
   return item;

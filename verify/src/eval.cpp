@@ -17,12 +17,14 @@ nlohmann::ordered_json skipped_json(const Scene& sc) {
   return out;
 }
 
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
-  return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method, frame); });
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                                     const AccuracyOptions& accuracy) {
+  return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method, frame, accuracy); });
 }
 
-ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
-  return with_scalar(prec, [&](auto tag) { return computed_results<decltype(tag)>(sc, prec, method, frame); });
+ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                           const std::optional<AccuracyOptions>& accuracy) {
+  return with_scalar(prec, [&](auto tag) { return computed_results<decltype(tag)>(sc, prec, method, frame, accuracy); });
 }
 
 TimedResult timed_results(const Scene& sc, const Precision& prec, Method method, double batch_seconds, int batches) {

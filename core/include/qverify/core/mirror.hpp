@@ -95,13 +95,26 @@ template <class S> Mat4<S> mirror_image_of_plane(const Mat4<S>& A, const Vec4<S>
 template <class S> struct ReflectionResult {
   Mat4<S> B;
   bool degenerate = false;  ///< rank A <= 2 (status degenerate-quadric)
-  const char* status() const { return degenerate ? "degenerate-quadric" : "ok"; }
+  bool undecided = false;   ///< the floating filter could not decide rank A <= 2 (exact/statuses.hpp settles it)
+  const char* status() const { return degenerate ? "degenerate-quadric" : undecided ? "undecided" : "ok"; }
 };
+
+/// The status predicate of a reflection: degenerate-quadric (rank A <= 2),
+/// exactly for exact types, through the certified filter otherwise.
+template <class S> Truth reflection_degenerate(const Mat4<S>& A) {
+  using P = PredicateScalar<S>;
+  return degenerate_quadric<P>(to_predicate<P>(A));
+}
+
+template <class S> void set_reflection_status(ReflectionResult<S>& r, Truth degenerate) {
+  r.degenerate = degenerate == Truth::yes;
+  r.undecided = degenerate == Truth::unknown;
+}
 
 /// Mirror image of A in the mirror with matrix M, by either route.
 template <class S> ReflectionResult<S> reflection(const Mat4<S>& A, const Mat4<S>& M, Method method) {
   ReflectionResult<S> r;
-  r.degenerate = is_degenerate_quadric<S>(A);
+  set_reflection_status(r, reflection_degenerate<S>(A));
   r.B = method == Method::paper ? mirror_image_paper<S>(A, M) : mirror_image<S>(A, M);
   return r;
 }
@@ -110,7 +123,7 @@ template <class S> ReflectionResult<S> reflection(const Mat4<S>& A, const Mat4<S
 /// (mirror_image_of_plane); paper, (M^-1)^T A M^-1 with M from (9).
 template <class S> ReflectionResult<S> reflection_in_plane(const Mat4<S>& A, const Vec4<S>& plane, Method method) {
   ReflectionResult<S> r;
-  r.degenerate = is_degenerate_quadric<S>(A);
+  set_reflection_status(r, reflection_degenerate<S>(A));
   r.B = method == Method::paper ? mirror_image_paper<S>(A, mirror_matrix<S>(plane)) : mirror_image_of_plane<S>(A, plane);
   return r;
 }

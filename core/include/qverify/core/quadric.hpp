@@ -109,23 +109,11 @@ template <class S> Mat4<S> adjugate4(const Mat4<S>& A) {
   return adj;
 }
 
-/// A quadric is *degenerate* here when rank A <= 2: the zero form, a double
-/// plane or a plane pair (adj A = 0). Cones and cylinders (rank 3) are proper
-/// shapes of the scene format and are not flagged. Floating types compare
-/// |adj A|_max with the status tolerance times |A|_max^3.
-template <class S> bool is_degenerate_quadric(const Mat4<S>& A) {
-  const S s = max_abs(A);
-  return negligible<S>(max_abs(adjugate4<S>(A)), S(s * s * s));
-}
-
 /// A basis of the plane pi^T x = 0 (a 3-dimensional subspace of homogeneous
-/// 4-vectors), division-free: with k the index of the largest |pi_k|, the
-/// columns are pi_k e_j - pi_j e_k (j != k). x = E s maps plane coordinates s
-/// to points of the plane.
-template <class S> Eigen::Matrix<S, 4, 3> plane_basis(const Vec4<S>& pi) {
-  int k = 0;
-  for (int i = 1; i < 4; ++i)
-    if (qverify::less_than<S>(abs_of<S>(pi(k)), abs_of<S>(pi(i)))) k = i;
+/// 4-vectors), division-free: with pivot k (pi_k != 0), the columns are
+/// pi_k e_j - pi_j e_k (j != k). x = E s maps plane coordinates s to points of
+/// the plane.
+template <class S> Eigen::Matrix<S, 4, 3> plane_basis_at(const Vec4<S>& pi, int k) {
   Eigen::Matrix<S, 4, 3> E = Eigen::Matrix<S, 4, 3>::Zero();
   for (int j = 0, col = 0; j < 4; ++j) {
     if (j == k) continue;
@@ -136,24 +124,31 @@ template <class S> Eigen::Matrix<S, 4, 3> plane_basis(const Vec4<S>& pi) {
   return E;
 }
 
-/// Restriction of the quadric A to the plane pi: the 3x3 conic K = E^T A E
-/// with E = plane_basis(pi).
-template <class S> Mat3<S> conic_on_plane(const Mat4<S>& A, const Vec4<S>& pi) {
-  const Eigen::Matrix<S, 4, 3> E = plane_basis<S>(pi);
-  return E.transpose() * A * E;
+/// plane_basis_at with the pivot at the largest |pi_k|.
+template <class S> Eigen::Matrix<S, 4, 3> plane_basis(const Vec4<S>& pi) {
+  int k = 0;
+  for (int i = 1; i < 4; ++i)
+    if (qverify::less_than<S>(abs_of<S>(pi(k)), abs_of<S>(pi(i)))) k = i;
+  return plane_basis_at<S>(pi, k);
 }
 
-/// True when the conic x^T K x = 0 has no real point, i.e. K is definite
-/// (Sylvester: leading minors m1, m2, m3 all positive, or alternating
-/// -,+,-). Floating types ask each minor to clear the status tolerance.
-template <class S> bool conic_is_empty(const Mat3<S>& K) {
-  const S s = max_abs(K);
-  const S m1 = K(0, 0);
-  const S m2 = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0);
-  const S m3 = K.determinant();
-  if (negligible<S>(m1, s) || negligible<S>(m2, S(s * s)) || negligible<S>(m3, S(s * s * s))) return false;
-  if (!qverify::less_than<S>(S(0), m2)) return false;
-  return sign_of<S>(m1) == sign_of<S>(m3);
+/// Restriction of the quadric A to the plane with basis E: the 3x3 conic
+/// K = E^T A E (summed term by term, for every scalar type).
+template <class S> Mat3<S> conic_in_basis(const Mat4<S>& A, const Eigen::Matrix<S, 4, 3>& E) {
+  Mat3<S> K;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      S sum(0);
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) sum = sum + E(a, i) * A(a, b) * E(b, j);
+      K(i, j) = sum;
+    }
+  return K;
+}
+
+/// Restriction of the quadric A to the plane pi (basis: plane_basis(pi)).
+template <class S> Mat3<S> conic_on_plane(const Mat4<S>& A, const Vec4<S>& pi) {
+  return conic_in_basis<S>(A, plane_basis<S>(pi));
 }
 
 }  // namespace qverify

@@ -77,16 +77,6 @@ inline typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
   return best;
 }
 
-/// Relative tolerance of the status decisions of the core: `64 * epsilon`
-/// (zero, i.e. exact tests, for exact types). A quantity q computed from data of
-/// scale `s` is declared zero when `|q| <= status_tolerance<S>() * s`.
-template <class S> inline S status_tolerance() { return S(64) * Eigen::NumTraits<S>::epsilon(); }
-
-/// `|q| <= tol * scale` with the core's status tolerance; `q == 0` for exact types.
-template <class S> inline bool negligible(const S& q, const S& scale) {
-  return !qverify::less_than<S>(S(status_tolerance<S>() * scale), abs_of<S>(q));
-}
-
 /// a . b summed left to right, ((a0 b0 + a1 b1) + a2 b2) + ...: one evaluation
 /// order for every scalar type. Eigen's own dot products and matrix-vector
 /// products reorder the sum when they vectorise (double) and not otherwise

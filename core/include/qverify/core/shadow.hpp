@@ -19,7 +19,7 @@
 /// Both give P up to a positive factor (1/l_z^2), pi up to a positive factor
 /// (after orienting S) and R up to a non-zero factor.
 
-#include <qverify/core/quadric.hpp>
+#include <qverify/core/predicates.hpp>
 
 namespace qverify {
 
@@ -200,44 +200,60 @@ template <class S> struct ShadowResult {
   Mat4<S> P, R;
   Vec4<S> polar_plane;
   unsigned flags = 0;
+  /// Predicates the floating filter could not decide on these inputs (see
+  /// predicates.hpp); qverify/exact/statuses.hpp settles them exactly.
+  unsigned undecided = 0;
   /// Method paper with a singular frame: P, pi and R come from the direct formulas.
   bool direct_fallback = false;
   bool has_paper = false;
   PaperIntermediates<S> paper;
 
   bool has(ShadowFlag f) const { return flags & static_cast<unsigned>(f); }
-  /// The item's status word: "ok" or the highest-priority flag.
+  /// The item's status word: "ok" or the highest-priority flag; "undecided"
+  /// when a predicate of higher priority than every flag set is still open.
   const char* status() const {
-    for (ShadowFlag f : kFlagOrder)
+    for (ShadowFlag f : kFlagOrder) {
       if (has(f)) return flag_word(f);
+      if (undecided & static_cast<unsigned>(f)) return "undecided";
+    }
     return "ok";
   }
 };
 
-/// Geometric special cases of (A, L), decided exactly for exact types and
-/// with the core's relative tolerance (64 eps, scale-aware) for floating ones:
-///  - degenerate-quadric: |adj A| <= tol |A|^3;
-///  - light-on-surface: |L^T A L| <= tol |L|^T |A| |L|;
-///  - no-real-silhouette: the conic of A on the polar plane is definite.
-template <class S> unsigned shadow_flags(const Mat4<S>& A, const Vec4<S>& L) {
-  unsigned flags = 0;
-  if (is_degenerate_quadric<S>(A)) flags |= static_cast<unsigned>(ShadowFlag::degenerate_quadric);
-  const Vec4<S> AL = A * L;
-  const Vec4<S> absL = L.unaryExpr([](const S& x) { return abs_of<S>(x); });
-  const Mat4<S> absA = A.unaryExpr([](const S& x) { return abs_of<S>(x); });
-  const S s = L.dot(AL), scale = absL.dot(absA * absL);
-  if (negligible<S>(s, scale)) {
-    flags |= static_cast<unsigned>(ShadowFlag::light_on_surface);
-  } else if (conic_is_empty<S>(conic_on_plane<S>(A, AL))) {
-    flags |= static_cast<unsigned>(ShadowFlag::no_real_silhouette);
+/// The status predicates of (A, L) (predicates.hpp), evaluated exactly for
+/// exact types and through the certified filter otherwise: degenerate-quadric,
+/// light-on-surface and, when the light is not on the surface,
+/// no-real-silhouette. Never a tolerance: what the filter cannot decide is
+/// reported in `undecided`.
+template <class S> StatusDecision shadow_status(const Mat4<S>& A, const Vec4<S>& L) {
+  using P = PredicateScalar<S>;
+  const Mat4<P> a = to_predicate<P>(A);
+  const Vec4<P> l = to_predicate<P>(L);
+  StatusDecision d;
+  auto put = [&d](Truth t, ShadowFlag f) {
+    if (t == Truth::yes) d.flags |= static_cast<unsigned>(f);
+    if (t == Truth::unknown) d.undecided |= static_cast<unsigned>(f);
+  };
+  put(degenerate_quadric<P>(a), ShadowFlag::degenerate_quadric);
+  const Truth on = light_on_surface<P>(a, l);
+  put(on, ShadowFlag::light_on_surface);
+  if (on != Truth::yes) {
+    const Truth empty = silhouette_empty<P>(a, l);
+    // Unknown whether the light is on the surface: a definite conic counts only if it is not.
+    put(on == Truth::unknown && empty == Truth::yes ? Truth::unknown : empty, ShadowFlag::no_real_silhouette);
   }
-  return flags;
+  return d;
 }
+
+/// The decided flags of shadow_status (all of them for exact types).
+template <class S> unsigned shadow_flags(const Mat4<S>& A, const Vec4<S>& L) { return shadow_status<S>(A, L).flags; }
 
 /// Shadow volume of A under L by either route (see the file comment).
 template <class S> ShadowResult<S> shadow(const Mat4<S>& A, const Vec4<S>& L, Method method) {
   ShadowResult<S> r;
-  r.flags = shadow_flags<S>(A, L);
+  const StatusDecision d = shadow_status<S>(A, L);
+  r.flags = d.flags;
+  r.undecided = d.undecided;
   if (method == Method::paper) {
     r.paper.frame = paper_frame<S>(L);
     if (r.paper.frame.singular) {

@@ -38,4 +38,14 @@ Rational to_rational(const Float128& x);
 Rational to_rational(const Mpfr& x);
 inline const Rational& to_rational(const Rational& x) { return x; }
 
+/// Exact rational value of a finite scalar of any precision (an interval: its midpoint).
+template <class S> Rational exact_value(const S& x) { return to_rational(x); }
+
+/// Entrywise exact_value.
+template <class S, int R, int C> Eigen::Matrix<Rational, R, C> exact_matrix(const Eigen::Matrix<S, R, C>& m) {
+  Eigen::Matrix<Rational, R, C> out;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = exact_value(m(i));
+  return out;
+}
+
 }  // namespace qverify

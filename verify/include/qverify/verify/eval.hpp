@@ -4,6 +4,8 @@
 /// (quadric, light) and (quadric, mirror) pairs are computed; a mirror matrix
 /// is built only when some reflection needs it.
 
+#include <qverify/exact/statuses.hpp>
+#include <qverify/verify/accuracy.hpp>
 #include <qverify/verify/precision.hpp>
 #include <qverify/verify/scalar_json.hpp>
 #include <qverify/verify/frames.hpp>
@@ -131,8 +133,17 @@ template <class S> struct ReflectionItem {
   const char* escalated = nullptr;
 };
 
+/// What eval says of an item's accuracy (cli.md, "Accuracy"): a bound of its
+/// geometric error (accuracy.hpp) and whether that may exceed the target.
+struct ItemAccuracy {
+  std::optional<double> bound;  ///< error_bound; nullopt with a reason where none can be given
+  std::string reason;
+  bool inaccurate = false;
+};
+
 template <class S> struct Evaluation {
   TypedScene<S> scene;  ///< world frame, each input rounded once (range checks)
+  std::vector<ItemAccuracy> shadow_accuracy, reflection_accuracy;  ///< filled by assess_accuracy
   Frame frame = Frame::world;
   std::vector<PreparedShadow<S>> prepared_shadows;
   std::vector<PreparedReflection<S>> prepared_reflections;
@@ -251,7 +262,7 @@ template <class S> void evaluate_items(const Scene& sc, Method method, Evaluatio
   for (const PreparedReflection<S>& pr : ev.prepared_reflections) {
     if (pr.local) {
       ReflectionResult<S> r;
-      r.degenerate = is_degenerate_quadric<S>(pr.A);
+      set_reflection_status(r, reflection_degenerate<S>(pr.A));
       r.B = mirror_image<S>(pr.A, pr.G);  // G^T A G
       ReflectionItem<S> item{pr.pair, pr.M, r, pr.origin};
       if constexpr (std::is_floating_point_v<S>)
@@ -276,16 +287,118 @@ template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::o
   return ev;
 }
 
-/// Interval results: the status words are decided by the exact twin (an
-/// interval comparison can only say "possibly").
-template <class S> void certify_statuses(const Scene& sc, Method method, Evaluation<S>& ev) {
-  const Evaluation<Rational> ex = evaluate<Rational>(sc, method, Frame::world);
-  for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
-    ev.shadows[k].result.flags = ex.shadows[k].result.flags;
-    ev.shadows[k].result.direct_fallback = ex.shadows[k].result.direct_fallback;
+/// The status words of every item, as predicates of the scene's exact inputs
+/// (exact/statuses.hpp: interval filter, rationals on doubt), whatever S is
+/// and whichever frame the item was computed in (the predicates are
+/// projective invariants). Method paper adds singular-frame where the exact
+/// light has l_z = 0 (v_z = 0 for a parallel light).
+template <class S> void decide_statuses(const Scene& sc, Method method, Evaluation<S>& ev) {
+  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
+  std::vector<std::optional<bool>> degenerate(sc.quadrics.size());
+  for (auto& it : ev.shadows) {
+    const Vec4<Rational>& L = ex.L[it.pair.other];
+    const StatusDecision d = exact_shadow_status(ex.A[it.pair.quadric], L);
+    it.result.flags = d.flags;
+    it.result.undecided = 0;
+    if (method == Method::paper && L(2) == 0) it.result.flags |= static_cast<unsigned>(ShadowFlag::singular_frame);
   }
-  for (std::size_t k = 0; k < ev.reflections.size(); ++k)
-    ev.reflections[k].result.degenerate = ex.reflections[k].result.degenerate;
+  for (auto& it : ev.reflections) {
+    auto& deg = degenerate[it.pair.quadric];
+    if (!deg) deg = exact_degenerate(ex.A[it.pair.quadric]);
+    set_reflection_status(it.result, *deg ? Truth::yes : Truth::no);
+  }
+}
+
+/// Options of the accuracy assessment (cli.md "Accuracy"; accuracy.hpp).
+struct AccuracyOptions {
+  double target = kDefaultAccuracy;
+  int samples = kDefaultSamples;
+  std::uint64_t seed = 1;
+};
+
+/// error_bound and `inaccurate` of every floating item: the geometric error
+/// measured exactly on the seeded sample points (the points `verify` uses by
+/// default), times kBoundMargin. On the default path (builtin floating types,
+/// method direct, local frames) an item whose bound exceeds the target is
+/// first recomputed in binary128 from its exact inputs and measured again.
+template <class S> void assess_accuracy(const Scene& sc, Method method, Evaluation<S>& ev, const AccuracyOptions& opt) {
+  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
+  ev.shadow_accuracy.assign(ev.shadows.size(), {});
+  ev.reflection_accuracy.assign(ev.reflections.size(), {});
+  if constexpr (std::is_same_v<S, Rational>) {
+    for (auto& a : ev.shadow_accuracy) a.bound = 0;
+    for (auto& a : ev.reflection_accuracy) a.bound = 0;
+    return;
+  } else {
+    auto judge = [&](ItemAccuracy& acc, const Measure& geometric, bool has_points) {
+      acc = {};
+      if (!has_points) {
+        acc.reason = "no real point to measure the result on";
+      } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
+        acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
+        acc.inaccurate = true;
+      } else {
+        acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
+        acc.inaccurate = *acc.bound > opt.target;
+      }
+    };
+    for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
+      const ItemPoints pts = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
+                                               opt.samples, item_seed(opt.seed, 1, k));
+      auto measure = [&](const ShadowItem<S>& it, ItemAccuracy& acc) {
+        const ShadowResult<S>& r = it.result;
+        if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R)) {
+          acc = {};
+          acc.reason = "non-finite result";
+          acc.inaccurate = true;
+          return;
+        }
+        const ShadowError e = shadow_error(pts, it.origin, exact_matrix(r.P), exact_matrix(r.polar_plane), exact_matrix(r.R));
+        judge(acc, e.geometric, !pts.points.empty());
+      };
+      measure(ev.shadows[k], ev.shadow_accuracy[k]);
+      if constexpr (std::is_floating_point_v<S>) {
+        const PreparedShadow<S>& ps = ev.prepared_shadows[k];
+        if (ev.shadow_accuracy[k].inaccurate && ps.exact && method == Method::direct && !ev.shadows[k].escalated) {
+          ev.shadows[k] = escalated_shadow<S>(ps);
+          measure(ev.shadows[k], ev.shadow_accuracy[k]);
+        }
+      }
+    }
+    for (std::size_t k = 0; k < ev.reflections.size(); ++k) {
+      const Pair& p = ev.reflections[k].pair;
+      const ItemPoints pts = reflected_points(ex.A[p.quadric], reference_mirror(ex.planes[p.other]), opt.samples,
+                                              item_seed(opt.seed, 2, k));
+      auto measure = [&](const ReflectionItem<S>& it, ItemAccuracy& acc) {
+        if (!all_finite(it.M) || !all_finite(it.result.B)) {
+          acc = {};
+          acc.reason = "non-finite result";
+          acc.inaccurate = true;
+          return;
+        }
+        judge(acc, reflection_error(pts, it.origin, exact_matrix(it.result.B)).geometric, !pts.points.empty());
+      };
+      measure(ev.reflections[k], ev.reflection_accuracy[k]);
+      if constexpr (std::is_floating_point_v<S>) {
+        const PreparedReflection<S>& pr = ev.prepared_reflections[k];
+        if (ev.reflection_accuracy[k].inaccurate && pr.exact && !ev.reflections[k].escalated) {
+          ev.reflections[k] = escalated_reflection<S>(pr);
+          measure(ev.reflections[k], ev.reflection_accuracy[k]);
+        }
+      }
+    }
+  }
+}
+
+/// A whole evaluation as the command line makes it: the items, their exact
+/// statuses and (with `accuracy`) their error bounds.
+template <class S>
+Evaluation<S> evaluate_checked(const Scene& sc, Method method, std::optional<Frame> frame,
+                               const std::optional<AccuracyOptions>& accuracy) {
+  Evaluation<S> ev = evaluate<S>(sc, method, frame);
+  if (accuracy) assess_accuracy<S>(sc, method, ev, *accuracy);
+  decide_statuses<S>(sc, method, ev);
+  return ev;
 }
 
 inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
@@ -298,7 +411,15 @@ inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
 /// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
 /// (every special case that applies), `fallback` and the paper route's
 /// intermediates (`paper`: M, T, C, D, S).
-template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it) {
+/// error_bound (or null with error_bound_reason) of an item.
+inline void accuracy_json(nlohmann::ordered_json& j, const ItemAccuracy* acc) {
+  if (!acc) return;
+  j["error_bound"] = acc->bound ? nlohmann::ordered_json(*acc->bound) : nlohmann::ordered_json(nullptr);
+  if (!acc->reason.empty()) j["reason"] = acc->reason;
+}
+
+template <class S>
+nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it, const ItemAccuracy* acc = nullptr) {
   nlohmann::ordered_json j;
   j["quadric"] = sc.quadrics[it.pair.quadric].id;
   j["light"] = sc.lights[it.pair.other].id;
@@ -314,7 +435,9 @@ template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const Sha
   for (ShadowFlag f : kFlagOrder)
     if (r.has(f)) flags.push_back(flag_word(f));
   if (!finite) flags.push_back("non-finite");
+  if (acc && acc->inaccurate) flags.push_back("inaccurate");
   j["flags"] = flags;
+  accuracy_json(j, acc);
   if (r.direct_fallback) j["fallback"] = "direct formulas (the paper's frame does not exist for this light)";
   if (r.has_paper) {
     j["paper"] = {{"M", matrix_json(r.paper.frame.M)},
@@ -326,7 +449,8 @@ template <class S> nlohmann::ordered_json shadow_json(const Scene& sc, const Sha
   return j;
 }
 
-template <class S> nlohmann::ordered_json reflection_json(const Scene& sc, const ReflectionItem<S>& it) {
+template <class S>
+nlohmann::ordered_json reflection_json(const Scene& sc, const ReflectionItem<S>& it, const ItemAccuracy* acc = nullptr) {
   nlohmann::ordered_json j;
   j["quadric"] = sc.quadrics[it.pair.quadric].id;
   j["mirror"] = sc.mirrors[it.pair.other].id;
@@ -336,6 +460,12 @@ template <class S> nlohmann::ordered_json reflection_json(const Scene& sc, const
   if (it.escalated) j["escalated"] = it.escalated;
   j["M"] = matrix_json(it.M);
   j["B"] = matrix_json(it.result.B);
+  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
+  if (it.result.degenerate) flags.push_back("degenerate-quadric");
+  if (!finite) flags.push_back("non-finite");
+  if (acc && acc->inaccurate) flags.push_back("inaccurate");
+  j["flags"] = flags;
+  accuracy_json(j, acc);
   return j;
 }
 
@@ -344,9 +474,9 @@ nlohmann::ordered_json skipped_json(const Scene& sc);
 
 /// The whole `qverify-eval/1` document.
 template <class S>
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
-  Evaluation<S> ev = evaluate<S>(sc, method, frame);
-  if constexpr (ScalarOps<S>::interval) certify_statuses(sc, method, ev);
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                                     const AccuracyOptions& accuracy) {
+  const Evaluation<S> ev = evaluate_checked<S>(sc, method, frame, accuracy);
   nlohmann::ordered_json doc;
   doc["format"] = "qverify-eval/1";
   doc["scene"] = sc.name;
@@ -357,10 +487,19 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
   if (prec.kind == Precision::Kind::interval)
     doc["certified"] = "every entry is an enclosure {lo, hi} of the exact result of the same formula; statuses "
                        "decided in exact arithmetic";
+  doc["accuracy"] = accuracy.target;
+  doc["error_bound_rule"] =
+      "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
+      "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
+      "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
+      "points of verify --seed " + std::to_string(accuracy.seed) + "), times " + std::to_string(kBoundMargin) +
+      " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
   doc["shadows"] = nlohmann::ordered_json::array();
-  for (const auto& it : ev.shadows) doc["shadows"].push_back(shadow_json(sc, it));
+  for (std::size_t k = 0; k < ev.shadows.size(); ++k)
+    doc["shadows"].push_back(shadow_json(sc, ev.shadows[k], &ev.shadow_accuracy[k]));
   doc["reflections"] = nlohmann::ordered_json::array();
-  for (const auto& it : ev.reflections) doc["reflections"].push_back(reflection_json(sc, it));
+  for (std::size_t k = 0; k < ev.reflections.size(); ++k)
+    doc["reflections"].push_back(reflection_json(sc, ev.reflections[k], &ev.reflection_accuracy[k]));
   doc["skipped"] = skipped_json(sc);
   doc["inputs_rounded"] = ev.scene.rounded_inputs;
   return doc;
@@ -369,6 +508,6 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
 /// eval_document for a run-time precision (one explicit instantiation per
 /// scalar type, each in its own translation unit).
 nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method,
-                                     std::optional<Frame> frame = std::nullopt);
+                                     std::optional<Frame> frame = std::nullopt, const AccuracyOptions& accuracy = {});
 
 }  // namespace qverify

@@ -6,18 +6,22 @@
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/scalar_list.hpp>
 
-#define QVERIFY_INSTANTIATE(T)                                                                                     \
+#define QVERIFY_INSTANTIATE(T)                                                                                       \
   template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,          \
-                                                            qverify::Method, std::optional<qverify::Frame>);                                         \
-  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,            \
-                                                          qverify::Method, std::optional<qverify::Frame>); \
-  template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,            \
+                                                            qverify::Method, std::optional<qverify::Frame>,          \
+                                                            const qverify::AccuracyOptions&);                        \
+  template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,          \
+                                                          qverify::Method, std::optional<qverify::Frame>,            \
+                                                          const std::optional<qverify::AccuracyOptions>&);           \
+  template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,          \
                                                           qverify::Method, double, int);
 
-#define QVERIFY_EXTERN(T)                                                                                          \
+#define QVERIFY_EXTERN(T)                                                                                            \
   extern template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,   \
-                                                                   qverify::Method, std::optional<qverify::Frame>);                                  \
-  extern template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,    \
-                                                                  qverify::Method, std::optional<qverify::Frame>);                                  \
-  extern template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,     \
+                                                                   qverify::Method, std::optional<qverify::Frame>,   \
+                                                                   const qverify::AccuracyOptions&);                 \
+  extern template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,   \
+                                                                  qverify::Method, std::optional<qverify::Frame>,    \
+                                                                  const std::optional<qverify::AccuracyOptions>&);   \
+  extern template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,    \
                                                                  qverify::Method, double, int);

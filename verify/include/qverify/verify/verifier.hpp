@@ -24,6 +24,7 @@ struct ShadowMatrices {
   Vec4<Rational> polar;
   std::optional<Mat4<Rational>> A;  ///< the quadric as this item used it (same frame), when known
   std::optional<Vec3<Rational>> origin;
+  std::optional<ItemAccuracy> accuracy;  ///< eval's error_bound and flag (computed results)
 };
 
 struct ReflectionMatrices {
@@ -31,12 +32,13 @@ struct ReflectionMatrices {
   std::string status, problem;
   Mat4<Rational> M, B;  ///< in the item's frame
   std::optional<Vec3<Rational>> origin;
+  std::optional<ItemAccuracy> accuracy;
 };
 
 /// Results to verify, aligned with the scene's requested pairs.
 struct ResultSet {
   Precision precision;  ///< the precision the results were computed in (sets the tolerance)
-  std::string method = "direct";
+  Method method = Method::direct;
   std::string source;   ///< "computed" or the candidate file
   std::vector<Mat4<Rational>> A;  ///< the quadrics as represented in that precision (exactly)
   std::vector<ShadowMatrices> shadows;
@@ -44,27 +46,19 @@ struct ResultSet {
   std::vector<std::string> notes;
 };
 
-/// Exact rational value of a finite scalar of any precision (binary floats are
-/// dyadic rationals).
-template <class S> Rational exact_value(const S& x) { return to_rational(x); }
-
-template <class S, int R, int C> Eigen::Matrix<Rational, R, C> exact_matrix(const Eigen::Matrix<S, R, C>& m) {
-  Eigen::Matrix<Rational, R, C> out;
-  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = exact_value(m(i));
-  return out;
-}
-
 /// Converts an evaluation exactly to rationals.
 template <class S>
 ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, const Precision& prec, Method method) {
   ResultSet rs;
   rs.precision = prec;
-  rs.method = method_name(method);
+  rs.method = method;
   rs.source = "computed";
   for (const auto& A : ev.scene.A)
     rs.A.push_back(all_finite(A) ? exact_matrix(A) : Mat4<Rational>(Mat4<Rational>::Zero()));
-  for (const auto& it : ev.shadows) {
+  for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
+    const auto& it = ev.shadows[k];
     ShadowMatrices m;
+    if (k < ev.shadow_accuracy.size()) m.accuracy = ev.shadow_accuracy[k];
     m.status = it.result.status();
     if (all_finite(it.result.P) && all_finite(it.result.R) && all_finite(it.result.polar_plane) && all_finite(it.A)) {
       m.present = true;
@@ -78,8 +72,10 @@ ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, 
     }
     rs.shadows.push_back(std::move(m));
   }
-  for (const auto& it : ev.reflections) {
+  for (std::size_t k = 0; k < ev.reflections.size(); ++k) {
+    const auto& it = ev.reflections[k];
     ReflectionMatrices m;
+    if (k < ev.reflection_accuracy.size()) m.accuracy = ev.reflection_accuracy[k];
     m.status = it.result.status();
     if (all_finite(it.M) && all_finite(it.result.B)) {
       m.present = true;
@@ -94,15 +90,19 @@ ResultSet result_set([[maybe_unused]] const Scene& sc, const Evaluation<S>& ev, 
   return rs;
 }
 
-/// Computes the scene in S by `method` and converts the results exactly.
+/// Computes the scene in S by `method` as eval does (exact statuses; with
+/// `accuracy`, error bounds and the escalation they trigger) and converts the
+/// results exactly.
 template <class S>
-ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame) {
-  return result_set<S>(sc, evaluate<S>(sc, method, frame), prec, method);
+ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                           const std::optional<AccuracyOptions>& accuracy) {
+  return result_set<S>(sc, evaluate_checked<S>(sc, method, frame, accuracy), prec, method);
 }
 
 /// computed_results for a run-time precision (instantiated per scalar type).
 ResultSet computed_results(const Scene& sc, const Precision& prec, Method method,
-                           std::optional<Frame> frame = std::nullopt);
+                           std::optional<Frame> frame = std::nullopt,
+                           const std::optional<AccuracyOptions>& accuracy = AccuracyOptions{});
 
 /// Reads a `qverify-eval/1` document made by any program. Numbers are read
 /// exactly from their text (JSON numbers, "p/q" or decimal strings, and
@@ -115,11 +115,16 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
                                  const Precision& fallback);
 
 struct VerifyOptions {
-  int samples = 64;
+  int samples = kDefaultSamples;
   std::uint64_t seed = 1;
+  double accuracy = kDefaultAccuracy;  ///< the accuracy target T (relative to the object size)
 };
 
-/// The `qverify-verify/1` document; `failed` counts failing checks.
-nlohmann::ordered_json verify_document(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt, int& failed);
+/// The `qverify-verify/1` document and how many checks failed.
+struct VerifyOutcome {
+  nlohmann::ordered_json document;
+  int passed = 0, failed = 0, skipped = 0;
+};
+VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt);
 
 }  // namespace qverify

@@ -1,0 +1,27 @@
+#include <qverify/exact/statuses.hpp>
+
+namespace qverify {
+
+namespace {
+template <int R, int C> Eigen::Matrix<Interval, R, C> enclosure(const Eigen::Matrix<Rational, R, C>& m) {
+  Eigen::Matrix<Interval, R, C> out;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = enclose(m(i));
+  return out;
+}
+}  // namespace
+
+StatusDecision exact_shadow_status(const Mat4<Rational>& A, const Vec4<Rational>& L, long* exact_fallbacks) {
+  const StatusDecision filtered = shadow_status<Interval>(enclosure(A), enclosure(L));
+  if (filtered.decided()) return filtered;
+  if (exact_fallbacks) ++*exact_fallbacks;
+  return shadow_status<Rational>(A, L);
+}
+
+bool exact_degenerate(const Mat4<Rational>& A, long* exact_fallbacks) {
+  const Truth t = degenerate_quadric<Interval>(enclosure(A));
+  if (t != Truth::unknown) return t == Truth::yes;
+  if (exact_fallbacks) ++*exact_fallbacks;
+  return degenerate_quadric<Rational>(A) == Truth::yes;
+}
+
+}  // namespace qverify
