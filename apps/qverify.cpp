@@ -145,16 +145,17 @@ void print_verify(const json& doc) {
 
 void print_audit(const json& doc, const std::string& dir) {
   fmt::print("precision audit of {} (reference: exact)\n\n", doc["scene"].get<std::string>());
-  fmt::print("{:<12} {:<7} {:>12} {:>14} {:>14} {:>8}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
-             "bits", "pareto");
+  fmt::print("{:<12} {:<7} {:>12} {:>14} {:>14} {:>8} {:>11}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
+             "bits", "inaccurate", "pareto");
   std::vector<std::string> front;
   for (const auto& p : doc["pareto"]) front.push_back(p.get<std::string>());
   for (const auto& r : doc["rows"]) {
     const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
     auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.3g}", v.get<double>()); };
-    fmt::print("{:<12} {:<7} {:>12.1f} {:>14} {:>14} {:>8}  {}\n", r["precision"].get<std::string>(),
+    fmt::print("{:<12} {:<7} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r["precision"].get<std::string>(),
                r["method"].get<std::string>(), r["ns_per_item"].get<double>(), num(r["max_rel_error"]),
                num(r["median_rel_error"]), r["correct_bits"].is_null() ? std::string("exact") : num(r["correct_bits"]),
+               fmt::format("{}/{}", r["inaccurate_items"].get<int>(), r["items"].get<int>()),
                std::find(front.begin(), front.end(), key) != front.end() ? "*" : "");
   }
   fmt::print("\nwrote {0}/report.json, {0}/report.html, {0}/error-vs-time.svg\n", dir);
@@ -489,6 +490,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if ((eval->parsed() || verify->parsed()) && !(std::isfinite(accuracy) && accuracy > 0))
+      throw UsageError("--accuracy: expected a positive finite number");
     if (eval->parsed()) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);

@@ -2,6 +2,7 @@
 #include "laws.hpp"
 
 #include <qverify/exact/scalars.hpp>
+#include <qverify/exact/statuses.hpp>
 
 #include <cmath>
 
@@ -98,12 +99,21 @@ TEST_CASE("status words of the special cases", "[analytic][status]") {
   }
   SECTION("light on the surface") {
     CHECK(std::string(shadow<Q>(A, point(Q(3, 5), Q(4, 5), 0), Method::direct).status()) == "light-on-surface");
-    const auto sh = shadow<double>(sphere_quadric<double>(Vec3<double>::Zero(), 1.0), Vec4<double>(0.6, 0.8, 0, 1),
-                                   Method::direct);
-    CHECK(std::string(sh.status()) == "light-on-surface");  // within the stated tolerance
-    const auto off = shadow<double>(sphere_quadric<double>(Vec3<double>::Zero(), 1.0), Vec4<double>(1 + 1e-9, 0, 0, 1),
-                                    Method::direct);
-    CHECK(std::string(off.status()) == "ok");
+    // In double, statuses are predicates of the doubles' exact values: 0.6 and 0.8 are not exactly on the
+    // sphere (the filter cannot tell, the exact settlement says ok), (0.5, 0.75, sqrt(3)/4 rounded) neither;
+    // (1, 0, 0) is, and 1 + 2^-52 is not.
+    const Mat4<double> A1 = sphere_quadric<double>(Vec3<double>::Zero(), 1.0);
+    auto settled = [&](const Vec4<double>& L) {
+      auto sh = shadow<double>(A1, L, Method::direct);
+      settle_status(sh, A1, L);
+      return std::string(sh.status());
+    };
+    CHECK(std::string(shadow<double>(A1, Vec4<double>(0.6, 0.8, 0, 1), Method::direct).status()) == "undecided");
+    CHECK(settled(Vec4<double>(0.6, 0.8, 0, 1)) == "ok");
+    CHECK(settled(Vec4<double>(1, 0, 0, 1)) == "light-on-surface");
+    CHECK(settled(Vec4<double>(0.5, std::sqrt(0.75), 0, 1)) != "light-on-surface");
+    CHECK(settled(Vec4<double>(1 + 0x1p-52, 0, 0, 1)) == "ok");
+    CHECK(settled(Vec4<double>(1 - 0x1p-53, 0, 0, 1)) == "no-real-silhouette");
   }
   SECTION("no real point at all") {
     Mat4<Q> imaginary = Mat4<Q>::Identity();  // x^2 + y^2 + z^2 + 1 = 0

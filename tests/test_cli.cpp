@@ -128,20 +128,36 @@ TEST_CASE("verify --precision exact proves every sampled point of the examples",
   CHECK(a.out == b.out);
 }
 
-TEST_CASE("verify in floating precisions measures small residuals within tolerance", "[cli][verify]") {
+TEST_CASE("verify in floating precisions passes within the accuracy target, float only at a float-sized one",
+          "[cli][verify]") {
   for (const char* p : {"float", "double", "long-double", "float128", "mpfr:200"})
     for (const char* m : {"direct", "paper"}) {
       INFO(p << " " << m);
+      const bool single = std::string(p) == "float";
       const Run r = run(std::string("verify ") + scene("mixed-requests.json") + " --json --samples 16 --precision " + p +
-                        " --method " + m);
+                        " --method " + m + (single ? " --accuracy 1e-5" : ""));
       REQUIRE(r.code == 0);
       const auto doc = nlohmann::json::parse(r.out);
       CHECK(doc["passed"] == 6);
       for (const auto& c : doc["checks"]) {
         CHECK_FALSE(c.contains("proved_exactly"));
-        CHECK(c["tolerance"].get<double>() > 0);
+        CHECK(c["accuracy"].get<double>() == (single ? 1e-5 : 1e-9));
+        CHECK(c["geometric_error"].get<double>() <= c["accuracy"].get<double>());
+        CHECK(c["consistent_with_precision"].get<bool>());
+        CHECK(c["object_size"].get<double>() >= 0);
+      }
+      if (single) {  // float cannot reach the default target of 1e-9 of the object's size, and verify says so
+        const Run strict = run(std::string("verify ") + scene("mixed-requests.json") + " --json --samples 16 --precision float --method " + m);
+        CHECK(strict.code == 1);
       }
     }
+  for (const char* bad : {"0", "-1e-9", "abc", "nan"}) {
+    INFO(bad);
+    const Run r = run(std::string("verify ") + scene("mixed-requests.json") + " --accuracy " + bad);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(run(std::string("eval ") + scene("mixed-requests.json") + " --accuracy " + bad).code == 2);
+  }
 }
 
 TEST_CASE("verify with a candidate catches wrong matrices and passes right ones", "[cli][verify][candidate]") {

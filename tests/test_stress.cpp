@@ -23,6 +23,8 @@ TEST_CASE("every stress family at its worst case: the default double path meets 
     const auto& p = f["points"][0];
     INFO("param " << p["param"].get<double>() << " target " << p["target"].get<double>());
     CHECK(f["default_meets_target"].get<bool>());
+    INFO(f["flag_check"].dump());
+    CHECK(f["flag_check"]["ok"].get<bool>());  // every run beyond the target was flagged
     // every point is run in at least 4 precisions and both methods
     std::set<std::string> precisions, methods;
     for (const auto& r : p["runs"]) {

@@ -15,13 +15,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (sc.shadows.size() + sc.reflections.size() > 16) return 0;
+  const qverify::AccuracyOptions few{qverify::kDefaultAccuracy, 4, 1};  // error bounds on 4 points: fuzzing wants speed
   for (const char* p : {"double", "float"}) {
     try {
-      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::direct);
-      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::paper);
+      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::direct, std::nullopt, few);
+      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::paper, std::nullopt, few);
     } catch (const qverify::InputError&) {  // a value out of range for the precision
     }
   }
-  if (size < 1024) (void)qverify::eval_document(sc, *qverify::parse_precision("exact"), qverify::Method::paper);
+  if (size < 1024)
+    (void)qverify::eval_document(sc, *qverify::parse_precision("exact"), qverify::Method::paper, std::nullopt, few);
   return 0;
 }

@@ -103,6 +103,11 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
       r["correct_bits"] = maxe > 0 ? number_or_null(-std::log2(maxe)) : json(nullptr);
       if (maxe == 0) r["exact_match"] = true;
       r["items"] = n_items;
+      // eval's flag per precision: items whose error bound exceeds the accuracy target 1e-9
+      int inaccurate = 0;
+      for (const auto& it : tr.results.shadows) inaccurate += it.accuracy && it.accuracy->inaccurate;
+      for (const auto& it : tr.results.reflections) inaccurate += it.accuracy && it.accuracy->inaccurate;
+      r["inaccurate_items"] = inaccurate;
       r["reps_per_batch"] = tr.reps_per_batch;
       r["batches"] = tr.batches;
       r["inputs_rounded"] = tr.inputs_rounded;

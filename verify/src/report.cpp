@@ -43,7 +43,7 @@ std::string audit_html(const json& doc, const std::string& svg) {
   for (const auto& p : doc["pareto"]) pareto.push_back(p.get<std::string>());
   b += "<h2>Precision ladder</h2>\n<table id=\"rows\"><tr><th class=\"l\">precision</th><th class=\"l\">method</th>"
        "<th>ns per item</th><th>max rel. error</th><th>median rel. error</th><th>correct bits</th>"
-       "<th>inputs rounded</th><th class=\"l\">Pareto</th></tr>\n";
+       "<th>inputs rounded</th><th>flagged inaccurate</th><th class=\"l\">Pareto</th></tr>\n";
   for (const auto& r : doc["rows"]) {
     const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
     const bool front = std::find(pareto.begin(), pareto.end(), key) != pareto.end();
@@ -51,7 +51,8 @@ std::string audit_html(const json& doc, const std::string& svg) {
          "</td><td class=\"l\">" + sci(r["method"]) + "</td><td>" + sci(r["ns_per_item"]) + "</td><td>" +
          sci(r["max_rel_error"]) + "</td><td>" + sci(r["median_rel_error"]) + "</td><td>" +
          (r["correct_bits"].is_null() ? std::string("exact") : sci(r["correct_bits"])) + "</td><td>" +
-         sci(r["inputs_rounded"]) + "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
+         sci(r["inputs_rounded"]) + "</td><td>" + sci(r["inaccurate_items"]) + " of " + sci(r["items"]) +
+         "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
   }
   b += "</table>\n";
   b += "<h2>Items</h2>\n<table id=\"items\"><tr><th class=\"l\">kind</th><th class=\"l\">quadric</th>"
@@ -102,13 +103,19 @@ std::string stress_html(const json& doc, const std::vector<std::pair<std::string
       }
     b += std::string("<p><b>Default double path meets the target at every point: ") +
          (f["default_meets_target"].get<bool>() ? "yes" : "NO") + "</b> (target: " + sci(f["geometric_target"]) + ").</p>\n";
+    if (f.contains("flag_check"))
+      b += std::string("<p><b>Flag self-check: ") + (f["flag_check"]["ok"].get<bool>() ? "passed" : "FAILED") + "</b> (" +
+           sci(f["flag_check"]["rule"]) + "; missed " + std::to_string(f["flag_check"]["missed"].size()) + ", spurious " +
+           std::to_string(f["flag_check"]["spurious"].size()) + "). Cells marked &#9873; are flagged inaccurate.</p>\n";
     b += "<table><tr><th>" + sci(f["parameter"]) + "</th><th>exact status</th><th>eps*kappa</th><th>rounded exact</th>";
     for (const auto& r : f["points"][0]["runs"]) b += "<th>" + sci(r["run"]) + "</th>";
     b += "</tr>\n";
     for (const auto& p : f["points"]) {
       b += "<tr><td>" + sci(p["param"]) + "</td><td class=\"l\">" + sci(p["exact_status"]) + "</td><td>" +
            sci(p["predicted_double_error"]) + "</td><td>" + sci(p["rounded_exact_error"]) + "</td>";
-      for (const auto& r : p["runs"]) b += "<td title=\"" + sci(r["status"]) + "\">" + sci(r["geometric_error"]) + "</td>";
+      for (const auto& r : p["runs"])
+        b += "<td title=\"" + sci(r["status"]) + "\">" + sci(r["geometric_error"]) +
+             (r.contains("flags") && !r["flags"].empty() ? " &#9873;" : "") + "</td>";
       b += "</tr>\n";
     }
     b += "</table>\n<p class=\"note\">Slopes (log-log, least squares) of the geometric error against " +

@@ -1,5 +1,6 @@
 #include <qverify/exact/number_text.hpp>
 #include <qverify/exact/sampling.hpp>
+#include <qverify/verify/accuracy.hpp>
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/plot.hpp>
 #include <qverify/verify/report.hpp>
@@ -54,41 +55,41 @@ std::vector<StressFamily> make_families() {
                decades(-1, -15, -1), [](double e) {
                  const Q s = Q(1) + pow10(exponent_of(e));
                  return scene_text("light-near-surface", sphere(0, 0, 0, 1), point_light(Q(2, 7) * s, Q(3, 7) * s, Q(6, 7) * s), "");
-               }, 1, false});
+               }, false});
   f.push_back({"light-far", "unit sphere; point light at distance D along (2,3,6)/7, going to infinity", "D",
                decades(1, 15), [](double d) {
                  const Q D = pow10(exponent_of(d));
                  return scene_text("light-far", sphere(0, 0, 0, 1), point_light(Q(2, 7) * D, Q(3, 7) * D, Q(6, 7) * D), "");
-               }, 1, false});
+               }, false});
   f.push_back({"light-near-z0", "sphere at (0,0,-3); light at (2,1,l_z), l_z -> 0: the paper's T (1/l_z) breaks", "l_z",
                decades(-1, -15, -1), [](double z) {
                  return scene_text("light-near-z0", sphere(0, 0, -3, 1), point_light(2, 1, pow10(exponent_of(z))), "");
-               }, 1, false});
+               }, false});
   f.push_back({"thin-ellipsoid", "rotated ellipsoid with radii 1, 1/2 and 1/aspect; light at (2,3,6)", "aspect",
                decades(0, 12), [](double a) {
                  const std::string e = R"({"id": "obj", "ellipsoid": {"center": )" + vec(Q(1, 2), Q(-1, 4), 0) +
                                        R"(, "radii": )" + vec(1, Q(1, 2), Q(1) / pow10(exponent_of(a))) +
                                        R"(, "axes": [["3/5", "-4/5", 0], ["4/5", "3/5", 0], [0, 0, 1]]}})";
                  return scene_text("thin-ellipsoid", e, point_light(2, 3, 6), "");
-               }, 1, false});
+               }, false});
   f.push_back({"far-from-origin", "unit sphere at (d, 2, 1); light at its centre + (2,3,6)", "d", decades(0, 12),
                [](double d) {
                  const Q D = pow10(exponent_of(d));
                  return scene_text("far-from-origin", sphere(D, 2, 1, 1), point_light(D + 2, 5, 7), "");
-               }, 1, false});
+               }, false});
   f.push_back({"near-degenerate", "ellipsoid with radii 1, 1, R: det A -> 0, the ellipsoid becomes a cylinder", "R",
                decades(0, 14), [](double r) {
                  const std::string e = R"({"id": "obj", "ellipsoid": {"center": )" + vec(Q(1, 4), 0, Q(1, 2)) +
                                        R"(, "radii": )" + vec(1, 1, pow10(exponent_of(r))) +
                                        R"(, "axes": [[1, 0, 0], [0, "3/5", "-4/5"], [0, "4/5", "3/5"]]}})";
                  return scene_text("near-degenerate", e, point_light(2, 3, 6), "");
-               }, 1, false});
+               }, false});
   f.push_back({"mirror-far", "unit sphere at (1/2, 1/4, 0); mirror 2x + 3y + 6z = 7 d, d -> infinity", "d", decades(0, 12),
                [](double d) {
                  const Q D = pow10(exponent_of(d));
                  return scene_text("mirror-far", sphere(Q(1, 2), Q(1, 4), 0, 1), "",
                                    R"({"id": "mirror", "plane": [2, 3, 6, )" + q(Q(-7) * D) + "]}");
-               }, 1, true});
+               }, true});
   f.push_back({"scale-extremes", "sphere at (1,2,3), radius 1, as a matrix with every entry scaled by s", "s",
                decades(-150, 150, 25), [](double s) {
                  const Q S = pow10(exponent_of(s));
@@ -100,7 +101,7 @@ std::vector<StressFamily> make_families() {
                    m += "]";
                  }
                  return scene_text("scale-extremes", m + "]}", point_light(5, 1, 9), "");
-               }, 1, false});
+               }, false});
   f.push_back({"decimal-inputs", "sphere of radius 7/10 s at (0.1, 0.2, 0.3), light at the centre + s (2,3,6): decimal "
                "inputs that binary cannot represent, the object shrinking", "s", decades(0, -12, -1),
                [](double s) {
@@ -108,7 +109,7 @@ std::vector<StressFamily> make_families() {
                  const Q cx(1, 10), cy(2, 10), cz(3, 10);
                  return scene_text("decimal-inputs", sphere(cx, cy, cz, Q(7, 10) * S),
                                    point_light(cx + 2 * S, cy + 3 * S, cz + 6 * S), "");
-               }, 0, false});
+               }, false});
   return f;
 }
 
@@ -136,23 +137,9 @@ constexpr std::size_t kNaiveRun = 2, kDefaultRun = 3;
 
 const char* kColors[] = {"#9edae5", "#17becf", "#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#98df8a", "#9467bd", "#c5b0d5"};
 
-/// Max first-order distance of the points (already in the result's frame) from Qm.
-double max_distance(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
-  Measure worst = 0;
-  for (const RootPoint& x : pts) {
-    const RootNumber f = x.form(Qm);
-    if (CGAL::is_zero(f)) continue;
-    Measure g = 0;
-    for (int i = 0; i < 3; ++i) {
-      const Measure gi = to_measure(x.linear(Qm.row(i).transpose()));
-      g += gi * gi;
-    }
-    const Measure w = abs(to_measure(x.coords()[3]));
-    if (!(g > 0) || !(w > 0)) return INFINITY;
-    const Measure d = abs(to_measure(f)) / (w * 2 * sqrt(g));
-    if (d > worst) worst = d;
-  }
-  return worst.convert_to<double>();
+/// The geometric error of Qm (given in the frame with origin o) over the item's points.
+double geometric_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& Qm) {
+  return relative(measure_quadric(in_frame(pts.points, origin), Qm), pts.size).convert_to<double>();
 }
 
 /// Least-squares slope of log10(y) against log10(x) over finite, positive points.
@@ -187,6 +174,8 @@ json run_stress(const StressOptions& opt) {
     if (opt.progress) opt.progress("stress: " + fam.name);
     json points = json::array();
     std::vector<std::vector<double>> geo(specs.size()), mat(specs.size());
+    std::vector<std::vector<bool>> flags(specs.size());
+    json missed = json::array(), spurious = json::array();
     std::vector<double> params, predicted, floors;
     bool all_meet = true;
     const std::vector<double> values = opt.worst_only ? std::vector<double>{fam.values.back()} : fam.values;
@@ -194,17 +183,11 @@ json run_stress(const StressOptions& opt) {
       const Scene sc = parse_scene(fam.scene(v), fam.name + ".json");
       const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
       const Mat4<Q>& A = ref.scene.A[0];
-      // object size for the relative geometric error
-      const double size = fam.size > 0 ? fam.size : v * 7 / 10;
-      // exact sample points (world), shifted into each result's frame later
-      std::vector<RootPoint> pts;
+      // exact sample points (world) of the item, and the object's size
       Mat4<Q> Mw = Mat4<Q>::Identity();
-      if (fam.reflection) {
-        Mw = ref.reflections[0].M;
-        for (const RootPoint& x : sample_quadric(A, opt.samples, 11).points) pts.push_back(x.mapped(Mw));
-      } else {
-        pts = sample_section(A, Vec4<Q>(A * ref.scene.L[0]), opt.samples, 11).points;
-      }
+      if (fam.reflection) Mw = ref.reflections[0].M;
+      const ItemPoints pts = fam.reflection ? reflected_points(A, Mw, opt.samples, 11)
+                                            : terminator_points(A, ref.scene.L[0], opt.samples, 11);
       // first-order condition estimate of the naive double computation (world frame)
       Measure kappa = 1;
       if (!fam.reflection) {
@@ -226,6 +209,7 @@ json run_stress(const StressOptions& opt) {
         const RunSpec& spec = specs[r];
         json run{{"run", spec.label}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
         double me = INFINITY, ge = INFINITY;
+        bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
         std::string status;
         try {
           const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
@@ -233,14 +217,18 @@ json run_stress(const StressOptions& opt) {
           const bool present = fam.reflection ? rs.reflections[0].present : rs.shadows[0].present;
           const auto& origin = fam.reflection ? rs.reflections[0].origin : rs.shadows[0].origin;
           status = fam.reflection ? rs.reflections[0].status : rs.shadows[0].status;
+          const auto& acc = fam.reflection ? rs.reflections[0].accuracy : rs.shadows[0].accuracy;
+          if (acc) {  // also for a non-finite result, which eval flags
+            returned = true;
+            flagged = acc->inaccurate;
+            run["error_bound"] = acc->bound ? json(*acc->bound) : json(nullptr);
+          }
           if (present) {
             const Mat4<Q>& got = fam.reflection ? rs.reflections[0].B : rs.shadows[0].P;
             const Mat4<Q>& want = fam.reflection ? ref.reflections[0].result.B : ref.shadows[0].result.P;
             const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
             me = projective_error(quadric_from_local(got, o), want, true);
-            std::vector<RootPoint> local;
-            for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
-            ge = max_distance(local, got) / size;
+            ge = geometric_error(pts, origin, got);
             run["frame"] = origin ? "local" : "world";
             if (r == kDefaultRun) robust_origin = origin;
           }
@@ -250,8 +238,13 @@ json run_stress(const StressOptions& opt) {
         run["status"] = status;
         run["matrix_error"] = num(me);
         run["geometric_error"] = num(ge);
+        run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
+        // The flag's self-check: raised wherever the measured error exceeds the target, never below target / 100.
+        if (returned && !(ge <= kDefaultAccuracy) && !flagged) missed.push_back({{"param", v}, {"run", spec.label}, {"geometric_error", num(ge)}});
+        if (ge < kDefaultAccuracy / 100 && flagged) spurious.push_back({{"param", v}, {"run", spec.label}, {"geometric_error", num(ge)}});
         runs.push_back(run);
         geo[r].push_back(ge);
+        flags[r].push_back(flagged);
         mat[r].push_back(me);
       }
       // The floor: the exact result in the default run's frame, correctly rounded to double (with the same
@@ -259,12 +252,10 @@ json run_stress(const StressOptions& opt) {
       double floor_err = INFINITY;
       {
         const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
-        std::vector<RootPoint> local;
-        for (const RootPoint& x : pts) local.push_back(x.mapped(translation<Q>(Vec3<Q>(-o))));
         const Mat4<Q> exact_local = fam.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
                                                    : quadric_to_local(ref.shadows[0].result.P, o);
         const Mat4<double> rounded = rounded_scaled<double>(exact_local);
-        if (all_finite(rounded)) floor_err = max_distance(local, exact_matrix(rounded)) / size;
+        if (all_finite(rounded)) floor_err = geometric_error(pts, robust_origin, exact_matrix(rounded));
       }
       const double target = std::max(1e-9, 10 * floor_err);
       params.push_back(v);
@@ -275,7 +266,7 @@ json run_stress(const StressOptions& opt) {
       all_meet = all_meet && meets;
       points.push_back({{"param", v},
                         {"exact_status", fam.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status()},
-                        {"points", pts.size()},
+                        {"points", pts.points.size()},
                         {"kappa", kappa.convert_to<double>()},
                         {"predicted_double_error", pred},
                         {"rounded_exact_error", num(floor_err)},
@@ -300,7 +291,12 @@ json run_stress(const StressOptions& opt) {
               {"item", fam.reflection ? "reflection B" : "shadow P"},
               {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
                                    "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
-              {"default_meets_target", all_meet}, {"points", points}, {"slopes", slopes},
+              {"default_meets_target", all_meet},
+              {"flag_check", {{"rule", "every run whose measured geometric error (8 exact points, seed 11) exceeds the "
+                                       "accuracy target 1e-9 carries the flag inaccurate (from eval's error bound on "
+                                       "other points), and no run below 1e-11 does"},
+                              {"ok", missed.empty() && spurious.empty()}, {"missed", missed}, {"spurious", spurious}}},
+              {"points", points}, {"slopes", slopes},
               {"breakdown", breakdown}};
     families.push_back(famj);
 
@@ -313,6 +309,11 @@ json run_stress(const StressOptions& opt) {
       for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[r][i]);
       plot.series.push_back(s);
     }
+    PlotSeries flagged{"flagged inaccurate by eval", "#d62728", {}, false, true, false, {}};
+    for (std::size_t r = 0; r < specs.size(); ++r)
+      for (std::size_t i = 0; i < params.size(); ++i)
+        if (flags[r][i] && std::isfinite(geo[r][i])) flagged.points.emplace_back(params[i], geo[r][i]);
+    if (!flagged.points.empty()) plot.series.push_back(flagged);
     PlotSeries floor_series{"exact, correctly rounded to double (floor)", "#000000", {}, true, true, true, {}};
     for (std::size_t i = 0; i < params.size(); ++i) floor_series.points.emplace_back(params[i], floors[i]);
     plot.series.push_back(floor_series);

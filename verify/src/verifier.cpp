@@ -158,9 +158,52 @@ std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, co
   return out;
 }
 
+/// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
+/// for a point light, the plane at infinity for a parallel one), in the
+/// result's frame: R must vanish on it. Point light: rational points of h
+/// near the object (its point nearest to `inside`, and that point moved by
+/// `step` along x and y), the first-order distance divided by the larger of
+/// the object size and the point's distance from `inside` (h may pass far from
+/// the object: an angle, not a length, is what can be asked there). Parallel
+/// light: points at infinity (d, 0), the relative residual |y^T R y| / (|R|_F |y|^2).
+Measure second_plane_error(const Mat4<Q>& R, const Vec4<Q>& L, const Vec4<Q>& inside, const Q& step, const Measure& size,
+                           bool& all_zero) {
+  all_zero = true;
+  Measure worst = 0;
+  std::vector<Vec4<Q>> ys;
+  if (L(3) == 0) {
+    for (const Vec4<Q>& d : {Vec4<Q>(1, 0, 0, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(0, 0, 1, 0), Vec4<Q>(1, 2, 3, 0)}) ys.push_back(d);
+  } else {
+    const Vec4<Q> base(inside(0) / inside(3), inside(1) / inside(3), L(2) / L(3), 1);
+    ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
+  }
+  const Measure rn = frobenius(R);
+  for (const Vec4<Q>& y : ys) {
+    const Q f = form(R, y);
+    if (f == 0) continue;
+    all_zero = false;
+    const Measure fm = abs(to_measure(f));
+    if (L(3) == 0) {
+      worst = max(worst, rn > 0 ? Measure(fm / (rn * to_measure(Q(y.squaredNorm())))) : Measure(INFINITY));
+      continue;
+    }
+    const Vec4<Q> g = R * y;
+    const Measure gn = sqrt(to_measure(Q(g.head<3>().squaredNorm())));
+    const Measure dist = sqrt(to_measure(Q((y - inside / inside(3)).head<3>().squaredNorm())));
+    worst = max(worst, gn > 0 ? Measure(fm / (2 * gn) / max(size, dist)) : Measure(INFINITY));
+  }
+  return worst;
+}
+
 /// The verdict of a metric: exact, every point exactly on; else geometric error <= T.
+/// A terminator that is a single real point (a cone lit along its axis: the
+/// apex) has no size to measure a distance against, and the result's gradient
+/// vanishes there: such a point is judged by its relative residual
+/// |x^T Q x| / (|Q|_F |x|^2) <= T instead.
 bool within(const Metric& m, const Measure& size, bool exact, const Measure& T) {
-  return exact ? m.all_zero : !(relative(m, size) > T);
+  if (exact) return m.all_zero;
+  if (!(size > 0)) return !(m.residual > T);
+  return !(relative(m, size) > T);
 }
 
 }  // namespace
@@ -256,6 +299,16 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     judge(err.polar, "on_polar_plane");
     judge(onGen, "on_generators (P is not the cone from L through the terminator)");
     judge(onPlane, "R on the polar plane");
+    bool h_zero = true;
+    Measure h_err = 0;
+    for (const RootPoint& x : local)  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
+      if (x.p()(3) != 0) {
+        h_err = second_plane_error(got.R, Le, x.p(), to_rational(pts.size.convert_to<double>()), pts.size, h_zero);
+        break;
+      }
+    if (exact ? !h_zero : h_err > T)
+      problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane pair "
+                         "polar plane + h)");
     if (!symmetric_within(got.P, exact ? Measure(0) : T)) problems.push_back("P is not symmetric");
     if (!symmetric_within(got.R, exact ? Measure(0) : T)) problems.push_back("R is not symmetric");
     const Q s = Le.dot(pi_ref);
@@ -311,6 +364,7 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     c["on_polar_plane"] = metric_json(err.polar, pts.size);
     c["on_generators"] = metric_json(onGen, pts.size);
     c["R_on_polar_plane"] = metric_json(onPlane, pts.size);
+    c["R_on_second_plane"] = h_err < std::numeric_limits<Measure>::infinity() ? json(to_d(h_err)) : json(nullptr);
     if (exact) c["proved_exactly"] = proved;
     c["consistent_with_precision"] = consistent;
     c["rounding_tolerance"] = to_d(tol);
@@ -319,6 +373,9 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     if (got.accuracy && got.accuracy->inaccurate) c["flags"] = json::array({"inaccurate"});
     if (got.origin) c["origin"] = origin_json(*got.origin);
     if (pts.exhausted) c["note"] = "only " + std::to_string(pts.points.size()) + " real point(s) found on this terminator";
+    if (!(pts.size > 0))
+      c["note"] = "the terminator is a single real point: no object size to measure distances against; judged by the "
+                  "relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy";
     finish(c, problems);
   }
 

@@ -19,7 +19,6 @@ struct StressFamily {
   std::string name, description, parameter;
   std::vector<double> values;              ///< parameter values (decades)
   std::function<std::string(double)> scene;  ///< qverify-scene/1 text for a parameter value
-  double size = 1;                         ///< object size (for relative geometric error)
   bool reflection = false;                 ///< the family's item is a reflection (else a shadow)
 };
 

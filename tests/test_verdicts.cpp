@@ -1,0 +1,348 @@
+// Verdicts to trust: status words are exact predicates in every precision and
+// method under any units and placement; the filter never decides wrongly; the
+// inaccurate flag is raised exactly where the geometric error may exceed the
+// target; verify never passes a geometrically wrong result.
+#include <qverify/exact/statuses.hpp>
+#include <qverify/verify/verifier.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace qverify;
+using Q = Rational;
+
+namespace {
+
+std::string text(const Q& x) { return "\"" + x.str() + "\""; }
+std::string vec3(const Vec3<Q>& v) { return "[" + text(v(0)) + ", " + text(v(1)) + ", " + text(v(2)) + "]"; }
+
+/// x -> s x + t, exactly.
+struct Placement {
+  Q s;
+  Vec3<Q> t;
+  Vec3<Q> point(const Vec3<Q>& p) const { return Vec3<Q>(s * p + t); }
+  /// The matrix of a unit-frame quadric in the world frame: H^T A H, H = the inverse placement.
+  Mat4<Q> quadric(const Mat4<Q>& A) const {
+    Mat4<Q> H = Mat4<Q>::Identity();
+    for (int i = 0; i < 3; ++i) {
+      H(i, i) = Q(1) / s;
+      H(i, 3) = -t(i) / s;
+    }
+    return H.transpose() * A * H;
+  }
+};
+
+std::string matrix_text(const Mat4<Q>& A) {
+  std::string m = "[";
+  for (int i = 0; i < 4; ++i) {
+    m += i ? ", [" : "[";
+    for (int j = 0; j < 4; ++j) m += (j ? ", " : "") + text(A(i, j));
+    m += "]";
+  }
+  return m + "]";
+}
+
+/// One shape of the scene format in the unit frame, written for a placement, with lights of every kind.
+struct Case {
+  std::string name;
+  std::function<std::string(const Placement&)> quadric;  ///< the "quadrics" entry
+  std::vector<Vec3<Q>> points;                             ///< point lights (unit frame): outside, inside, on the surface
+};
+
+std::vector<Case> cases() {
+  const Vec3<Q> c(Q(1, 2), Q(-1, 4), Q(1, 3));
+  std::vector<Case> out;
+  out.push_back({"sphere",
+                 [c](const Placement& pl) {
+                   return R"({"id": "q", "sphere": {"center": )" + vec3(pl.point(c)) + R"(, "radius": )" + text(pl.s) + "}}";
+                 },
+                 {Vec3<Q>(3, 4, 5), c, Vec3<Q>(c + Vec3<Q>(Q(3, 5), Q(4, 5), 0))}});
+  out.push_back({"ellipsoid (non-orthogonal axes)",
+                 [c](const Placement& pl) {
+                   return R"({"id": "q", "ellipsoid": {"center": )" + vec3(pl.point(c)) + R"(, "radii": )" +
+                          vec3(Vec3<Q>(pl.s, pl.s / 2, pl.s / 3)) +
+                          R"(, "axes": [[1, "1/5", 0], [0, 1, "1/7"], ["1/3", 0, 1]]}})";
+                 },
+                 {Vec3<Q>(3, 4, 5), c, Vec3<Q>(c + Vec3<Q>(1, 0, Q(1, 3)))}});
+  out.push_back({"cylinder",
+                 [](const Placement& pl) {
+                   return R"({"id": "q", "cylinder": {"point": )" + vec3(pl.point(Vec3<Q>(0, 1, 0))) +
+                          R"(, "axis": [1, 2, 2], "radius": )" + text(pl.s / 2) + "}}";
+                 },
+                 {Vec3<Q>(3, -4, 5), Vec3<Q>(0, 1, 0), Vec3<Q>(Q(0), Q(1), Q(0)) + Vec3<Q>(0, Q(3, 10), Q(-3, 10)) * Q(1)}});
+  out.push_back({"cone (light at the apex too)",
+                 [](const Placement& pl) {
+                   return R"({"id": "q", "cone": {"apex": )" + vec3(pl.point(Vec3<Q>(0, 0, 1))) +
+                          R"(, "axis": [0, 0, 1], "tan_half_angle": "1/2"}})";
+                 },
+                 {Vec3<Q>(3, 4, 5), Vec3<Q>(0, 0, 1), Vec3<Q>(0, 0, 3), Vec3<Q>(1, 0, 3)}});
+  out.push_back({"plane pair (degenerate)",
+                 [](const Placement& pl) {
+                   const Vec4<Q> u(1, 0, 0, -1), v(0, 1, 0, -2);
+                   return R"({"id": "q", "matrix": )" +
+                          matrix_text(pl.quadric(Mat4<Q>(u * v.transpose() + v * u.transpose()))) + "}";
+                 },
+                 {Vec3<Q>(3, 4, 5), Vec3<Q>(1, 5, 7), Vec3<Q>(1, 2, 0)}});
+  out.push_back({"hyperboloid of one sheet",
+                 [](const Placement& pl) {
+                   Mat4<Q> A = Mat4<Q>::Zero();
+                   A(0, 0) = 1, A(1, 1) = 1, A(2, 2) = -1, A(3, 3) = -1;
+                   return R"({"id": "q", "matrix": )" + matrix_text(pl.quadric(A)) + "}";
+                 },
+                 {Vec3<Q>(3, 4, 5), Vec3<Q>(0, 0, 0), Vec3<Q>(1, 0, 0), Vec3<Q>(0, 0, 7)}});
+  return out;
+}
+
+std::string scene_for(const Case& k, const Placement& pl) {
+  std::string lights;
+  for (std::size_t i = 0; i < k.points.size(); ++i)
+    lights += R"({"id": "p)" + std::to_string(i) + R"(", "position": )" + vec3(pl.point(k.points[i])) + "}, ";
+  lights += R"({"id": "sun", "direction": [1, 2, -3]}, {"id": "flat", "direction": [1, 2, 0]})";
+  return R"({"format": "qverify-scene/1", "name": "case", "quadrics": [)" + k.quadric(pl) + R"(], "lights": [)" + lights +
+         R"(], "mirrors": [{"id": "m", "plane": [1, 2, 2, 3]}]})";
+}
+
+Q pow10(int k) {
+  Q r(1);
+  for (int i = 0; i < std::abs(k); ++i) r *= 10;
+  return k >= 0 ? r : Q(1) / r;
+}
+
+}  // namespace
+
+TEST_CASE("status words are the exact ones in every precision and method, under any units and placement",
+          "[verdicts][status]") {
+  const char* precisions[] = {"float", "double", "long-double", "float128", "mpfr:64", "interval"};
+  std::map<std::string, int> seen;  // every status word must occur in the sweep
+  int compared = 0;
+  for (const Case& k : cases())
+    for (int e : {-9, -3, 0, 3, 9})
+      for (const Vec3<Q>& t : {Vec3<Q>(0, 0, 0), Vec3<Q>(pow10(9), Q(-1, 3) * pow10(8), Q(7))}) {
+        const Placement pl{pow10(e), t};
+        const Scene sc = parse_scene(scene_for(k, pl), "case.json");
+        for (Method m : {Method::direct, Method::paper}) {
+          const ResultSet ex = computed_results(sc, *parse_precision("exact"), m, std::nullopt, std::nullopt);
+          for (const char* p : precisions) {
+            INFO(k.name << " scale 1e" << e << " translated " << (t.isZero() ? "no" : "yes") << " method "
+                        << method_name(m) << " precision " << p);
+            const ResultSet rs = computed_results(sc, *parse_precision(p), m, std::nullopt, std::nullopt);
+            for (std::size_t i = 0; i < rs.shadows.size(); ++i) {
+              INFO("light " << sc.lights[sc.shadows[i].other].id);
+              CHECK(rs.shadows[i].status == ex.shadows[i].status);
+              seen[ex.shadows[i].status]++;
+              ++compared;
+            }
+            for (std::size_t i = 0; i < rs.reflections.size(); ++i) CHECK(rs.reflections[i].status == ex.reflections[i].status);
+          }
+        }
+      }
+  for (const char* w : {"ok", "degenerate-quadric", "light-on-surface", "no-real-silhouette", "singular-frame"}) {
+    INFO(w);
+    CHECK(seen[w] > 0);
+  }
+  CHECK(compared > 2000);
+}
+
+TEST_CASE("the floating filter never decides a predicate wrongly, and settling gives the exact answer",
+          "[verdicts][status][filter]") {
+  std::mt19937_64 rng(42);
+  std::uniform_int_distribution<int> small(-4, 4), expo(-60, 60);
+  auto dyadic = [&](int k) { return std::ldexp(static_cast<double>(small(rng)), k); };
+  int decided_by_filter = 0, settled = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    Mat4<double> A;
+    Vec4<double> L;
+    const int kind = trial % 4;
+    const int k = expo(rng);
+    if (kind == 0) {  // exactly rank 2 in doubles: a plane pair of small dyadic vectors
+      Vec4<double> u, v;
+      for (int i = 0; i < 4; ++i) u(i) = dyadic(k), v(i) = dyadic(-k / 2);
+      A = u * v.transpose() + v * u.transpose();
+    } else {  // a random symmetric matrix, sometimes nudged by one ulp off a degenerate one
+      for (int i = 0; i < 4; ++i)
+        for (int j = i; j < 4; ++j) A(i, j) = A(j, i) = dyadic(k) + (kind == 2 ? std::ldexp(1.0, k - 60) : 0.0);
+    }
+    for (int i = 0; i < 4; ++i) L(i) = dyadic(0);
+    if (kind == 3) L(3) = 0;  // a light at infinity
+    const ShadowResult<double> r = shadow<double>(A, L, Method::direct);
+    const StatusDecision exact = shadow_status<Q>(exact_matrix(A), exact_matrix(L));
+    INFO("trial " << trial);
+    // what the filter decided is exact
+    CHECK((r.flags & ~r.undecided) == (exact.flags & ~r.undecided));
+    if (r.undecided == 0) ++decided_by_filter;
+    ShadowResult<double> s = r;
+    settle_status(s, A, L);
+    if (r.undecided != 0) ++settled;
+    CHECK(s.undecided == 0);
+    CHECK(s.flags == exact.flags);
+    ReflectionResult<double> b = reflection_in_plane<double>(A, Vec4<double>(1, 2, 2, 3), Method::direct);
+    settle_status(b, A);
+    CHECK(b.degenerate == (degenerate_quadric<Q>(exact_matrix(A)) == Truth::yes));
+  }
+  CHECK(decided_by_filter > 1000);  // the filter does most of the work ...
+  CHECK(settled > 100);             // ... and the exact fall-back is exercised
+}
+
+namespace {
+
+/// The geometric error of every item as verify measures it on other points (seed 99, 128 per item).
+std::vector<double> measured_errors(const Scene& sc, const ResultSet& rs) {
+  VerifyOptions opt;
+  opt.samples = 128;
+  opt.seed = 99;
+  const VerifyOutcome v = verify_results(sc, rs, opt);
+  std::vector<double> out;
+  for (const auto& c : v.document["checks"]) {
+    if (c["status"] == "skipped") out.push_back(-1);
+    else out.push_back(c["geometric_error"].is_null() ? INFINITY : c["geometric_error"].get<double>());
+  }
+  return out;
+}
+
+/// Every item's flag against its measured error: raised where the error exceeds T, not raised below T/100.
+void check_flags(const Scene& sc, const ResultSet& rs, int& raised) {
+  const std::vector<double> err = measured_errors(sc, rs);
+  std::size_t i = 0;
+  auto check = [&](const std::optional<ItemAccuracy>& acc) {
+    const double e = err[i++];
+    REQUIRE(acc);
+    if (e < 0) return;  // nothing to measure on
+    INFO("item " << i - 1 << " measured geometric error " << e << " bound " << (acc->bound ? *acc->bound : -1.0));
+    if (e > kDefaultAccuracy) CHECK(acc->inaccurate);
+    if (e < kDefaultAccuracy / 100) CHECK(!acc->inaccurate);
+    if (acc->bound) CHECK(*acc->bound >= e / 2);  // the bound is measured on other points than e
+    raised += acc->inaccurate;
+  };
+  for (const auto& s : rs.shadows) check(s.accuracy);
+  for (const auto& r : rs.reflections) check(r.accuracy);
+}
+
+}  // namespace
+
+TEST_CASE("the paper route as l_z -> 0 is flagged exactly where its geometric error exceeds the target",
+          "[verdicts][accuracy]") {
+  int raised = 0;
+  for (int k = 1; k <= 14; ++k) {
+    INFO("l_z = 1e-" << k);
+    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "lz", "quadrics": [{"id": "ball", "sphere":
+        {"center": [0, 0, -3], "radius": 1}}], "lights": [{"id": "lamp", "position": [2, 1, "1e-)" +
+                                     std::to_string(k) + R"("]}]})",
+                                 "lz.json");
+    check_flags(sc, computed_results(sc, *parse_precision("double"), Method::paper), raised);
+  }
+  CHECK(raised >= 3);  // the paper's 1/l_z does break
+}
+
+TEST_CASE("flags are right for float, the naive world frame far away, and not raised on the default path",
+          "[verdicts][accuracy]") {
+  int raised = 0;
+  for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {
+    INFO(name);
+    const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + name);
+    int none = 0;
+    check_flags(sc, computed_results(sc, *parse_precision("double"), Method::direct), none);
+    CHECK(none == 0);  // the robust default path is accurate on the examples
+    check_flags(sc, computed_results(sc, *parse_precision("float"), Method::direct), raised);
+  }
+  CHECK(raised > 0);
+  const Scene far = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [{"id": "ball", "sphere":
+      {"center": [37000000.25, 1.5, -2], "radius": 0.001}}], "lights": [{"id": "lamp", "position": [37000000.5, 2, 3]}],
+      "mirrors": [{"id": "m", "plane": [1, 0, 0, -37000010]}]})",
+                                "far.json");
+  int world = 0, local = 0;
+  check_flags(far, computed_results(far, *parse_precision("double"), Method::direct, Frame::world), world);
+  CHECK(world == 2);
+  check_flags(far, computed_results(far, *parse_precision("double"), Method::direct), local);
+  CHECK(local == 0);
+}
+
+namespace {
+
+ResultSet exact_results(const Scene& sc) {
+  return computed_results(sc, *parse_precision("exact"), Method::direct, std::nullopt, std::nullopt);
+}
+
+/// The exact results rounded to nearest double, entry by entry: a double candidate.
+ResultSet rounded(ResultSet rs) {
+  rs.precision = *parse_precision("double");
+  auto round = [](auto& m) {
+    RoundingReport rep;
+    for (Eigen::Index i = 0; i < m.size(); ++i) m(i) = to_rational(round_rational<double>(m(i), rep));
+  };
+  for (auto& s : rs.shadows) round(s.P), round(s.R), round(s.polar);
+  for (auto& r : rs.reflections) round(r.M), round(r.B);
+  return rs;
+}
+
+int failures(const Scene& sc, const ResultSet& rs) { return verify_results(sc, rs, VerifyOptions{}).failed; }
+
+}  // namespace
+
+TEST_CASE("verify: the correctly rounded result passes, one entry off by 1e-7 fails", "[verdicts][verify]") {
+  for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {
+    INFO(name);
+    const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + name);
+    const ResultSet good = rounded(exact_results(sc));
+    CHECK(failures(sc, good) == 0);
+    for (std::size_t k = 0; k < good.shadows.size(); ++k) {
+      if (!good.shadows[k].present) continue;
+      ResultSet bad = good;
+      Mat4<Q>& P = bad.shadows[k].P;
+      const Eigen::Index p = pivot_index(P);
+      // one off-pivot entry (and its mirror) moved by 1e-7 of the largest entry
+      const int i = static_cast<int>(p % 4), j = (i + 1) % 4;
+      const Q d = max_abs(P) / 10000000;
+      P(i, j) += d;
+      P(j, i) += d;
+      INFO("shadow " << k);
+      CHECK(verify_results(sc, bad, VerifyOptions{}).document["checks"][k]["status"] == "fail");
+    }
+  }
+}
+
+TEST_CASE("verify: wrong cones, planes and signs fail - also in exact arithmetic", "[verdicts][verify]") {
+  const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/ball-lamp-floor.json");
+  const ResultSet good = exact_results(sc);
+  REQUIRE(failures(sc, good) == 0);
+  for (int bug = 0; bug < 7; ++bug) {
+    ResultSet bad = good;
+    for (auto& s : bad.shadows) {
+      const Vec4<Q> pi = s.polar;
+      const Mat4<Q> ppT = pi * pi.transpose();
+      switch (bug) {
+        case 0: s.P = s.P - ppT; break;                  // s A - 2 (AL)(AL)^T: P L != 0, not a cone
+        case 1: s.P = s.P + Q(2) * ppT; break;           // s A + (AL)(AL)^T: the sign of the outer product flipped
+        case 2: s.P = -s.P; break;                       // negative factor
+        case 3: s.polar = -s.polar; break;               // polar plane of the wrong orientation
+        case 4: s.R = s.R + Q(1, 1000) * ppT; break;     // R through the terminator but not the plane pair
+        case 5: s.status = "no-real-silhouette"; break;  // a status the exact inputs do not give
+        default: break;
+      }
+    }
+    for (auto& r : bad.reflections) {
+      if (bug == 6) r.B = -r.B;  // B with a negative factor
+      if (bug == 5) r.M(0, 3) += 1;  // not the reflection
+    }
+    INFO("bug " << bug);
+    CHECK(failures(sc, bad) > 0);
+    // the same slips, rounded to double, fail too
+    CHECK(failures(sc, rounded(bad)) > 0);
+  }
+}
+
+TEST_CASE("verify: a far-away candidate computed naively in world coordinates fails", "[verdicts][verify]") {
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [{"id": "ball", "sphere":
+      {"center": [37000000.25, 1.5, -2], "radius": 0.001}}], "lights": [{"id": "lamp", "position": [37000000.5, 2, 3]}],
+      "mirrors": [{"id": "m", "plane": [1, 0, 0, -37000010]}]})",
+                               "far.json");
+  const VerifyOutcome naive = verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct, Frame::world), {});
+  CHECK(naive.failed == 2);
+  for (const auto& c : naive.document["checks"]) {
+    CHECK(c["consistent_with_precision"].get<bool>());  // as good as world-frame doubles can be ...
+    CHECK(c["geometric_error"].get<double>() > 1);      // ... and still wrong by more than the object's size
+  }
+  CHECK(verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct), {}).failed == 0);
+}
