@@ -6,6 +6,7 @@
 //
 //   cmake --preset release -DQVERIFY_BUILD_BENCH=ON && cmake --build build/release --target bench_scalars
 //   build/release/bench/bench_scalars --benchmark_filter='Rational|Gmpq|Cpp'
+//   build/release/bench/bench_scalars --benchmark_filter='shadow_(direct|status)/double'   # the status filter's cost
 #include <boost/multiprecision/cpp_int.hpp>
 #include <qverify/core/core.hpp>
 #include <qverify/exact/rounding.hpp>
@@ -103,6 +104,23 @@ template <class S> void BM_reflection(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+/// The status predicates (core/predicates.hpp) of the same inputs, random and non-degenerate: what deciding
+/// the status words costs beside an item. For double the core's filter (Filtered<double>); the counter
+/// `undecided` is the fraction of items it leaves to the exact settlement (none here, as it should be).
+template <class S> void BM_shadow_status(benchmark::State& state) {
+  const Inputs<S> in;
+  std::size_t k = 0;
+  long undecided = 0;
+  for (auto _ : state) {
+    StatusDecision d = shadow_status<S>(in.A[k], in.L[k]);
+    undecided += d.undecided != 0;
+    benchmark::DoNotOptimize(d);
+    k = (k + 1) % kItems;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["undecided"] = static_cast<double>(undecided) / static_cast<double>(state.iterations());
+}
+
 }  // namespace
 
 namespace Eigen {
@@ -132,5 +150,8 @@ BENCHMARK_TEMPLATE(BM_reflection, Mpfr)->Name("reflection/mpfr")->Arg(128)->Arg(
 QV_BENCH_ALL(Rational, "Rational_mpq")
 QV_BENCH_ALL(CGAL::Gmpq, "Gmpq")
 QV_BENCH_ALL(CppRational, "CppRational")
+
+BENCHMARK_TEMPLATE(BM_shadow_status, double)->Name("shadow_status/double");
+BENCHMARK_TEMPLATE(BM_shadow_status, Rational)->Name("shadow_status/Rational_mpq");
 
 BENCHMARK_MAIN();

@@ -307,7 +307,7 @@ TEST_CASE("verify: wrong cones, planes and signs fail - also in exact arithmetic
   const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/ball-lamp-floor.json");
   const ResultSet good = exact_results(sc);
   REQUIRE(failures(sc, good) == 0);
-  for (int bug = 0; bug < 7; ++bug) {
+  for (int bug = 0; bug < 8; ++bug) {
     ResultSet bad = good;
     for (auto& s : bad.shadows) {
       const Vec4<Q> pi = s.polar;
@@ -324,7 +324,7 @@ TEST_CASE("verify: wrong cones, planes and signs fail - also in exact arithmetic
     }
     for (auto& r : bad.reflections) {
       if (bug == 6) r.B = -r.B;  // B with a negative factor
-      if (bug == 5) r.M(0, 3) += 1;  // not the reflection
+      if (bug == 7) r.M(0, 3) += 1;  // M not the reflection (B itself right)
     }
     INFO("bug " << bug);
     CHECK(failures(sc, bad) > 0);
@@ -345,4 +345,26 @@ TEST_CASE("verify: a far-away candidate computed naively in world coordinates fa
     CHECK(c["geometric_error"].get<double>() > 1);      // ... and still wrong by more than the object's size
   }
   CHECK(verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct), {}).failed == 0);
+}
+
+TEST_CASE("a far object given as a matrix or as coefficients gets its local frame, and verify passes it",
+          "[verdicts][frames]") {
+  // the sphere |x - c|^2 = 1/4 with c = (3e7 + 1/2, -2, 1), written as a matrix and as coefficients
+  const std::string matrix = R"({"id": "ball", "matrix": [[1, 0, 0, "-60000001/2"], [0, 1, 0, 2], [0, 0, 1, -1],
+      ["-60000001/2", 2, -1, "3600000120000020/4"]]})";
+  const std::string coefficients = R"({"id": "ball", "coefficients": {"xx": 1, "yy": 1, "zz": 1, "x": -60000001,
+      "y": 4, "z": -2, "c": "900000030000005"}})";
+  for (const std::string& q : {matrix, coefficients}) {
+    INFO(q);
+    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [)" + q +
+                                     R"(], "lights": [{"id": "lamp", "position": [30000003, 2, 5]}],
+                                     "mirrors": [{"id": "m", "plane": [1, 0, 0, -30000010]}]})",
+                                 "far.json");
+    const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+    REQUIRE(rs.shadows[0].origin);
+    CHECK(*rs.shadows[0].origin == Vec3<Q>(Q(60000001, 2), -2, 1));  // the centre, not its mirror image
+    const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{});
+    CHECK(v.failed == 0);
+    for (const auto& c : v.document["checks"]) CHECK(c["geometric_error"].get<double>() < 1e-12);
+  }
 }
