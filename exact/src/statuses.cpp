@@ -10,18 +10,14 @@ template <int R, int C> Eigen::Matrix<Interval, R, C> enclosure(const Eigen::Mat
 }
 }  // namespace
 
-StatusDecision exact_shadow_status(const Mat4<Rational>& A, const Vec4<Rational>& L, long* exact_fallbacks) {
+StatusDecision exact_shadow_status(const Mat4<Rational>& A, const Vec4<Rational>& L) {
   const StatusDecision filtered = shadow_status<Interval>(enclosure(A), enclosure(L));
-  if (filtered.decided()) return filtered;
-  if (exact_fallbacks) ++*exact_fallbacks;
-  return shadow_status<Rational>(A, L);
+  return filtered.decided() ? filtered : shadow_status<Rational>(A, L);
 }
 
-bool exact_degenerate(const Mat4<Rational>& A, long* exact_fallbacks) {
+bool exact_degenerate(const Mat4<Rational>& A) {
   const Truth t = degenerate_quadric<Interval>(enclosure(A));
-  if (t != Truth::unknown) return t == Truth::yes;
-  if (exact_fallbacks) ++*exact_fallbacks;
-  return degenerate_quadric<Rational>(A) == Truth::yes;
+  return t == Truth::unknown ? degenerate_quadric<Rational>(A) == Truth::yes : t == Truth::yes;
 }
 
 }  // namespace qverify

@@ -10,15 +10,6 @@ namespace {
 
 Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
 
-template <int R, int C> Measure frobenius(const Eigen::Matrix<Q, R, C>& m) {
-  Measure s = 0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const Measure v = to_measure(m(i));
-    s += v * v;
-  }
-  return sqrt(s);
-}
-
 Measure norm2(const RootPoint& x) {
   Measure s = 0;
   for (const RootNumber& c : x.coords()) {
@@ -126,7 +117,8 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
 
 Measure relative(const Metric& m, const Measure& size) {
   if (m.all_zero) return 0;
-  if (m.singular || !(size > 0)) return std::numeric_limits<Measure>::infinity();
+  if (!(size > 0)) return m.residual;
+  if (m.singular) return std::numeric_limits<Measure>::infinity();
   return m.distance / size;
 }
 

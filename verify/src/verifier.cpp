@@ -17,15 +17,6 @@ using json = nlohmann::ordered_json;
 double to_d(const Measure& m) { return m.convert_to<double>(); }
 Measure max(const Measure& a, const Measure& b) { return a < b ? b : a; }
 
-template <int R, int C> Measure frobenius(const Eigen::Matrix<Q, R, C>& m) {
-  Measure s = 0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const Measure v = to_measure(m(i));
-    s += v * v;
-  }
-  return sqrt(s);
-}
-
 template <int R, int C> Eigen::Matrix<Q, R, C> abs_matrix(const Eigen::Matrix<Q, R, C>& m) {
   return m.unaryExpr([](const Q& x) { return x < 0 ? Q(-x) : x; });
 }
@@ -196,14 +187,8 @@ Measure second_plane_error(const Mat4<Q>& R, const Vec4<Q>& L, const Vec4<Q>& in
 }
 
 /// The verdict of a metric: exact, every point exactly on; else geometric error <= T.
-/// A terminator that is a single real point (a cone lit along its axis: the
-/// apex) has no size to measure a distance against, and the result's gradient
-/// vanishes there: such a point is judged by its relative residual
-/// |x^T Q x| / (|Q|_F |x|^2) <= T instead.
 bool within(const Metric& m, const Measure& size, bool exact, const Measure& T) {
-  if (exact) return m.all_zero;
-  if (!(size > 0)) return !(m.residual > T);
-  return !(relative(m, size) > T);
+  return exact ? m.all_zero : !(relative(m, size) > T);
 }
 
 }  // namespace
@@ -558,7 +543,7 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
   }
   // The quadrics as represented in the candidate's precision (for on_A).
   const Precision rep = rs.precision.kind == Precision::Kind::interval ? *parse_precision("double") : rs.precision;
-  rs.A = computed_results(sc, rep, Method::direct).A;
+  rs.A = computed_results(sc, rep, Method::direct, std::nullopt, std::nullopt).A;
   rs.shadows.resize(sc.shadows.size());
   rs.reflections.resize(sc.reflections.size());
 

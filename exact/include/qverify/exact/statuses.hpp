@@ -14,11 +14,10 @@
 namespace qverify {
 
 /// shadow_status of the exact (A, L): decided in every case (undecided == 0).
-/// `exact_fallbacks`, if given, counts the calls that needed rationals.
-StatusDecision exact_shadow_status(const Mat4<Rational>& A, const Vec4<Rational>& L, long* exact_fallbacks = nullptr);
+StatusDecision exact_shadow_status(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
 /// rank A <= 2 for the exact A.
-bool exact_degenerate(const Mat4<Rational>& A, long* exact_fallbacks = nullptr);
+bool exact_degenerate(const Mat4<Rational>& A);
 
 /// The predicates of the exact values of floating inputs (every binary float
 /// is a dyadic rational): what the core's filter left open is settled here.

@@ -30,6 +30,16 @@ inline constexpr double kDefaultAccuracy = 1e-9;
 /// Default exact points per item (shared by eval's error bound and verify).
 inline constexpr int kDefaultSamples = 64;
 
+/// Frobenius norm of an exact matrix or vector, to 80 digits.
+template <int R, int C> Measure frobenius(const Eigen::Matrix<Rational, R, C>& m) {
+  Measure s = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const Measure v = to_measure(m(i));
+    s += v * v;
+  }
+  return sqrt(s);
+}
+
 /// Largest residual |x^T Q x| / (|Q|_F |x|^2) and first-order distance over points.
 struct Metric {
   Measure residual = 0, distance = 0;
@@ -60,7 +70,12 @@ std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::op
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Rational>& Q);
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Rational>& pi);
 
-/// distance / size (infinite for a singular metric, NaN-free).
+/// The geometric error of a metric: distance / size; 0 when every point is
+/// exactly on the result; infinite when a point lies off it where its gradient
+/// vanishes. A terminator that is a single real point (a cone lit along its
+/// axis: the apex) has no size to measure distances against, and the result's
+/// gradient vanishes there: its error is the relative residual
+/// |x^T Q x| / (|Q|_F |x|^2) instead.
 Measure relative(const Metric& m, const Measure& size);
 
 /// Geometric errors of one shadow item's results (relative to the object size).

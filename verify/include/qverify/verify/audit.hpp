@@ -56,8 +56,7 @@ TimedResult timed_results(const Scene& sc, const Precision& prec, Method method,
   tr.reps_per_batch = reps;
   tr.batches = static_cast<int>(ns.size());
   evaluate_items<S>(sc, method, ev);
-  assess_accuracy<S>(sc, method, ev, AccuracyOptions{});  // error bounds and flags, not timed
-  decide_statuses<S>(sc, method, ev);
+  check_items<S>(sc, method, ev, AccuracyOptions{});  // error bounds, flags and exact statuses, not timed
   tr.results = result_set<S>(sc, ev, prec, method);
   return tr;
 }

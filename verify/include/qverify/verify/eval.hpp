@@ -292,9 +292,9 @@ template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::o
 /// and whichever frame the item was computed in (the predicates are
 /// projective invariants). Method paper adds singular-frame where the exact
 /// light has l_z = 0 (v_z = 0 for a parallel light).
-template <class S> void decide_statuses(const Scene& sc, Method method, Evaluation<S>& ev) {
-  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
-  std::vector<std::optional<bool>> degenerate(sc.quadrics.size());
+/// `ex` is typed_scene<Rational>(sc).
+template <class S> void decide_statuses(const TypedScene<Rational>& ex, Method method, Evaluation<S>& ev) {
+  std::vector<std::optional<bool>> degenerate(ex.A.size());
   for (auto& it : ev.shadows) {
     const Vec4<Rational>& L = ex.L[it.pair.other];
     const StatusDecision d = exact_shadow_status(ex.A[it.pair.quadric], L);
@@ -321,8 +321,9 @@ struct AccuracyOptions {
 /// default), times kBoundMargin. On the default path (builtin floating types,
 /// method direct, local frames) an item whose bound exceeds the target is
 /// first recomputed in binary128 from its exact inputs and measured again.
-template <class S> void assess_accuracy(const Scene& sc, Method method, Evaluation<S>& ev, const AccuracyOptions& opt) {
-  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
+/// `ex` is typed_scene<Rational>(sc).
+template <class S>
+void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S>& ev, const AccuracyOptions& opt) {
   ev.shadow_accuracy.assign(ev.shadows.size(), {});
   ev.reflection_accuracy.assign(ev.reflections.size(), {});
   if constexpr (std::is_same_v<S, Rational>) {
@@ -390,14 +391,21 @@ template <class S> void assess_accuracy(const Scene& sc, Method method, Evaluati
   }
 }
 
+/// The items' error bounds (with `accuracy`) and exact statuses, after evaluate_items.
+template <class S>
+void check_items(const Scene& sc, Method method, Evaluation<S>& ev, const std::optional<AccuracyOptions>& accuracy) {
+  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
+  if (accuracy) assess_accuracy<S>(ex, method, ev, *accuracy);
+  decide_statuses<S>(ex, method, ev);
+}
+
 /// A whole evaluation as the command line makes it: the items, their exact
 /// statuses and (with `accuracy`) their error bounds.
 template <class S>
 Evaluation<S> evaluate_checked(const Scene& sc, Method method, std::optional<Frame> frame,
                                const std::optional<AccuracyOptions>& accuracy) {
   Evaluation<S> ev = evaluate<S>(sc, method, frame);
-  if (accuracy) assess_accuracy<S>(sc, method, ev, *accuracy);
-  decide_statuses<S>(sc, method, ev);
+  check_items<S>(sc, method, ev, accuracy);
   return ev;
 }
 
@@ -408,16 +416,16 @@ inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
   return {o(0).convert_to<double>(), o(1).convert_to<double>(), o(2).convert_to<double>()};
 }
 
-/// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
-/// (every special case that applies), `fallback` and the paper route's
-/// intermediates (`paper`: M, T, C, D, S).
-/// error_bound (or null with error_bound_reason) of an item.
+/// error_bound of an item (or null, with the reason in `reason`).
 inline void accuracy_json(nlohmann::ordered_json& j, const ItemAccuracy* acc) {
   if (!acc) return;
   j["error_bound"] = acc->bound ? nlohmann::ordered_json(*acc->bound) : nlohmann::ordered_json(nullptr);
   if (!acc->reason.empty()) j["reason"] = acc->reason;
 }
 
+/// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
+/// (every special case that applies, and `inaccurate`), `error_bound`,
+/// `fallback` and the paper route's intermediates (`paper`: M, T, C, D, S).
 template <class S>
 nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it, const ItemAccuracy* acc = nullptr) {
   nlohmann::ordered_json j;
