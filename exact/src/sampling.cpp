@@ -12,10 +12,14 @@ struct Draw {
   std::mt19937_64 gen;
   explicit Draw(std::uint64_t seed) : gen(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull) {}
   Q small() { return Q(std::uniform_int_distribution<int>(-9, 9)(gen)); }
+  /// Draws x, then y, then z (sequenced: the order of a call's arguments is
+  /// unspecified, and gcc and clang differ, which gave other points per compiler).
   Vec3<Q> vec3() {
     Vec3<Q> v;
-    do v = Vec3<Q>(small(), small(), small());
-    while (v.isZero());
+    do {
+      const Q x = small(), y = small(), z = small();
+      v = Vec3<Q>(x, y, z);
+    } while (v.isZero());
     return v;
   }
 };

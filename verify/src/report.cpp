@@ -105,8 +105,8 @@ std::string stress_html(const json& doc, const std::vector<std::pair<std::string
          (f["default_meets_target"].get<bool>() ? "yes" : "NO") + "</b> (target: " + sci(f["geometric_target"]) + ").</p>\n";
     if (f.contains("flag_check"))
       b += std::string("<p><b>Flag self-check: ") + (f["flag_check"]["ok"].get<bool>() ? "passed" : "FAILED") + "</b> (" +
-           sci(f["flag_check"]["rule"]) + "; missed " + std::to_string(f["flag_check"]["missed"].size()) + ", spurious " +
-           std::to_string(f["flag_check"]["spurious"].size()) + "). Cells marked &#9873; are flagged inaccurate.</p>\n";
+           sci(f["flag_check"]["rule"]) + "; missed " + std::to_string(f["flag_check"]["missed"].size()) + ", flagged but below 1e-11 on these points " +
+           std::to_string(f["flag_check"]["flagged_below"].size()) + "). Cells marked &#9873; are flagged inaccurate.</p>\n";
     b += "<table><tr><th>" + sci(f["parameter"]) + "</th><th>exact status</th><th>eps*kappa</th><th>rounded exact</th>";
     for (const auto& r : f["points"][0]["runs"]) b += "<th>" + sci(r["run"]) + "</th>";
     b += "</tr>\n";

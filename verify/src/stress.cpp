@@ -175,7 +175,7 @@ json run_stress(const StressOptions& opt) {
     json points = json::array();
     std::vector<std::vector<double>> geo(specs.size()), mat(specs.size());
     std::vector<std::vector<bool>> flags(specs.size());
-    json missed = json::array(), spurious = json::array();
+    json missed = json::array(), flagged_below = json::array();
     std::vector<double> params, predicted, floors;
     bool all_meet = true;
     const std::vector<double> values = opt.worst_only ? std::vector<double>{fam.values.back()} : fam.values;
@@ -208,7 +208,7 @@ json run_stress(const StressOptions& opt) {
       for (std::size_t r = 0; r < specs.size(); ++r) {
         const RunSpec& spec = specs[r];
         json run{{"run", spec.label}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
-        double me = INFINITY, ge = INFINITY;
+        double me = INFINITY, ge = INFINITY, item_ge = INFINITY;
         bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
         std::string status;
         try {
@@ -229,6 +229,10 @@ json run_stress(const StressOptions& opt) {
             const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
             me = projective_error(quadric_from_local(got, o), want, true);
             ge = geometric_error(pts, origin, got);
+            // the item's geometric error, over all its results (what eval's flag is about)
+            item_ge = (fam.reflection ? reflection_error(pts, origin, got).geometric
+                                      : shadow_error(pts, origin, got, rs.shadows[0].polar, rs.shadows[0].R).geometric)
+                          .convert_to<double>();
             run["frame"] = origin ? "local" : "world";
             if (r == kDefaultRun) robust_origin = origin;
           }
@@ -238,10 +242,14 @@ json run_stress(const StressOptions& opt) {
         run["status"] = status;
         run["matrix_error"] = num(me);
         run["geometric_error"] = num(ge);
+        run["item_geometric_error"] = num(item_ge);
         run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
-        // The flag's self-check: raised wherever the measured error exceeds the target, never below target / 100.
-        if (returned && !(ge <= kDefaultAccuracy) && !flagged) missed.push_back({{"param", v}, {"run", spec.label}, {"geometric_error", num(ge)}});
-        if (ge < kDefaultAccuracy / 100 && flagged) spurious.push_back({{"param", v}, {"run", spec.label}, {"geometric_error", num(ge)}});
+        // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
+        // below: an error above the target here proves the flag missing; a flag where these points show less
+        // than target / 100 proves nothing (the error may sit between them) and is listed as information.
+        const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(item_ge)}};
+        if (returned && !(item_ge <= kDefaultAccuracy) && !flagged) missed.push_back(at);
+        if (item_ge < kDefaultAccuracy / 100 && flagged) flagged_below.push_back(at);
         runs.push_back(run);
         geo[r].push_back(ge);
         flags[r].push_back(flagged);
@@ -292,10 +300,12 @@ json run_stress(const StressOptions& opt) {
               {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
                                    "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
               {"default_meets_target", all_meet},
-              {"flag_check", {{"rule", "every run whose measured geometric error (8 exact points, seed 11) exceeds the "
-                                       "accuracy target 1e-9 carries the flag inaccurate (from eval's error bound on "
-                                       "other points), and no run below 1e-11 does"},
-                              {"ok", missed.empty() && spurious.empty()}, {"missed", missed}, {"spurious", spurious}}},
+              {"flag_check",
+               {{"rule", "every run whose item geometric error (P, polar plane and R, or B) measured on these exact "
+                         "points (seed 11) exceeds the accuracy target 1e-9 carries the flag inaccurate (from eval's "
+                         "error bound on other points); flagged_below lists flagged runs measured below 1e-11 here "
+                         "(information: a sample bounds the true error only from below)"},
+                {"ok", missed.empty()}, {"missed", missed}, {"flagged_below", flagged_below}}},
               {"points", points}, {"slopes", slopes},
               {"breakdown", breakdown}};
     families.push_back(famj);
