@@ -1,0 +1,153 @@
+#pragma once
+/// \file check.hpp
+/// Checking a user's matrices directly, no scene file: the verifier of
+/// `qverify verify` as a library call, for other projects' test suites.
+///
+///   auto rep = qverify::check_shadow(A, L, qverify::ShadowCandidate<double>{P, polar, R});
+///   if (!rep.passed) std::cerr << rep.summary();
+///
+/// The inputs A and L (or the mirror plane) are taken *exactly*: a float or a
+/// double is the dyadic rational it holds, a rational is itself, an interval
+/// is its midpoint. Exact points are sampled on the exact geometry (terminator
+/// points A ∩ {(A L) . x = 0} for a shadow, points of A reflected exactly for
+/// a reflection, in Q(sqrt d)) and each candidate quadric is measured at them
+/// exactly (accuracy.hpp). The verdict is that of `verify`:
+///  - a floating candidate passes when the geometric error of every quadric it
+///    gives (largest first-order distance of the points from it, divided by
+///    the object size) is at most the accuracy target, its signs agree with
+///    references computed here from A, L and the plane (not by the core under
+///    test), and it is the object it claims to be (P a cone from L through the
+///    terminator, R the plane pair through the polar plane and the second
+///    plane of the paper's frame, M the reflection);
+///  - an exact candidate (rationals) passes only when every residual is
+///    exactly zero: a proof on the sampled points.
+
+#include <qverify/verify/accuracy.hpp>
+#include <qverify/verify/precision.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace qverify {
+
+/// Options of a check (the same defaults as `qverify verify`).
+struct CheckOptions {
+  int samples = kDefaultSamples;
+  std::uint64_t seed = 1;
+  double accuracy = kDefaultAccuracy;  ///< the accuracy target T, relative to the object size
+  /// Information only: the shadow was computed by the paper's route (its
+  /// frame's conditioning enters consistent_with_precision's kappa).
+  Method method = Method::direct;
+};
+
+/// A shadow to check, every part optional (a renderer may compute only P):
+/// the cone P (eq. 2), the polar plane A L, the quadric R (eq. 6).
+template <class S> struct ShadowCandidate {
+  std::optional<Mat4<S>> P;
+  std::optional<Vec4<S>> polar_plane;
+  std::optional<Mat4<S>> R;
+  /// The frame the matrices are written in: local coordinates x - origin.
+  std::optional<Vec3<S>> origin;
+  /// The status word the candidate reported (checked against the exact one when given).
+  std::string status;
+};
+
+/// A reflection to check: the mirror matrix M (eq. 7) and the image B = M^T A M (eq. 11).
+template <class S> struct ReflectionCandidate {
+  std::optional<Mat4<S>> M;
+  std::optional<Mat4<S>> B;
+  std::optional<Vec3<S>> origin;
+  std::string status;
+};
+
+/// One quadric (or plane) of the candidate measured at one set of exact points.
+struct QuadricCheck {
+  std::string name;  ///< on_P, on_polar_plane, on_R, on_generators, R_on_polar_plane, on_B, on_A
+  Metric metric;
+  double geometric_error = 0;  ///< relative(metric, object size); +inf when a point sits where the gradient vanishes
+  bool passed = true;
+  bool judged = true;          ///< false: information only (on_A)
+  /// The worst point (largest distance), exactly and rounded, in the candidate's frame.
+  std::optional<RootPoint> worst;
+  std::optional<Vec3<double>> worst_approx;
+};
+
+/// The typed report of a check: everything `verify` writes for one item.
+struct CheckReport {
+  std::string kind;  ///< "shadow" or "reflection"
+  bool passed = false;
+  bool skipped = false;               ///< nothing to sample (no real point): neither pass nor fail
+  bool exact = false;                 ///< proof mode: every residual must be exactly zero
+  std::vector<std::string> problems;  ///< every reason it fails (empty when it passes)
+  std::string exact_status;           ///< the status word of the exact inputs
+  std::string item_status;            ///< the candidate's status (or the exact one when it gave none)
+  double accuracy = kDefaultAccuracy;
+  double object_size = 0;
+  double geometric_error = 0;  ///< largest over the judged quadrics (+inf: unbounded)
+  std::size_t points = 0;      ///< exact points sampled
+  bool exhausted = false;      ///< fewer real points than asked
+  std::vector<QuadricCheck> checks;
+  /// Extra shadow checks: R on the paper's second plane (first-order, relative).
+  std::optional<double> second_plane_error;
+  /// Reflection: largest entry of M - M_ref relative to max(1, |M_ref|_max).
+  std::optional<double> M_error;
+  int proved_exactly = 0;  ///< exact mode: points at which every residual is exactly 0
+  /// The rounding verdict of earlier versions (64 eps kappa), information only.
+  bool consistent_with_precision = true;
+  double rounding_tolerance = 0, kappa = 1;
+  /// The exact reference (computed here, not by the core under test), for messages:
+  /// P_ref = (L^T A L) A - (A L)(A L)^T, polar = A L, B_ref = M^T A M (in the candidate's frame).
+  std::optional<Mat4<Rational>> reference;
+  std::vector<std::string> notes;
+
+  /// The check named `name`, or nullptr.
+  const QuadricCheck* find(const std::string& name) const;
+  /// The failing check with the largest geometric error, or nullptr.
+  const QuadricCheck* worst_check() const;
+  /// A paragraph a person can act on: verdict, every problem, the worst point
+  /// (which point, how far, relative to what, in which frame), the expected matrix rounded.
+  std::string summary() const;
+};
+
+/// The same candidate in exact rationals (what every check works on).
+using ExactShadowCandidate = ShadowCandidate<Rational>;
+using ExactReflectionCandidate = ReflectionCandidate<Rational>;
+
+/// The core of a check, on exact inputs. `eps`: the unit roundoff of the
+/// precision the candidate was computed in (0 = exact: proof mode).
+CheckReport check_shadow_exact(const Mat4<Rational>& A, const Vec4<Rational>& L, const ExactShadowCandidate& c,
+                               const CheckOptions& opt, const Measure& eps, std::size_t item = 0);
+CheckReport check_reflection_exact(const Mat4<Rational>& A, const Vec4<Rational>& plane,
+                                   const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps,
+                                   std::size_t item = 0);
+
+/// Unit roundoff of a precision (0 for exact), without touching global state.
+Measure unit_roundoff(const Precision& p);
+/// The ladder precision of a scalar type (mpfr: its current default bits).
+template <class S> Precision precision_of();
+
+/// Throws InputError(where, "NAME[i][j]", problem) for a non-finite entry,
+/// a non-symmetric matrix, a zero light or plane normal. Nothing is computed
+/// from rejected inputs.
+void validate_quadric(const Mat4<Rational>& A, const std::string& where, const std::string& name);
+void validate_light(const Vec4<Rational>& L, const std::string& where, const std::string& name);
+void validate_plane(const Vec4<Rational>& plane, const std::string& where, const std::string& name);
+
+namespace detail {
+template <class S, int R, int C>
+Eigen::Matrix<Rational, R, C> exact_checked(const Eigen::Matrix<S, R, C>& m, const std::string& where,
+                                            const std::string& name);
+}  // namespace detail
+
+/// Checks a shadow computed in any scalar type S (float, double, long double,
+/// float128, mpfr, interval, Rational). A, L are the inputs as the caller
+/// holds them (taken exactly); S = Rational is proof mode.
+template <class S>
+CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const CheckOptions& opt = {});
+/// Checks a reflection in the mirror plane a x + b y + c z + d = 0.
+template <class S>
+CheckReport check_reflection(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c,
+                             const CheckOptions& opt = {});
+
+}  // namespace qverify
