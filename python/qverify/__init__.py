@@ -1,0 +1,204 @@
+"""qverify: shadow volumes and mirror images of quadric surfaces, exact and verified.
+
+After Hashimoto & Suenaga, "A study on the transformation of quadric
+surfaces": the shadow volume of a quadric x^T A x = 0 lit by a point or
+parallel light (a cone P with the light at its apex, cut by a quadric R
+through the terminator) and its mirror image B = M^T A M in a plane mirror.
+
+Every input number is taken exactly: a float is the dyadic rational it
+holds, an int is itself, a fractions.Fraction is p/q, a string is a decimal
+("0.1" is 1/10) or "p/q". Results are float64 numpy arrays, or nested lists
+of Fraction with precision="exact".
+
+Functions:
+    shadow(A, L, ...)             P, polar plane and R of one quadric and light
+    reflection(A, plane, ...)     M and B of one quadric and mirror plane
+    check_shadow(A, L, P=..., polar_plane=..., R=...)
+                                  checks any program's shadow on exact points
+    check_reflection(A, plane, M=..., B=...)
+                                  checks any program's mirror image
+    eval_scene(scene, ...)        the qverify-eval/1 document of a scene
+    verify_scene(scene, ...)      the qverify-verify/1 document of a scene
+
+Bad input raises qverify.InputError (a ValueError) whose `path` names the
+offending value: "A[1][3]", "L", "precision", or a scene's JSON path.
+
+Example:
+    >>> import numpy as np, qverify
+    >>> A = np.diag([1.0, 1.0, 1.0, -1.0])          # unit sphere
+    >>> L = np.array([3.0, 4.0, 8.0, 1.0])           # point light (3, 4, 8)
+    >>> s = qverify.shadow(A, L)
+    >>> rep = qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R)
+    >>> rep.passed
+    True
+"""
+
+import json as _json
+import math as _math
+import os as _os
+from fractions import Fraction as _Fraction
+
+from ._qverify import (  # noqa: F401
+    DEFAULT_ACCURACY,
+    DEFAULT_SAMPLES,
+    PRECISIONS,
+    CheckReport,
+    InputError,
+    ReflectionResult,
+    ShadowResult,
+    _eval_scene,
+    _verify_scene,
+    check_reflection,
+    check_shadow,
+    reflection,
+    shadow,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "shadow",
+    "reflection",
+    "check_shadow",
+    "check_reflection",
+    "eval_scene",
+    "verify_scene",
+    "InputError",
+    "ShadowResult",
+    "ReflectionResult",
+    "CheckReport",
+    "DEFAULT_ACCURACY",
+    "DEFAULT_SAMPLES",
+    "PRECISIONS",
+]
+
+
+def _join(path, key):
+    return key if not path else path + "." + key
+
+
+def _exact_json(value, path):
+    """A dict of a scene or candidate made JSON text that keeps every number exact.
+
+    A float becomes the string "p/q" of the dyadic rational it holds (a JSON
+    number would be read as the decimal it spells), a Fraction "p/q", a
+    numpy array or scalar its list or number; NaN and inf are refused with
+    the path.
+    """
+    try:
+        import numpy as np
+    except ImportError:  # pragma: no cover - numpy is a dependency of the module
+        np = None
+    if np is not None and isinstance(value, np.ndarray):
+        value = value.tolist()
+    if np is not None and isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, dict):
+        out = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise InputError("%s: keys must be strings, found %r" % (path or "(document)", k),
+                                 path, "<dict>", "keys must be strings, found %r" % (k,))
+            out[k] = _exact_json(v, _join(path, k))
+        return out
+    if isinstance(value, (list, tuple)):
+        return [_exact_json(v, "%s[%d]" % (path, i)) for i, v in enumerate(value)]
+    if isinstance(value, bool) or value is None or isinstance(value, (int, str)):
+        return value
+    if isinstance(value, float):
+        if not _math.isfinite(value):
+            problem = "not a finite number (%r)" % value
+            raise InputError("<dict>: %s: %s" % (path, problem), path, "<dict>", problem)
+        p, q = value.as_integer_ratio()
+        return str(p) if q == 1 else "%d/%d" % (p, q)
+    if isinstance(value, _Fraction) or (hasattr(value, "numerator") and hasattr(value, "denominator")):
+        p, q = int(value.numerator), int(value.denominator)
+        if q == 0:
+            problem = "a fraction with zero denominator (%d/0)" % p
+            raise InputError("<dict>: %s: %s" % (path, problem), path, "<dict>", problem)
+        return str(p) if q == 1 else "%d/%d" % (p, q)
+    if hasattr(value, "as_integer_ratio"):  # decimal.Decimal, numpy long double
+        try:
+            p, q = value.as_integer_ratio()
+        except (ValueError, OverflowError):
+            problem = "not a finite number (%r)" % (value,)
+            raise InputError("<dict>: %s: %s" % (path, problem), path, "<dict>", problem) from None
+        return str(p) if q == 1 else "%d/%d" % (p, q)
+    problem = "not a JSON value: %s" % type(value).__name__
+    raise InputError("<dict>: %s: %s" % (path or "(document)", problem), path, "<dict>", problem)
+
+
+def _document_args(doc, what):
+    """(path, text, name) for the C++ side: a file path, or a dict as exact JSON text."""
+    if isinstance(doc, dict):
+        return None, _json.dumps(_exact_json(doc, "")), "<dict>"
+    if isinstance(doc, (str, bytes, _os.PathLike)):
+        return _os.fsdecode(doc), None, ""
+    problem = "expected a file path or a dict, found %s" % type(doc).__name__
+    raise InputError("%s: %s" % (what, problem), what, "", problem)
+
+
+def eval_scene(scene, precision="double", method="direct", *, frame=None, accuracy=DEFAULT_ACCURACY, tolerance=None):
+    """Evaluates a scene: the qverify-eval/1 document of `qverify eval SCENE --json`.
+
+    Args:
+        scene: a qverify-scene/1 file (path) or the scene as a dict
+            ({"format": "qverify-scene/1", "quadrics": [...], ...}). In a
+            dict a float is taken at its exact binary value; write a decimal
+            string ("0.1") for a decimal number, or a Fraction.
+        precision: "float", "double", "long-double", "float128", "mpfr:BITS",
+            "interval" or "exact".
+        method: "direct" or "paper".
+        frame: None (default), "local" or "world".
+        accuracy: the accuracy target of the items' error_bound.
+        tolerance: adaptive mode (`eval --tolerance T`): each item escalates
+            double -> interval -> mpfr -> exact until certified within T.
+
+    Returns:
+        dict: the document (format, scene, precision, method, frame,
+        accuracy, shadows, reflections, skipped, inputs_rounded, ...), with
+        numbers as the CLI writes them (exact entries as "p/q" strings).
+
+    Raises:
+        qverify.InputError: an invalid scene (`path` is the JSON path,
+            `file` the file or "<dict>") or a bad argument.
+        OSError-like RuntimeError: an unreadable file is an InputError too.
+    """
+    path, text, name = _document_args(scene, "scene")
+    return _eval_scene(path, text, name, precision, method, frame, accuracy, tolerance)
+
+
+def verify_scene(scene, candidate=None, precision="double", method="direct", *, frame=None,
+                 samples=DEFAULT_SAMPLES, seed=1, accuracy=DEFAULT_ACCURACY):
+    """Verifies a scene on exact sample points: the qverify-verify/1 document of `qverify verify`.
+
+    Without a candidate the scene is computed in `precision` by `method` and
+    checked; with one, the candidate's results are checked (from any program).
+
+    Args:
+        scene: a qverify-scene/1 file (path) or a dict (see eval_scene).
+        candidate: None, or a qverify-eval/1 document: a file path or a dict
+            (e.g. what eval_scene returned, possibly altered). Its floats
+            are taken exactly.
+        precision: the precision to compute in (without a candidate); with a
+            candidate it only sets the information consistent_with_precision
+            when the document does not name its precision.
+        method, frame: as in eval_scene.
+        samples, seed: exact points per item and the sampler's seed.
+        accuracy: the accuracy target (0 in the document with precision
+            "exact": a pass is then a proof).
+
+    Returns:
+        dict: the document (checks, passed, failed, skipped counts, ...).
+        Each check has status "pass", "fail" or "skipped".
+
+    Raises:
+        qverify.InputError: an invalid scene or candidate (JSON path), or a
+            bad argument.
+    """
+    path, text, name = _document_args(scene, "scene")
+    if candidate is None:
+        cpath, ctext, cname = None, None, ""
+    else:
+        cpath, ctext, cname = _document_args(candidate, "candidate")
+    return _verify_scene(path, text, name, cpath, ctext, cname, precision, method, frame, samples, seed, accuracy)

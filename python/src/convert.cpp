@@ -1,0 +1,265 @@
+#include "convert.hpp"
+
+#include <qverify/exact/number_text.hpp>
+#include <qverify/exact/rounding.hpp>
+
+#include <cmath>
+
+namespace qverify::py_glue {
+
+namespace {
+
+std::string type_name(py::handle h) { return py::str(py::type::handle_of(h).attr("__name__")).cast<std::string>(); }
+
+/// numpy, imported once (the module imports it at load time).
+py::module_& numpy() {
+  static py::module_* np = new py::module_(py::module_::import("numpy"));  // intentionally leaked: lives as long as the interpreter
+  return *np;
+}
+
+std::string short_repr(py::handle h) {
+  std::string r = py::repr(h).cast<std::string>();
+  return r.size() > 60 ? r.substr(0, 57) + "..." : r;
+}
+
+Rational exact_text(const std::string& text, const std::string& path) {
+  std::string err;
+  const std::optional<Rational> v = parse_rational(text, err);
+  if (!v) bad_argument(path, err);
+  return *v;
+}
+
+/// An int-valued Python object (int, numpy integer) as decimal text.
+std::string int_text(py::handle h) { return py::str(py::int_(py::reinterpret_borrow<py::object>(h))).cast<std::string>(); }
+
+Rational from_ratio(py::handle num, py::handle den, const std::string& path) {
+  const std::string d = int_text(den);
+  if (d == "0") bad_argument(path, "a fraction with zero denominator (" + int_text(num) + "/0)");
+  return exact_text(int_text(num) + "/" + d, path);
+}
+
+bool is_sequence(py::handle h) {
+  return !py::isinstance<py::str>(h) && !py::isinstance<py::bytes>(h) && py::isinstance<py::sequence>(h);
+}
+
+/// A numpy array's shape as "(3, 4)".
+std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<std::string>(); }
+
+}  // namespace
+
+void bad_argument(const std::string& path, const std::string& problem) { throw InputError("", path, problem); }
+
+Rational to_rational(py::handle h, const std::string& path, Kinds& kinds) {
+  if (h.is_none()) bad_argument(path, "expected a number, found None");
+  if (py::isinstance<py::bool_>(h) || py::isinstance(h, numpy().attr("bool_")))
+    bad_argument(path, "expected a number, found a bool");
+  if (PyFloat_Check(h.ptr())) {  // Python float and numpy.float64
+    const double d = PyFloat_AsDouble(h.ptr());
+    if (!std::isfinite(d)) bad_argument(path, std::string("not a finite number (") + (std::isnan(d) ? "NaN" : "infinite") + ")");
+    kinds.add(NumberKind::f64);
+    return qverify::to_rational(d);
+  }
+  if (PyLong_Check(h.ptr()) || py::isinstance(h, numpy().attr("integer"))) {
+    kinds.add(NumberKind::exact);
+    return exact_text(int_text(h), path);
+  }
+  if (py::isinstance<py::str>(h)) {
+    kinds.add(NumberKind::exact);
+    return exact_text(h.cast<std::string>(), path);
+  }
+  if (py::isinstance(h, numpy().attr("floating"))) {
+    // float16 / float32: exact in double; wider (long double): its exact ratio below
+    const long size = h.attr("itemsize").cast<long>();
+    if (!numpy().attr("isfinite")(h).cast<bool>()) bad_argument(path, "not a finite number (" + short_repr(h) + ")");
+    if (size <= 8) {
+      kinds.add(size == 8 ? NumberKind::f64 : NumberKind::f32);
+      return qverify::to_rational(h.cast<double>());
+    }
+  }
+  if (py::hasattr(h, "numerator") && py::hasattr(h, "denominator")) {  // fractions.Fraction and look-alikes
+    const py::object num = h.attr("numerator"), den = h.attr("denominator");
+    if (!(PyLong_Check(num.ptr()) || py::isinstance(num, numpy().attr("integer"))) ||
+        !(PyLong_Check(den.ptr()) || py::isinstance(den, numpy().attr("integer"))))
+      bad_argument(path, "a fraction needs integer numerator and denominator, found " + short_repr(h));
+    kinds.add(NumberKind::exact);
+    return from_ratio(num, den, path);
+  }
+  if (py::hasattr(h, "as_integer_ratio")) {  // decimal.Decimal, numpy long double
+    py::tuple pq;
+    try {
+      pq = h.attr("as_integer_ratio")();
+    } catch (py::error_already_set&) {
+      bad_argument(path, "not a finite number (" + short_repr(h) + ")");
+    }
+    kinds.add(NumberKind::exact);
+    return from_ratio(pq[0], pq[1], path);
+  }
+  bad_argument(path, "expected a number (int, float, Fraction, or a decimal or \"p/q\" string), found " + type_name(h) +
+                         " " + short_repr(h));
+}
+
+Mat4<Rational> to_matrix(py::handle h, const std::string& name, Kinds& kinds) {
+  py::object rows = py::reinterpret_borrow<py::object>(h);
+  if (py::isinstance(h, numpy().attr("ndarray"))) {
+    if (h.attr("ndim").cast<long>() != 2 || h.attr("shape").cast<py::tuple>()[0].cast<long>() != 4 ||
+        h.attr("shape").cast<py::tuple>()[1].cast<long>() != 4)
+      bad_argument(name, "expected a 4x4 matrix, found an array of shape " + shape_text(h));
+    rows = h.attr("tolist")();  // floats stay exact (float32 -> float exactly), objects stay themselves
+  }
+  if (!is_sequence(rows)) bad_argument(name, "expected a 4x4 matrix (rows of numbers), found " + type_name(rows));
+  const py::sequence seq = rows.cast<py::sequence>();
+  if (seq.size() != 4) bad_argument(name, "expected a 4x4 matrix, found " + std::to_string(seq.size()) + " rows");
+  Mat4<Rational> m;
+  for (int i = 0; i < 4; ++i) {
+    const std::string rp = name + "[" + std::to_string(i) + "]";
+    const py::object row = seq[static_cast<size_t>(i)];
+    if (!is_sequence(row)) bad_argument(rp, "expected a row of 4 numbers, found " + type_name(row));
+    const py::sequence r = row.cast<py::sequence>();
+    if (r.size() != 4) bad_argument(rp, "expected a row of 4 numbers, found " + std::to_string(r.size()));
+    for (int j = 0; j < 4; ++j) m(i, j) = to_rational(r[static_cast<size_t>(j)], rp + "[" + std::to_string(j) + "]", kinds);
+  }
+  return m;
+}
+
+template <int N> Eigen::Matrix<Rational, N, 1> to_vector(py::handle h, const std::string& name, Kinds& kinds) {
+  py::object items = py::reinterpret_borrow<py::object>(h);
+  if (py::isinstance(h, numpy().attr("ndarray"))) {
+    if (h.attr("ndim").cast<long>() != 1 || h.attr("shape").cast<py::tuple>()[0].cast<long>() != N)
+      bad_argument(name, "expected " + std::to_string(N) + " numbers, found an array of shape " + shape_text(h));
+    items = h.attr("tolist")();
+  }
+  if (!is_sequence(items)) bad_argument(name, "expected " + std::to_string(N) + " numbers, found " + type_name(items));
+  const py::sequence seq = items.cast<py::sequence>();
+  if (seq.size() != static_cast<size_t>(N))
+    bad_argument(name, "expected " + std::to_string(N) + " numbers, found " + std::to_string(seq.size()));
+  Eigen::Matrix<Rational, N, 1> v;
+  for (int i = 0; i < N; ++i) v(i) = to_rational(seq[static_cast<size_t>(i)], name + "[" + std::to_string(i) + "]", kinds);
+  return v;
+}
+template Eigen::Matrix<Rational, 3, 1> to_vector<3>(py::handle, const std::string&, Kinds&);
+template Eigen::Matrix<Rational, 4, 1> to_vector<4>(py::handle, const std::string&, Kinds&);
+
+py::object fraction(const Rational& q) {
+  static py::object* cls = new py::object(py::module_::import("fractions").attr("Fraction"));  // leaked on purpose
+  return (*cls)(py::int_(py::str(numerator(q).str())), py::int_(py::str(denominator(q).str())));
+}
+
+double nearest_double(const Rational& q) {
+  RoundingReport rep;
+  return round_rational<double>(q, rep);
+}
+
+namespace {
+
+Rational json_exact(const nlohmann::ordered_json& v) {
+  std::string err;
+  if (v.is_number_float()) return qverify::to_rational(v.get<double>());
+  if (v.is_number_integer()) return Rational(v.get<long long>());
+  if (v.is_string()) {
+    const auto q = parse_rational(v.get<std::string>(), err);
+    if (q) return *q;
+  }
+  if (v.is_object() && v.contains("lo") && v.contains("hi")) return (json_exact(v["lo"]) + json_exact(v["hi"])) / 2;
+  throw std::runtime_error("qverify: unexpected entry in a result: " + v.dump());
+}
+
+double json_double(const nlohmann::ordered_json& v) {
+  if (v.is_null()) return std::nan("");
+  if (v.is_number_float()) return v.get<double>();
+  return nearest_double(json_exact(v));
+}
+
+}  // namespace
+
+py::array_t<double> json_to_array(const nlohmann::ordered_json& m) {
+  const bool matrix = !m.empty() && m[0].is_array();
+  if (!matrix) {
+    py::array_t<double> out(static_cast<py::ssize_t>(m.size()));
+    auto v = out.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < m.size(); ++i) v(static_cast<py::ssize_t>(i)) = json_double(m[i]);
+    return out;
+  }
+  const auto rows = static_cast<py::ssize_t>(m.size()), cols = static_cast<py::ssize_t>(m[0].size());
+  py::array_t<double> out({rows, cols});
+  auto v = out.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < rows; ++i)
+    for (py::ssize_t j = 0; j < cols; ++j) v(i, j) = json_double(m[static_cast<size_t>(i)][static_cast<size_t>(j)]);
+  return out;
+}
+
+py::object json_to_fractions(const nlohmann::ordered_json& m) {
+  py::list out;
+  for (const auto& x : m) {
+    if (x.is_array()) out.append(json_to_fractions(x));
+    else if (x.is_null()) out.append(py::none());
+    else out.append(fraction(json_exact(x)));
+  }
+  return out;
+}
+
+py::object json_to_python(const nlohmann::ordered_json& j) {
+  switch (j.type()) {
+    case nlohmann::ordered_json::value_t::null: return py::none();
+    case nlohmann::ordered_json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<long long>());
+    case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::ordered_json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::ordered_json::value_t::array: {
+      py::list out;
+      for (const auto& x : j) out.append(json_to_python(x));
+      return out;
+    }
+    case nlohmann::ordered_json::value_t::object: {
+      py::dict out;
+      for (auto it = j.begin(); it != j.end(); ++it) out[py::str(it.key())] = json_to_python(it.value());
+      return out;
+    }
+    default: return py::none();
+  }
+}
+
+namespace {
+PyObject* input_error_type = nullptr;  // a new reference kept for the interpreter's lifetime
+}
+
+void register_input_error(py::module_& m) {
+  py::dict ns;
+  ns["__name__"] = "qverify";
+  py::exec(R"(
+class InputError(ValueError):
+    """Bad input to qverify: nothing was computed from it.
+
+    Attributes:
+        path: where the offending value is. For an argument of a call, its
+            name and index, e.g. "A[3][1]", "L", "plane", "precision"; for a
+            scene or candidate document, the JSON path, e.g.
+            "quadrics[0].matrix[1][3]".
+        file: the scene or candidate file ("<dict>" for a dict, "" for a
+            call's arguments).
+        problem: what is wrong with it, in words.
+    """
+
+    def __init__(self, message, path="", file="", problem=""):
+        super().__init__(message)
+        self.path = path
+        self.file = file
+        self.problem = problem
+)",
+           ns, ns);
+  py::object cls = ns["InputError"];
+  input_error_type = cls.inc_ref().ptr();
+  m.attr("InputError") = cls;
+  py::register_exception_translator([](std::exception_ptr p) {
+    if (!p) return;
+    try {
+      std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      const std::string msg = e.file.empty() ? (e.path.empty() ? e.problem : e.path + ": " + e.problem) : e.what();
+      py::object inst = py::reinterpret_borrow<py::object>(input_error_type)(msg, e.path, e.file, e.problem);
+      PyErr_SetObject(input_error_type, inst.ptr());
+    }
+  });
+}
+
+}  // namespace qverify::py_glue

@@ -1,0 +1,429 @@
+// The Python module qverify._qverify (re-exported by the package qverify):
+// shadow volumes and mirror images of one quadric, whole scenes (eval,
+// verify) and, in check_bindings.cpp, the checks of a user's own matrices.
+#include "convert.hpp"
+#include "options.hpp"
+
+#include <qverify/verify/adaptive.hpp>
+#include <qverify/verify/check.hpp>
+#include <qverify/verify/eval.hpp>
+#include <qverify/verify/verifier.hpp>
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+namespace py = pybind11;
+using namespace qverify;
+using namespace qverify::py_glue;
+using json = nlohmann::ordered_json;
+
+namespace qverify::py_glue {
+
+Precision precision_arg(const std::string& text) {
+  const auto p = parse_precision(text);
+  if (!p)
+    bad_argument("precision", "unknown precision \"" + text +
+                                  "\" (expected float, double, long-double, float128, mpfr:BITS with 16 <= BITS <= "
+                                  "65536, interval or exact)");
+  return *p;
+}
+
+Method method_arg(const std::string& text) {
+  if (text == "direct") return Method::direct;
+  if (text == "paper") return Method::paper;
+  bad_argument("method", "unknown method \"" + text + "\" (expected direct or paper)");
+}
+
+std::optional<Frame> frame_arg(const py::object& frame) {
+  if (frame.is_none()) return std::nullopt;
+  if (!py::isinstance<py::str>(frame)) bad_argument("frame", "expected \"local\", \"world\" or None");
+  const std::string t = frame.cast<std::string>();
+  if (t == "local") return Frame::local;
+  if (t == "world") return Frame::world;
+  bad_argument("frame", "unknown frame \"" + t + "\" (expected local, world or None for the default)");
+}
+
+double accuracy_arg(double accuracy) {
+  if (!(std::isfinite(accuracy) && accuracy > 0))
+    bad_argument("accuracy", "the accuracy target must be a positive finite number, found " + std::to_string(accuracy));
+  return accuracy;
+}
+
+int samples_arg(long samples) {
+  if (samples < 1 || samples > 100000) bad_argument("samples", "expected 1 to 100000 sample points, found " + std::to_string(samples));
+  return static_cast<int>(samples);
+}
+
+std::uint64_t seed_arg(long long seed) {
+  if (seed < 0) bad_argument("seed", "expected a non-negative seed");
+  return static_cast<std::uint64_t>(seed);
+}
+
+std::unique_lock<std::mutex> mpfr_lock(bool needed) {
+  static std::mutex m;
+  return needed ? std::unique_lock<std::mutex>(m) : std::unique_lock<std::mutex>();
+}
+
+void bind_checks(py::module_& m);  // check_bindings.cpp
+
+}  // namespace qverify::py_glue
+
+namespace {
+
+/// The result of qverify.shadow: one item of a qverify-eval/1 document, its
+/// matrices converted.
+struct PyShadow {
+  py::object P, polar_plane, R, origin, error_bound, item;
+  std::string status, precision, method, frame, reason, escalated, fallback;
+  std::vector<std::string> flags, inputs_rounded;
+};
+
+struct PyReflection {
+  py::object M, B, origin, error_bound, item;
+  std::string status, precision, method, frame, reason, escalated;
+  std::vector<std::string> flags, inputs_rounded;
+};
+
+template <int N> std::vector<Num> nums(const std::string& name, const Eigen::Matrix<Rational, N, 1>& v) {
+  std::vector<Num> out;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    out.push_back(Num{v(i), name + "[" + std::to_string(i) + "]", ""});
+  return out;
+}
+
+QuadricSpec quadric_spec(const Mat4<Rational>& A) {
+  QuadricSpec q;
+  q.id = "A";
+  q.path = "A";
+  q.shape = Shape::matrix;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      q.params.push_back(Num{A(i, j), "A[" + std::to_string(i) + "][" + std::to_string(j) + "]", ""});
+  return q;
+}
+
+/// The eval document of a one-item scene, computed with the GIL released.
+json eval_one(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame, double accuracy) {
+  py::gil_scoped_release nogil;
+  auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr);
+  return eval_document(sc, prec, method, frame, AccuracyOptions{accuracy});
+}
+
+py::object matrix_out(const json& m, bool exact) { return exact ? json_to_fractions(m) : py::object(json_to_array(m)); }
+
+py::object negated(const py::object& v, bool exact) {
+  if (!exact) return v.attr("__neg__")();
+  py::list out;
+  for (py::handle x : v) out.append(x.is_none() ? py::none() : py::reinterpret_borrow<py::object>(x).attr("__neg__")());
+  return out;
+}
+
+template <class T> void common_fields(T& r, const json& doc, const json& item) {
+  r.status = item.at("status").get<std::string>();
+  r.flags = item.at("flags").get<std::vector<std::string>>();
+  r.error_bound = item.contains("error_bound") && item["error_bound"].is_number() ? py::object(py::float_(item["error_bound"].get<double>()))
+                                                                                  : py::object(py::none());
+  r.reason = item.value("reason", "");
+  r.escalated = item.value("escalated", "");
+  r.origin = item.contains("origin") ? py::object(json_to_array(item["origin"])) : py::object(py::none());
+  r.precision = doc.at("precision").get<std::string>();
+  r.method = doc.at("method").get<std::string>();
+  r.frame = doc.at("frame").get<std::string>();
+  r.inputs_rounded = doc.at("inputs_rounded").get<std::vector<std::string>>();
+  r.item = json_to_python(item);
+}
+
+PyShadow shadow_py(py::handle A_in, py::handle L_in, const std::string& method_text, const std::string& precision_text,
+                   double accuracy, const py::object& frame_in) {
+  Kinds kinds;
+  const Mat4<Rational> A = to_matrix(A_in, "A", kinds);
+  const Vec4<Rational> L = to_vector<4>(L_in, "L", kinds);
+  const Method method = method_arg(method_text);
+  const Precision prec = precision_arg(precision_text);
+  const std::optional<Frame> frame = frame_arg(frame_in);
+  accuracy_arg(accuracy);
+  validate_quadric(A, "", "A");
+  validate_light(L, "", "L");
+
+  Scene sc;
+  sc.name = "qverify.shadow";
+  sc.quadrics.push_back(quadric_spec(A));
+  LightSpec l;
+  l.id = "L";
+  l.path = "L";
+  l.parallel = L(3) == 0;
+  for (int i = 0; i < 3; ++i)  // a point light at (x/w, y/w, z/w); a parallel light L = (-d, 0): d = -(x, y, z)
+    l.xyz.push_back(Num{l.parallel ? Rational(-L(i)) : Rational(L(i) / L(3)), "L[" + std::to_string(i) + "]", ""});
+  sc.lights.push_back(l);
+  sc.shadows.push_back(Pair{0, 0});
+
+  const json doc = eval_one(sc, prec, method, frame, accuracy);
+  const json& item = doc.at("shadows").at(0);
+  const bool exact = prec.kind == Precision::Kind::exact;
+  PyShadow r;
+  common_fields(r, doc, item);
+  r.P = matrix_out(item.at("P"), exact);
+  r.polar_plane = matrix_out(item.at("polar_plane"), exact);
+  r.R = matrix_out(item.at("R"), exact);
+  // The scene's light is (x/w, y/w, z/w, 1): its polar plane is A L / w. For w < 0 turn it back
+  // into A L up to a positive factor (P, quadratic in L, and R, defined up to sign, are unchanged).
+  if (!l.parallel && L(3) < 0) r.polar_plane = negated(r.polar_plane, exact);
+  r.fallback = item.value("fallback", "");
+  return r;
+}
+
+PyReflection reflection_py(py::handle A_in, py::handle plane_in, const std::string& method_text,
+                           const std::string& precision_text, double accuracy, const py::object& frame_in) {
+  Kinds kinds;
+  const Mat4<Rational> A = to_matrix(A_in, "A", kinds);
+  const Vec4<Rational> plane = to_vector<4>(plane_in, "plane", kinds);
+  const Method method = method_arg(method_text);
+  const Precision prec = precision_arg(precision_text);
+  const std::optional<Frame> frame = frame_arg(frame_in);
+  accuracy_arg(accuracy);
+  validate_quadric(A, "", "A");
+  validate_plane(plane, "", "plane");
+
+  Scene sc;
+  sc.name = "qverify.reflection";
+  sc.quadrics.push_back(quadric_spec(A));
+  MirrorSpec mir;
+  mir.id = "plane";
+  mir.path = "plane";
+  mir.plane = nums("plane", plane);
+  sc.mirrors.push_back(mir);
+  sc.reflections.push_back(Pair{0, 0});
+
+  const json doc = eval_one(sc, prec, method, frame, accuracy);
+  const json& item = doc.at("reflections").at(0);
+  const bool exact = prec.kind == Precision::Kind::exact;
+  PyReflection r;
+  common_fields(r, doc, item);
+  r.M = matrix_out(item.at("M"), exact);
+  r.B = matrix_out(item.at("B"), exact);
+  return r;
+}
+
+/// A scene from a file (`path`) or from JSON text (`text`, named `name` in messages).
+Scene scene_arg(const py::object& path, const py::object& text, const std::string& name) {
+  if (!text.is_none()) {
+    const std::string t = text.cast<std::string>();
+    py::gil_scoped_release nogil;
+    return parse_scene(t, name);
+  }
+  const std::string p = py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+  py::gil_scoped_release nogil;
+  return load_scene(p);
+}
+
+py::object eval_scene_py(const py::object& path, const py::object& text, const std::string& name,
+                         const std::string& precision_text, const std::string& method_text, const py::object& frame_in,
+                         double accuracy, const py::object& tolerance_in) {
+  const Precision prec = precision_arg(precision_text);
+  const Method method = method_arg(method_text);
+  const std::optional<Frame> frame = frame_arg(frame_in);
+  accuracy_arg(accuracy);
+  std::optional<double> tolerance;
+  if (!tolerance_in.is_none()) {
+    const double t = tolerance_in.cast<double>();
+    if (!(t >= std::ldexp(1.0, -53) && t <= 1))
+      bad_argument("tolerance", "the adaptive tolerance must lie in [2^-53, 1] (below 2^-53 a double result cannot be "
+                                "certified: use precision=\"exact\")");
+    if (prec.kind != Precision::Kind::f64)
+      bad_argument("tolerance", "the adaptive mode produces double results: leave precision at \"double\"");
+    tolerance = t;
+  }
+  const Scene sc = scene_arg(path, text, name);
+  json doc;
+  {
+    py::gil_scoped_release nogil;
+    auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr || tolerance.has_value());
+    doc = tolerance ? adaptive_eval_document(sc, method, *tolerance)
+                    : eval_document(sc, prec, method, frame, AccuracyOptions{accuracy});
+  }
+  return json_to_python(doc);
+}
+
+py::object verify_scene_py(const py::object& path, const py::object& text, const std::string& name,
+                           const py::object& cand_path, const py::object& cand_text, const std::string& cand_name,
+                           const std::string& precision_text, const std::string& method_text, const py::object& frame_in,
+                           long samples_in, long long seed_in, double accuracy) {
+  const Precision prec = precision_arg(precision_text);
+  const Method method = method_arg(method_text);
+  const std::optional<Frame> frame = frame_arg(frame_in);
+  accuracy_arg(accuracy);
+  const int samples = samples_arg(samples_in);
+  const std::uint64_t seed = seed_arg(seed_in);
+  const Scene sc = scene_arg(path, text, name);
+  std::optional<std::string> cpath, ctext;
+  if (!cand_text.is_none()) ctext = cand_text.cast<std::string>();
+  else if (!cand_path.is_none())
+    cpath = py::str(py::module_::import("os").attr("fspath")(cand_path)).cast<std::string>();
+  VerifyOutcome v;
+  {
+    py::gil_scoped_release nogil;
+    auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr);
+    const ResultSet rs = ctext   ? candidate_results_text(sc, *ctext, cand_name, prec)
+                         : cpath ? candidate_results(sc, *cpath, prec)
+                                 : computed_results(sc, prec, method, frame, AccuracyOptions{accuracy, samples, seed});
+    v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
+  }
+  return json_to_python(v.document);
+}
+
+std::string repr_value(const py::object& o) { return py::repr(o).cast<std::string>(); }
+
+}  // namespace
+
+PYBIND11_MODULE(_qverify, m) {
+  m.doc() = "qverify: shadow volumes and mirror images of quadrics, exact and verified (compiled part; use the "
+            "package `qverify`).";
+  py::module_::import("numpy");
+  register_input_error(m);
+
+  py::class_<PyShadow>(m, "ShadowResult", R"(The shadow volume of a quadric A lit by L (qverify.shadow).
+
+Matrices are float64 numpy arrays (each entry the nearest double to the
+computed value; an interval enclosure: to its midpoint), or nested lists of
+fractions.Fraction with precision="exact". When `origin` is not None they
+are written in local coordinates x - origin (the robust double path for
+objects far from the world origin; pass frame="world" to avoid it).
+
+Attributes:
+    P: the shadow cone (tangent cone of A with apex L), up to a positive
+        factor the matrix (L^T A L) A - (A L)(A L)^T.
+    polar_plane: A L up to a positive factor; it cuts A in the terminator.
+    R: the plane pair of the polar plane and the paper's second plane h.
+    status: "ok" or the first special case (degenerate-quadric,
+        light-on-surface, no-real-silhouette, singular-frame, non-finite):
+        decided exactly from the exact inputs.
+    flags: every special case that applies, and "inaccurate" when
+        error_bound exceeds the accuracy target.
+    error_bound: the geometric error (distance of exact terminator points
+        from the results, relative to the object size) measured exactly on
+        64 seeded points, times 2; 0 for precision "exact"; None with
+        `reason` where none can be given.
+    reason, origin, escalated ("float128" when recomputed in binary128),
+    fallback, precision, method, frame, inputs_rounded (inputs the
+    precision cannot hold, rounded once), item (the qverify-eval/1 item as
+    a dict, numbers as the CLI writes them).
+)")
+      .def_readonly("P", &PyShadow::P, "The shadow cone P (4x4).")
+      .def_readonly("polar_plane", &PyShadow::polar_plane, "The polar plane A L (4 entries a, b, c, d).")
+      .def_readonly("R", &PyShadow::R, "The quadric R (4x4): polar plane and second plane h.")
+      .def_readonly("status", &PyShadow::status, "Status word (exact predicate of the inputs).")
+      .def_readonly("flags", &PyShadow::flags, "Every special case that applies, and 'inaccurate'.")
+      .def_readonly("error_bound", &PyShadow::error_bound, "Bound of the geometric error (float), or None.")
+      .def_readonly("reason", &PyShadow::reason, "Why error_bound is None (empty otherwise).")
+      .def_readonly("origin", &PyShadow::origin, "None, or the origin of the local frame of the matrices.")
+      .def_readonly("escalated", &PyShadow::escalated, "'float128' when recomputed in binary128, else ''.")
+      .def_readonly("fallback", &PyShadow::fallback, "Method paper: why the direct formulas were used, else ''.")
+      .def_readonly("precision", &PyShadow::precision, "The precision computed in.")
+      .def_readonly("method", &PyShadow::method, "'direct' or 'paper'.")
+      .def_readonly("frame", &PyShadow::frame, "'local' or 'world'.")
+      .def_readonly("inputs_rounded", &PyShadow::inputs_rounded, "Inputs the precision cannot hold (rounded once).")
+      .def_readonly("item", &PyShadow::item, "The qverify-eval/1 shadow item as a dict.")
+      .def("__repr__", [](const PyShadow& s) {
+        return "ShadowResult(status=" + repr_value(py::str(s.status)) + ", flags=" + repr_value(py::cast(s.flags)) +
+               ", error_bound=" + repr_value(s.error_bound) + ", precision=" + repr_value(py::str(s.precision)) +
+               ",\n  P=" + repr_value(s.P) + ",\n  polar_plane=" + repr_value(s.polar_plane) + ",\n  R=" +
+               repr_value(s.R) + ")";
+      });
+
+  py::class_<PyReflection>(m, "ReflectionResult", R"(The mirror image of a quadric A in a plane (qverify.reflection).
+
+Matrices as in ShadowResult (float64 numpy arrays, or lists of Fraction with
+precision="exact"; in local coordinates x - origin when origin is not None).
+
+Attributes:
+    M: the reflection in the mirror plane (last row 0 0 0 1).
+    B: the mirror image M^T A M, up to a positive factor.
+    status: "ok", "degenerate-quadric" or "non-finite".
+    flags, error_bound, reason, origin, escalated, precision, method, frame,
+    inputs_rounded, item: as in ShadowResult.
+)")
+      .def_readonly("M", &PyReflection::M, "The reflection matrix M (4x4).")
+      .def_readonly("B", &PyReflection::B, "The mirror image B = M^T A M (4x4).")
+      .def_readonly("status", &PyReflection::status, "Status word.")
+      .def_readonly("flags", &PyReflection::flags, "Special cases, and 'inaccurate'.")
+      .def_readonly("error_bound", &PyReflection::error_bound, "Bound of the geometric error (float), or None.")
+      .def_readonly("reason", &PyReflection::reason, "Why error_bound is None (empty otherwise).")
+      .def_readonly("origin", &PyReflection::origin, "None, or the origin of the local frame of the matrices.")
+      .def_readonly("escalated", &PyReflection::escalated, "'float128' when recomputed in binary128, else ''.")
+      .def_readonly("precision", &PyReflection::precision, "The precision computed in.")
+      .def_readonly("method", &PyReflection::method, "'direct' or 'paper'.")
+      .def_readonly("frame", &PyReflection::frame, "'local' or 'world'.")
+      .def_readonly("inputs_rounded", &PyReflection::inputs_rounded, "Inputs the precision cannot hold (rounded once).")
+      .def_readonly("item", &PyReflection::item, "The qverify-eval/1 reflection item as a dict.")
+      .def("__repr__", [](const PyReflection& r) {
+        return "ReflectionResult(status=" + repr_value(py::str(r.status)) + ", flags=" + repr_value(py::cast(r.flags)) +
+               ", error_bound=" + repr_value(r.error_bound) + ", precision=" + repr_value(py::str(r.precision)) +
+               ",\n  M=" + repr_value(r.M) + ",\n  B=" + repr_value(r.B) + ")";
+      });
+
+  m.def("shadow", &shadow_py, py::arg("A"), py::arg("L"), py::kw_only(), py::arg("method") = "direct",
+        py::arg("precision") = "double", py::arg("accuracy") = kDefaultAccuracy, py::arg("frame") = py::none(),
+        R"(Shadow volume of the quadric x^T A x = 0 lit by L (equations (2)-(6)).
+
+Args:
+    A: the quadric's symmetric 4x4 matrix: a numpy array (float64, float32,
+        int or object dtype) or nested lists of int, float, Fraction or
+        decimal / "p/q" strings. Every number is taken exactly (a float is
+        the dyadic rational it holds).
+    L: the light, 4 numbers: (x, y, z, w) with w != 0 is the point light
+        at (x/w, y/w, z/w); (v, 0) is a parallel light travelling along -v
+        (L = (-d, 0) for a direction d).
+    method: "direct" (projective formulas) or "paper" (the paper's route).
+    precision: "float", "double", "long-double", "float128", "mpfr:BITS",
+        "interval" or "exact".
+    accuracy: the accuracy target of error_bound (default 1e-9).
+    frame: None (default: local frames for floating precisions, method
+        direct), "local" or "world".
+
+Returns:
+    ShadowResult: P, polar_plane, R, status, flags, error_bound, ...
+
+Raises:
+    qverify.InputError: a bad argument (not 4x4, not symmetric, NaN or inf,
+        light (0, 0, 0, 0), zero denominator, unknown precision or method,
+        non-positive accuracy); `path` names it, e.g. "A[1][3]".
+
+Example:
+    >>> s = qverify.shadow(np.diag([1.0, 1, 1, -1]), [3.0, 4, 8, 1])
+    >>> s.status, s.polar_plane
+    ('ok', array([ 3.,  4.,  8., -1.]))
+)");
+
+  m.def("reflection", &reflection_py, py::arg("A"), py::arg("plane"), py::kw_only(), py::arg("method") = "direct",
+        py::arg("precision") = "double", py::arg("accuracy") = kDefaultAccuracy, py::arg("frame") = py::none(),
+        R"(Mirror image of the quadric x^T A x = 0 in a plane mirror (equations (7)-(11)).
+
+Args:
+    A: the quadric's symmetric 4x4 matrix (as in qverify.shadow).
+    plane: (a, b, c, d) of the mirror plane a x + b y + c z + d = 0;
+        (a, b, c) must be non-zero.
+    method, precision, accuracy, frame: as in qverify.shadow.
+
+Returns:
+    ReflectionResult: M, B, status, flags, error_bound, ...
+
+Raises:
+    qverify.InputError: a bad argument; `path` names it ("plane" for a zero
+        normal).
+)");
+
+  m.def("_eval_scene", &eval_scene_py, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("precision"),
+        py::arg("method"), py::arg("frame"), py::arg("accuracy"), py::arg("tolerance"),
+        "eval of a scene file (path) or JSON text; see qverify.eval_scene.");
+  m.def("_verify_scene", &verify_scene_py, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("candidate_path"),
+        py::arg("candidate_text"), py::arg("candidate_name"), py::arg("precision"), py::arg("method"),
+        py::arg("frame"), py::arg("samples"), py::arg("seed"), py::arg("accuracy"),
+        "verify of a scene file (path) or JSON text; see qverify.verify_scene.");
+
+  m.attr("DEFAULT_ACCURACY") = kDefaultAccuracy;
+  m.attr("DEFAULT_SAMPLES") = kDefaultSamples;
+  m.attr("PRECISIONS") = py::make_tuple("float", "double", "long-double", "float128", "mpfr:BITS", "interval", "exact");
+  bind_checks(m);
+  for (const char* cls : {"ShadowResult", "ReflectionResult", "CheckReport"}) m.attr(cls).attr("__module__") = "qverify";
+}

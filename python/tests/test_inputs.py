@@ -1,0 +1,185 @@
+"""Bad input raises qverify.InputError naming the offending value; nothing is computed from it."""
+import json
+from decimal import Decimal
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import qverify
+
+UNIT = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
+LIGHT = [3, 4, 8, 1]
+
+
+class ZeroDenominator:
+    """A Fraction look-alike with denominator 0 (fractions.Fraction refuses to be one)."""
+    numerator = 1
+    denominator = 0
+
+
+def with_entry(i, j, value, symmetric=False):
+    A = np.array(UNIT, dtype=object)
+    A[i, j] = value
+    if symmetric:
+        A[j, i] = value
+    return A
+
+
+def path_of(call):
+    with pytest.raises(qverify.InputError) as e:
+        call()
+    assert isinstance(e.value, ValueError)
+    assert e.value.problem and e.value.path in str(e.value)
+    return e.value.path
+
+
+def test_input_error_is_a_value_error():
+    assert issubclass(qverify.InputError, ValueError)
+    assert qverify.InputError.__doc__
+
+
+@pytest.mark.parametrize(
+    "A, path",
+    [
+        (np.zeros((3, 4)), "A"),
+        (np.zeros(16), "A"),
+        ([[1, 0, 0, 0]] * 3, "A"),
+        ([[1, 0, 0, 0], [0, 1, 0], [0, 0, 1, 0], [0, 0, 0, -1]], "A[1]"),
+        ("not a matrix", "A"),
+        (with_entry(3, 1, 0.5), "A[1][3]"),  # not symmetric: named at the first pair, row by row
+        (with_entry(2, 2, float("nan")), "A[2][2]"),
+        (with_entry(0, 3, float("inf"), symmetric=True), "A[0][3]"),
+        (with_entry(0, 0, ZeroDenominator()), "A[0][0]"),
+        (with_entry(1, 1, "1/0"), "A[1][1]"),
+        (with_entry(1, 1, "one"), "A[1][1]"),
+        (with_entry(1, 1, None), "A[1][1]"),
+        (with_entry(1, 1, True), "A[1][1]"),
+        (with_entry(1, 1, Decimal("NaN")), "A[1][1]"),
+        (with_entry(1, 1, np.float32("nan")), "A[1][1]"),
+        (np.zeros((4, 4)), "A"),  # the zero matrix is no quadric
+    ],
+)
+def test_bad_quadric(A, path):
+    assert path_of(lambda: qverify.shadow(A, LIGHT)) == path
+    assert path_of(lambda: qverify.check_shadow(A, LIGHT, P=np.eye(4))) == path
+    assert path_of(lambda: qverify.reflection(A, [0, 0, 1, 0])) == path
+
+
+@pytest.mark.parametrize(
+    "L, path",
+    [
+        ([0, 0, 0, 0], "L"),
+        (np.zeros(4), "L"),
+        ([1, 2, 3], "L"),
+        (np.ones((2, 2)), "L"),
+        ([1, float("nan"), 3, 1], "L[1]"),
+        ([1, 2, float("-inf"), 1], "L[2]"),
+        ([1, 2, 3, ZeroDenominator()], "L[3]"),
+        ([1, 2, "x", 1], "L[2]"),
+    ],
+)
+def test_bad_light(L, path):
+    assert path_of(lambda: qverify.shadow(UNIT, L)) == path
+    assert path_of(lambda: qverify.check_shadow(UNIT, L, P=np.eye(4))) == path
+
+
+@pytest.mark.parametrize("plane, path", [([0, 0, 0, 1], "plane"), ([0.0, 0.0, 0.0, 0.0], "plane"),
+                                         ([0, 0, float("nan"), 1], "plane[2]"), ([1, 2], "plane")])
+def test_bad_mirror(plane, path):
+    assert path_of(lambda: qverify.reflection(UNIT, plane)) == path
+    assert path_of(lambda: qverify.check_reflection(UNIT, plane, B=np.eye(4))) == path
+
+
+@pytest.mark.parametrize(
+    "kwargs, path",
+    [
+        ({"precision": "quad"}, "precision"),
+        ({"precision": "mpfr:8"}, "precision"),
+        ({"method": "fast"}, "method"),
+        ({"accuracy": 0.0}, "accuracy"),
+        ({"accuracy": -1e-9}, "accuracy"),
+        ({"accuracy": float("nan")}, "accuracy"),
+        ({"frame": "camera"}, "frame"),
+    ],
+)
+def test_bad_options(kwargs, path):
+    assert path_of(lambda: qverify.shadow(UNIT, LIGHT, **kwargs)) == path
+    assert path_of(lambda: qverify.reflection(UNIT, [0, 0, 1, 0], **kwargs)) == path
+    assert path_of(lambda: qverify.eval_scene({"format": "qverify-scene/1"}, **kwargs)) == path
+
+
+def test_bad_check_arguments():
+    P = np.eye(4)
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT)) == "P"  # nothing to check
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=np.eye(3))) == "P"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, polar_plane=[1, 2, 3])) == "polar_plane"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, R=with_entry(2, 0, float("nan")))) == "R[2][0]"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, origin=[1, 2])) == "origin"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, accuracy=0)) == "accuracy"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, samples=0)) == "samples"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, method="other")) == "method"
+    assert path_of(lambda: qverify.check_reflection(UNIT, [0, 0, 1, 0])) == "B"
+    assert path_of(lambda: qverify.check_reflection(UNIT, [0, 0, 1, 0], M=[[1]])) == "M"
+
+
+def scene(**extra):
+    d = {"format": "qverify-scene/1", "name": "t",
+         "quadrics": [{"id": "q", "matrix": UNIT}],
+         "lights": [{"id": "l", "position": [3, 4, 8]}],
+         "mirrors": [{"id": "m", "plane": [0, 0, 1, 0]}]}
+    d.update(extra)
+    return d
+
+
+def test_bad_scene_dict_names_the_json_path():
+    bad = scene(quadrics=[{"id": "q", "matrix": with_entry(3, 1, 2).tolist()}])
+    with pytest.raises(qverify.InputError) as e:
+        qverify.eval_scene(bad)
+    assert e.value.path == "quadrics[0].matrix[1][3]" and e.value.file == "<dict>"
+    with pytest.raises(qverify.InputError) as e:
+        qverify.verify_scene(scene(lights=[{"id": "l", "position": [0, float("nan"), 0]}]))
+    assert e.value.path == "lights[0].position[1]"
+    with pytest.raises(qverify.InputError) as e:
+        qverify.eval_scene(scene(mirrors=[{"id": "m", "plane": [0, 0, 0, 1]}]))
+    assert e.value.path == "mirrors[0].plane"
+    with pytest.raises(qverify.InputError) as e:
+        qverify.eval_scene(scene(lights=[{"id": "l", "position": [ZeroDenominator(), 0, 0]}]))
+    assert e.value.path == "lights[0].position[0]"
+    with pytest.raises(qverify.InputError) as e:
+        qverify.eval_scene(scene(format="qverify-scene/9"))
+    assert e.value.path == "format"
+    with pytest.raises(qverify.InputError):
+        qverify.eval_scene(42)
+
+
+def test_bad_scene_file(tmp_path):
+    f = tmp_path / "bad.json"
+    f.write_text(json.dumps(scene(lights=[{"id": "l", "position": [1, 2]}])))
+    with pytest.raises(qverify.InputError) as e:
+        qverify.eval_scene(str(f))
+    assert e.value.path == "lights[0].position" and e.value.file == str(f)
+    with pytest.raises(qverify.InputError):
+        qverify.eval_scene(tmp_path / "missing.json")
+
+
+def test_bad_candidate(tmp_path):
+    with pytest.raises(qverify.InputError) as e:
+        qverify.verify_scene(scene(), candidate={"format": "qverify-eval/1", "shadows": 3})
+    assert e.value.path == "shadows" and e.value.file == "<dict>"
+
+
+def test_out_of_range_for_the_precision():
+    A = np.diag([1e300, 1e300, 1e300, -1.0])
+    with pytest.raises(qverify.InputError) as e:
+        qverify.shadow(A, LIGHT, precision="float")
+    assert e.value.path == "A[0][0]" and "out of range" in e.value.problem
+    assert qverify.shadow(A, LIGHT, precision="exact").status == "ok"
+
+
+def test_exact_number_types_are_read_exactly():
+    third = [Fraction(1, 3), "1/3", Decimal("0.25"), np.longdouble(0.5), np.float32(0.75), np.int64(2)]
+    values = [Fraction(1, 3), Fraction(1, 3), Fraction(1, 4), Fraction(1, 2), Fraction(3, 4), Fraction(2)]
+    for x, v in zip(third, values):
+        s = qverify.shadow(UNIT, [x, 0, 3, 1], precision="exact")
+        assert s.polar_plane[0] == v, x  # A L = (x, 0, 3, -1) for the unit sphere

@@ -1,0 +1,67 @@
+"""qverify.reflection / check_reflection, and the documentation of the module."""
+import inspect
+from fractions import Fraction
+
+import numpy as np
+
+import qverify
+from conftest import positive_factor, sphere_at
+
+
+def test_reflection_of_a_ball_in_the_floor():
+    A = sphere_at([1, 2, 3], 1)
+    r = qverify.reflection(np.array(A, dtype=object), np.array([0.0, 0.0, 1.0, 0.0]))
+    assert isinstance(r, qverify.ReflectionResult)
+    assert r.status == "ok" and r.flags == []
+    assert np.array_equal(r.M, np.diag([1.0, 1.0, -1.0, 1.0]))
+    assert positive_factor(r.B.tolist(), sphere_at([1, 2, -3], 1)) is not None
+    rep = qverify.check_reflection(A, [0, 0, 1, 0], M=r.M, B=r.B)
+    assert rep.passed and rep.kind == "reflection" and rep.M_error == 0
+    exact = qverify.reflection(A, [0, 0, 1, 0], precision="exact")
+    assert isinstance(exact.B[0][0], Fraction)
+    assert qverify.check_reflection(A, [0, 0, 1, 0], M=exact.M, B=exact.B).exact
+
+
+def test_check_reflection_fails_for_wrong_results():
+    A = sphere_at([1, 2, 3], 1)
+    plane = [0, 0, 1, 0]
+    r = qverify.reflection(A, plane)
+    B = r.B.copy()
+    B[2, 3] = B[3, 2] = B[2, 3] * (1 + 1e-6)
+    assert not qverify.check_reflection(A, plane, B=B).passed
+    M = r.M.copy()
+    M[2, 3] = 1e-6
+    assert not qverify.check_reflection(A, plane, M=M).passed
+    assert not qverify.check_reflection(A, plane, B=-r.B).passed  # the image's sign matters
+
+
+def test_slanted_mirror_exact_plane():
+    A = sphere_at([0, 0, 0], 1)
+    plane = [Fraction(1, 3), Fraction(2, 3), Fraction(2, 3), -5]
+    for precision in ("double", "exact"):
+        r = qverify.reflection(A, plane, precision=precision)
+        assert qverify.check_reflection(A, plane, M=r.M, B=r.B, origin=r.origin).passed
+
+
+PUBLIC = ["shadow", "reflection", "check_shadow", "check_reflection", "eval_scene", "verify_scene"]
+CLASSES = ["ShadowResult", "ReflectionResult", "CheckReport", "InputError"]
+
+
+def test_every_public_name_has_a_docstring():
+    assert qverify.__doc__ and "check_shadow" in qverify.__doc__
+    for name in PUBLIC + CLASSES:
+        doc = getattr(qverify, name).__doc__
+        assert doc and len(doc) > 80, name
+    for name in PUBLIC:
+        assert "Args:" in inspect.getdoc(getattr(qverify, name)), name
+    assert set(PUBLIC + CLASSES) <= set(qverify.__all__)
+
+
+def test_help_of_check_shadow(capsys):
+    help(qverify.check_shadow)
+    text = capsys.readouterr().out
+    for word in ("accuracy", "samples", "polar_plane", "CheckReport", "InputError"):
+        assert word in text
+    help(qverify.CheckReport)
+    text = capsys.readouterr().out
+    assert "geometric_error" in text and "summary" in text

@@ -1,0 +1,235 @@
+"""qverify.shadow and qverify.check_shadow: real properties of the unit sphere's shadow."""
+import threading
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import qverify
+from conftest import cone_reference, positive_factor, sphere_at
+
+
+def test_unit_sphere_shadow_is_the_cone_from_the_light(sphere, light):
+    s = qverify.shadow(sphere, light)
+    assert isinstance(s, qverify.ShadowResult)
+    assert s.status == "ok" and s.flags == [] and s.origin is None
+    for M, shape in ((s.P, (4, 4)), (s.polar_plane, (4,)), (s.R, (4, 4))):
+        assert isinstance(M, np.ndarray) and M.dtype == np.float64 and M.shape == shape
+    # integer data: the double result is exact, a positive multiple of (L^T A L) A - (A L)(A L)^T
+    ref = cone_reference(sphere.astype(int).tolist(), light.astype(int).tolist())
+    assert positive_factor(s.P.tolist(), ref) is not None
+    assert np.allclose(s.P @ light, 0)  # the light is the apex
+    assert positive_factor(s.polar_plane.tolist(), [3, 4, 8, -1]) is not None  # A L
+    assert np.allclose(s.R, s.R.T)
+    assert s.error_bound is not None and 0 <= s.error_bound <= 1e-9
+    assert s.precision == "double" and s.method == "direct"
+    assert s.item["status"] == "ok" and "P" in s.item
+    assert "ShadowResult(status='ok'" in repr(s)
+
+
+def test_check_passes_for_qverify_result(sphere, light):
+    s = qverify.shadow(sphere, light)
+    rep = qverify.check_shadow(sphere, light, P=s.P, polar_plane=s.polar_plane, R=s.R, samples=64, seed=1,
+                               accuracy=1e-9)
+    assert isinstance(rep, qverify.CheckReport)
+    assert rep.passed and bool(rep) and rep.problems == []
+    assert not rep.exact and rep.kind == "shadow" and rep.exact_status == "ok"
+    assert rep.points == 64
+    assert rep.geometric_error <= 1e-9
+    assert rep.object_size == pytest.approx(1.0)
+    names = {c["name"] for c in rep.checks}
+    assert {"on_P", "on_polar_plane", "on_R", "on_generators"} <= names
+    for c in rep.checks:
+        assert set(c) >= {"name", "geometric_error", "passed", "max_distance", "max_residual", "worst", "worst_approx"}
+        assert isinstance(c["geometric_error"], float)
+    assert isinstance(rep.summary, str) and rep.summary
+
+
+def test_check_fails_for_perturbed_P(sphere, light):
+    s = qverify.shadow(sphere, light)
+    P = s.P.copy()
+    delta = 1e-6 * np.abs(P).max()
+    P[0, 1] += delta
+    P[1, 0] += delta
+    rep = qverify.check_shadow(sphere, light, P=P, polar_plane=s.polar_plane, R=s.R)
+    assert not rep.passed and not bool(rep)
+    assert rep.problems
+    assert rep.geometric_error > 1e-9
+    worst = [c for c in rep.checks if not c["passed"]]
+    assert worst and worst[0]["worst_approx"] is not None
+    assert "FAILED" in repr(rep)
+
+
+def test_check_fails_for_wrong_sign_of_the_rank_one_term(sphere, light):
+    A, L = sphere, light
+    AL = A @ L
+    wrong = (L @ AL) * A + np.outer(AL, AL)  # + instead of -
+    rep = qverify.check_shadow(A, L, P=wrong)
+    assert not rep.passed
+    right = (L @ AL) * A - np.outer(AL, AL)
+    assert qverify.check_shadow(A, L, P=right).passed
+
+
+def test_check_fails_for_negated_polar_plane(sphere, light):
+    s = qverify.shadow(sphere, light)
+    assert not qverify.check_shadow(sphere, light, polar_plane=-s.polar_plane).passed
+
+
+def test_exact_precision_gives_fractions_and_a_proof(sphere, light):
+    s = qverify.shadow(sphere, light, precision="exact")
+    assert s.precision == "exact" and s.error_bound == 0
+    for M in (s.P, s.R):
+        assert isinstance(M, list) and len(M) == 4 and all(len(r) == 4 for r in M)
+        assert all(isinstance(x, Fraction) for r in M for x in r)
+    assert all(isinstance(x, Fraction) for x in s.polar_plane)
+    assert positive_factor(s.P, cone_reference(sphere.astype(int).tolist(), light.astype(int).tolist())) is not None
+    rep = qverify.check_shadow(sphere, light, P=s.P, polar_plane=s.polar_plane, R=s.R)
+    assert rep.exact and rep.passed and rep.proved_exactly > 0
+    assert rep.reference is not None and isinstance(rep.reference[0][0], Fraction)
+
+
+def test_exact_proof_fails_for_a_rounded_cone():
+    # a sphere of radius 1/3 with a light at (1/10, 2/7, 3): the exact cone has non-dyadic entries,
+    # so any double P is off the exact terminator by a tiny but non-zero amount
+    A = sphere_at([0, 0, 0], Fraction(1, 3))
+    L = [Fraction(1, 10), Fraction(2, 7), 3, 1]
+    exact = qverify.shadow(A, L, precision="exact")
+    assert qverify.check_shadow(A, L, P=exact.P, polar_plane=exact.polar_plane, R=exact.R).passed
+    P_double = [[float(x) for x in row] for row in exact.P]
+    floating = qverify.check_shadow(A, L, P=P_double)
+    assert floating.passed and not floating.exact  # a floating candidate is judged by the accuracy target
+    proof = qverify.check_shadow(A, L, P=P_double, exact=True)
+    assert proof.exact and not proof.passed
+
+
+def test_inputs_of_every_kind_give_the_same_exact_result():
+    A_float = np.diag([1.0, 1.0, 1.0, -1.0])
+    forms = [
+        A_float,
+        A_float.astype(np.float32),
+        A_float.astype(int),
+        np.array([[Fraction(int(x)) for x in row] for row in A_float], dtype=object),
+        [[str(int(x)) for x in row] for row in A_float],
+        [[int(x) for x in row] for row in A_float],
+    ]
+    L_forms = [np.array([3.0, 4.0, 8.0, 1.0]), [3, 4, 8, 1], ["3", "4.0", "8/1", "1"], [Fraction(3), 4, 8.0, 1]]
+    results = {repr(qverify.shadow(A, L, precision="exact").P) for A in forms for L in L_forms}
+    assert len(results) == 1
+
+
+def test_a_float_is_its_exact_binary_value():
+    A = np.diag([1.0, 1.0, 1.0, -1.0])
+    by_float = qverify.shadow(A, [0.1, 0, 3, 1], precision="exact")
+    by_text = qverify.shadow(A, ["0.1", 0, 3, 1], precision="exact")
+    assert by_text.polar_plane[0] == Fraction(1, 10)
+    assert by_float.polar_plane[0] == Fraction(0.1) != Fraction(1, 10)
+
+
+def test_parallel_light_and_negative_w(sphere):
+    sun = np.array([0.0, 0.0, 1.0, 0.0])  # travelling along (0, 0, -1)
+    s = qverify.shadow(sphere, sun)
+    assert s.status == "ok"
+    assert qverify.check_shadow(sphere, sun, P=s.P, polar_plane=s.polar_plane, R=s.R).passed
+    L = np.array([-3.0, -4.0, -8.0, -1.0])  # the point (3, 4, 8) with w = -1
+    s = qverify.shadow(sphere, L)
+    assert positive_factor(s.polar_plane.tolist(), (sphere @ L).tolist()) is not None
+    assert qverify.check_shadow(sphere, L, P=s.P, polar_plane=s.polar_plane, R=s.R).passed
+
+
+@pytest.mark.parametrize("precision", ["float", "double", "long-double", "float128", "mpfr:128", "interval", "exact"])
+@pytest.mark.parametrize("method", ["direct", "paper"])
+def test_every_precision_and_method_passes_its_check(precision, method):
+    A = sphere_at([1, 2, 3], 2)
+    L = [4, 5, 9, 1]
+    s = qverify.shadow(A, L, precision=precision, method=method)
+    assert s.status == "ok" and s.precision == precision and s.method == method
+    if precision == "exact":
+        assert isinstance(s.P[0][0], Fraction)
+    else:
+        assert s.P.dtype == np.float64
+    rep = qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R, origin=s.origin, method=method)
+    # eval's flag and the check agree: float by the paper's route misses 1e-9 (and says so)
+    assert rep.passed == ("inaccurate" not in s.flags), rep.summary
+    assert rep.passed or (precision, method) == ("float", "paper")
+
+
+def test_far_object_local_frame_and_world_frame():
+    A = sphere_at([1e7 + 0.5, 0, 0], Fraction(1, 1000))
+    L = [1e7, 1, 2, 1]
+    s = qverify.shadow(A, L)
+    assert s.origin is not None and s.frame == "local"
+    assert qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R, origin=s.origin).passed
+    # the same matrices read in world coordinates are wrong
+    assert not qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R).passed
+
+
+def test_special_statuses(sphere):
+    inside = qverify.shadow(sphere, [0.25, 0, 0, 1])
+    assert inside.status == "no-real-silhouette" and inside.error_bound is None and inside.reason
+    on = qverify.shadow(sphere, [1, 0, 0, 1])
+    assert on.status == "light-on-surface"
+    flat = qverify.shadow(np.diag([1.0, 1.0, 0.0, 0.0]), [3, 4, 8, 1])
+    assert flat.status == "degenerate-quadric"
+    paper = qverify.shadow(sphere, [3, 4, 0, 1], method="paper")
+    assert "singular-frame" in paper.flags and paper.fallback
+    rep = qverify.check_shadow(sphere, [0.25, 0, 0, 1], P=inside.P)
+    assert rep.skipped and rep.exact_status == "no-real-silhouette"
+
+
+def test_a_wrong_status_fails(sphere, light):
+    s = qverify.shadow(sphere, light)
+    assert qverify.check_shadow(sphere, light, P=s.P, status="ok").passed
+    assert not qverify.check_shadow(sphere, light, P=s.P, status="light-on-surface").passed
+
+
+def test_calls_in_threads_agree(sphere, light):
+    """The GIL is released in the computation: concurrent calls (mpfr at different widths too) agree."""
+    expected = {}
+    for precision in ("double", "exact", "mpfr:64", "mpfr:300"):
+        expected[precision] = repr(qverify.shadow(sphere, light, precision=precision).P)
+    got, errors = [], []
+
+    def work(precision):
+        try:
+            for _ in range(3):
+                got.append((precision, repr(qverify.shadow(sphere, light, precision=precision).P)))
+                assert qverify.check_shadow(sphere, light, P=qverify.shadow(sphere, light).P).passed
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work, args=(p,)) for p in expected for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    assert len(got) == 3 * len(threads)
+    assert all(expected[p] == r for p, r in got)
+
+
+def test_gil_is_released_during_a_long_check():
+    """Another Python thread runs while a long exact check is computing."""
+    A = sphere_at([0, 0, 0], Fraction(1, 3))
+    L = [Fraction(1, 10), Fraction(2, 7), 3, 1]
+    s = qverify.shadow(A, L, precision="exact")
+    ticks = []
+    done = threading.Event()
+
+    def ticker():
+        while not done.is_set():
+            ticks.append(1)
+            done.wait(0.001)
+
+    t = threading.Thread(target=ticker)
+    t.start()
+    try:
+        while not ticks:  # the ticker runs
+            done.wait(0.001)
+        before = len(ticks)
+        rep = qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R, samples=2000)
+        during = len(ticks) - before  # a call holding the GIL would let the ticker run at most once
+    finally:
+        done.set()
+        t.join()
+    assert rep.passed
+    assert during >= 10
