@@ -81,7 +81,8 @@ std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::op
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   Metric m;
   const Measure qnorm = frobenius(Qm);
-  for (const RootPoint& x : pts) {
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const RootPoint& x = pts[k];
     const RootNumber f = x.form(Qm);
     if (CGAL::is_zero(f)) continue;
     m.all_zero = false;
@@ -93,8 +94,14 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
       g += gi * gi;
     }
     const Measure w = abs(to_measure(x.coords()[3]));
-    if (g > 0 && w > 0) m.distance = mmax(m.distance, Measure(fm / (w * 2 * sqrt(g))));
-    else m.singular = true;
+    if (g > 0 && w > 0) {
+      const Measure d = fm / (w * 2 * sqrt(g));
+      m.distance = mmax(m.distance, d);
+      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
+    } else {
+      if (!m.singular) m.worst = k;
+      m.singular = true;
+    }
   }
   return m;
 }
@@ -102,15 +109,22 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
   Metric m;
   const Measure pn = frobenius(pi), pxyz = frobenius(Vec3<Q>(pi.head<3>()));
-  for (const RootPoint& x : pts) {
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const RootPoint& x = pts[k];
     const RootNumber f = x.linear(pi);
     if (CGAL::is_zero(f)) continue;
     m.all_zero = false;
     const Measure fm = abs(to_measure(f));
     if (pn > 0) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
     const Measure w = abs(to_measure(x.coords()[3]));
-    if (pxyz > 0 && w > 0) m.distance = mmax(m.distance, Measure(fm / (w * pxyz)));
-    else m.singular = true;
+    if (pxyz > 0 && w > 0) {
+      const Measure d = fm / (w * pxyz);
+      m.distance = mmax(m.distance, d);
+      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
+    } else {
+      if (!m.singular) m.worst = k;
+      m.singular = true;
+    }
   }
   return m;
 }

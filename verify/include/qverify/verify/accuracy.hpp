@@ -45,6 +45,7 @@ struct Metric {
   Measure residual = 0, distance = 0;
   bool all_zero = true;  ///< every point exactly on the result
   bool singular = false; ///< a point off the result where its gradient vanishes (distance infinite)
+  std::optional<std::size_t> worst;  ///< index of the point farthest from the result (largest distance)
 };
 
 /// Exact points of one item and the size of its object.

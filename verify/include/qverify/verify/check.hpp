@@ -51,6 +51,8 @@ template <class S> struct ShadowCandidate {
   std::optional<Vec3<S>> origin;
   /// The status word the candidate reported (checked against the exact one when given).
   std::string status;
+  /// The quadric as the candidate used it, in its frame (information only: on_A).
+  std::optional<Mat4<S>> A;
 };
 
 /// A reflection to check: the mirror matrix M (eq. 7) and the image B = M^T A M (eq. 11).
@@ -100,6 +102,7 @@ struct CheckReport {
   /// P_ref = (L^T A L) A - (A L)(A L)^T, polar = A L, B_ref = M^T A M (in the candidate's frame).
   std::optional<Mat4<Rational>> reference;
   std::vector<std::string> notes;
+  std::optional<Vec3<Rational>> origin;  ///< the candidate's frame (local coordinates x - origin)
 
   /// The check named `name`, or nullptr.
   const QuadricCheck* find(const std::string& name) const;
@@ -114,19 +117,27 @@ struct CheckReport {
 using ExactShadowCandidate = ShadowCandidate<Rational>;
 using ExactReflectionCandidate = ReflectionCandidate<Rational>;
 
-/// The core of a check, on exact inputs. `eps`: the unit roundoff of the
+/// The core of a check, on exact inputs. `eps`: the machine epsilon of the
 /// precision the candidate was computed in (0 = exact: proof mode).
 CheckReport check_shadow_exact(const Mat4<Rational>& A, const Vec4<Rational>& L, const ExactShadowCandidate& c,
                                const CheckOptions& opt, const Measure& eps, std::size_t item = 0);
 CheckReport check_reflection_exact(const Mat4<Rational>& A, const Vec4<Rational>& plane,
                                    const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps,
                                    std::size_t item = 0);
+/// The same with the quadric's natural centre given (a shape's centre, point
+/// or apex: kappa of consistent_with_precision is measured in that frame);
+/// the overload above takes the centre of A's quadratic part when it has one.
+CheckReport check_reflection_exact(const Mat4<Rational>& A, const Vec4<Rational>& plane,
+                                   const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps,
+                                   std::size_t item, const std::optional<Vec3<Rational>>& center);
 
-/// Unit roundoff of a precision (0 for exact), without touching global state.
-Measure unit_roundoff(const Precision& p);
-/// The ladder precision of a scalar type (mpfr: its current default bits).
-template <class S> Precision precision_of();
+/// The status word of exact inputs: a shadow's (the paper method adds
+/// singular-frame where l_z = 0) and a reflection's.
+std::string exact_shadow_word(const Mat4<Rational>& A, const Vec4<Rational>& L, Method method);
+std::string exact_reflection_word(const Mat4<Rational>& A);
 
+/// Machine epsilon of a precision (0 for exact), without touching global state.
+Measure machine_epsilon(const Precision& p);
 /// Throws InputError(where, "NAME[i][j]", problem) for a non-finite entry,
 /// a non-symmetric matrix, a zero light or plane normal. Nothing is computed
 /// from rejected inputs.

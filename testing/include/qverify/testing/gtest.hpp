@@ -1,0 +1,102 @@
+#pragma once
+/// \file gtest.hpp
+/// GoogleTest predicate formatters and gMock matchers for quadric geometry,
+/// checked by qverify:
+///
+///   #include <qverify/testing/gtest.hpp>
+///   EXPECT_PRED_FORMAT3(qverify::testing::AssertShadowCone, P, A, L);
+///   EXPECT_THAT(P, qverify::testing::IsShadowConeOf(A, L));
+///   EXPECT_THAT(B, qverify::testing::IsMirrorImageOf(A, plane));
+///
+/// The same checks as the Catch2 matchers (checks.hpp): exact points on the
+/// exact geometry, the geometric error against the accuracy target (rationals:
+/// exactly zero). A failure explains itself: which point, how far, relative to
+/// what, in which frame, and the expected matrix rounded.
+
+#include <qverify/testing/checks.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace qverify::testing {
+
+namespace detail {
+inline ::testing::AssertionResult verdict(const CheckReport& r, const std::string& claim) {
+  if (r.passed) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << claim << "\n" << r.summary();
+}
+}  // namespace detail
+
+/// EXPECT_PRED_FORMAT3(AssertShadowCone, P, A, L)
+template <class S>
+::testing::AssertionResult AssertShadowCone(const char* P_expr, const char* A_expr, const char* L_expr, const Mat4<S>& P,
+                                            const Mat4<S>& A, const Vec4<S>& L) {
+  return detail::verdict(shadow_cone_check<S>(P, A, L),
+                         std::string(P_expr) + " is not the shadow cone of " + A_expr + " from " + L_expr);
+}
+
+/// EXPECT_PRED_FORMAT3(AssertPolarPlane, pi, A, L)
+template <class S>
+::testing::AssertionResult AssertPolarPlane(const char* pi_expr, const char* A_expr, const char* L_expr, const Vec4<S>& pi,
+                                            const Mat4<S>& A, const Vec4<S>& L) {
+  return detail::verdict(polar_plane_check<S>(pi, A, L),
+                         std::string(pi_expr) + " is not the polar plane of " + L_expr + " with respect to " + A_expr);
+}
+
+/// EXPECT_PRED_FORMAT3(AssertTerminatorQuadric, R, A, L)
+template <class S>
+::testing::AssertionResult AssertTerminatorQuadric(const char* R_expr, const char* A_expr, const char* L_expr,
+                                                   const Mat4<S>& R, const Mat4<S>& A, const Vec4<S>& L) {
+  return detail::verdict(terminator_quadric_check<S>(R, A, L),
+                         std::string(R_expr) + " is not the terminator quadric R of " + A_expr + " from " + L_expr);
+}
+
+/// EXPECT_PRED_FORMAT3(AssertMirrorImage, B, A, plane)
+template <class S>
+::testing::AssertionResult AssertMirrorImage(const char* B_expr, const char* A_expr, const char* plane_expr,
+                                             const Mat4<S>& B, const Mat4<S>& A, const Vec4<S>& plane) {
+  return detail::verdict(mirror_image_check<S>(B, A, plane),
+                         std::string(B_expr) + " is not the mirror image of " + A_expr + " in " + plane_expr);
+}
+
+/// EXPECT_PRED_FORMAT2(AssertMirrorMatrix, M, plane)
+template <class S>
+::testing::AssertionResult AssertMirrorMatrix(const char* M_expr, const char* plane_expr, const Mat4<S>& M,
+                                              const Vec4<S>& plane) {
+  return detail::verdict(mirror_matrix_check<S>(M, plane),
+                         std::string(M_expr) + " is not the reflection in " + plane_expr);
+}
+
+/// gMock matchers: EXPECT_THAT(P, IsShadowConeOf(A, L)). The scalar type is
+/// the candidate's; A and L are taken in it.
+MATCHER_P2(IsShadowConeOf, A, L, "is the shadow cone of the quadric from the light (qverify)") {
+  const CheckReport r = shadow_cone_check(arg, A, L);
+  *result_listener << "\n" << r.summary();
+  return r.passed;
+}
+
+MATCHER_P2(IsPolarPlaneOf, A, L, "is the polar plane of the light with respect to the quadric (qverify)") {
+  const CheckReport r = polar_plane_check(arg, A, L);
+  *result_listener << "\n" << r.summary();
+  return r.passed;
+}
+
+MATCHER_P2(IsTerminatorQuadricOf, A, L, "is the terminator quadric R of the quadric from the light (qverify)") {
+  const CheckReport r = terminator_quadric_check(arg, A, L);
+  *result_listener << "\n" << r.summary();
+  return r.passed;
+}
+
+MATCHER_P2(IsMirrorImageOf, A, plane, "is the mirror image of the quadric in the plane (qverify)") {
+  const CheckReport r = mirror_image_check(arg, A, plane);
+  *result_listener << "\n" << r.summary();
+  return r.passed;
+}
+
+MATCHER_P(IsMirrorMatrixOf, plane, "is the reflection in the plane (qverify)") {
+  const CheckReport r = mirror_matrix_check(arg, plane);
+  *result_listener << "\n" << r.summary();
+  return r.passed;
+}
+
+}  // namespace qverify::testing

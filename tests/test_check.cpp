@@ -1,0 +1,232 @@
+// The check API (verify/check.hpp): a user's matrices checked directly, with
+// the semantics of `qverify verify`, in every scalar type.
+#include <qverify/verify/check.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+using namespace qverify;
+using Q = Rational;
+
+namespace {
+
+template <class S> Mat4<S> unit_sphere() { return sphere_quadric<S>(Vec3<S>(S(0), S(0), S(0)), S(1)); }
+/// A light whose x (10/3) no binary format holds: every floating result rounds.
+template <class S> Vec4<S> lamp() { return Vec4<S>(S(10) / S(3), S(4), S(8), S(1)); }
+
+template <class S> ShadowCandidate<S> candidate_of(const ShadowResult<S>& r) {
+  ShadowCandidate<S> c;
+  c.P = r.P;
+  c.polar_plane = r.polar_plane;
+  c.R = r.R;
+  return c;
+}
+
+template <class S> CheckReport own_shadow(Method m = Method::direct) {
+  const Mat4<S> A = unit_sphere<S>();
+  const Vec4<S> L = lamp<S>();
+  return check_shadow<S>(A, L, candidate_of(shadow<S>(A, L, m)));
+}
+
+}  // namespace
+
+TEST_CASE("check_shadow passes qverify's own results in every scalar type", "[check]") {
+  for (const CheckReport& r : {own_shadow<float>(), own_shadow<double>(), own_shadow<long double>(),
+                               own_shadow<Float128>(), own_shadow<Interval>(), own_shadow<double>(Method::paper)}) {
+    INFO(r.summary());
+    CHECK(r.kind == "shadow");
+    CHECK(r.points == static_cast<std::size_t>(kDefaultSamples));
+    CHECK(r.object_size == Approx(1.0));
+    CHECK(r.exact_status == "ok");
+    CHECK(r.find("on_P"));
+    CHECK(r.find("on_generators"));
+    CHECK(r.find("on_polar_plane"));
+    CHECK(r.find("R_on_polar_plane"));
+  }
+  // float rounds at 2^-24: its geometric error is above 1e-9, below 1e-5
+  CHECK_FALSE(own_shadow<float>().passed);
+  CHECK(own_shadow<float>().geometric_error > 1e-9);
+  CHECK(own_shadow<float>().geometric_error < 1e-5);
+  CHECK(own_shadow<double>().passed);
+  CHECK(own_shadow<double>().geometric_error < 1e-14);
+  CHECK(own_shadow<long double>().passed);
+  CHECK(own_shadow<Float128>().passed);
+  INFO(own_shadow<Interval>().summary());
+  CHECK(own_shadow<Interval>().passed);
+  CHECK(own_shadow<double>(Method::paper).passed);
+}
+
+TEST_CASE("check_shadow with rationals is a proof: every residual exactly zero", "[check]") {
+  const CheckReport r = own_shadow<Q>();
+  INFO(r.summary());
+  CHECK(r.exact);
+  CHECK(r.passed);
+  CHECK(r.accuracy == 0);
+  CHECK(r.geometric_error == 0);
+  CHECK(r.proved_exactly == static_cast<int>(r.points));
+  // a rational result off by 1/10^30 in one entry is no longer a proof
+  const Mat4<Q> A = unit_sphere<Q>();
+  const Vec4<Q> L = lamp<Q>();
+  ShadowCandidate<Q> c = candidate_of(shadow<Q>(A, L, Method::direct));
+  (*c.P)(0, 0) += Q(1, 1) / Q("1000000000000000000000000000000");
+  const CheckReport bad = check_shadow<Q>(A, L, c);
+  CHECK_FALSE(bad.passed);
+  CHECK(bad.proved_exactly == 0);
+}
+
+TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how much", "[check]") {
+  const Mat4<double> A = unit_sphere<double>();
+  const Vec4<double> L = lamp<double>();
+  const ShadowResult<double> good = shadow<double>(A, L, Method::direct);
+
+  SECTION("one entry off by 1e-6 of the largest") {
+    ShadowCandidate<double> c = candidate_of(good);
+    (*c.P)(1, 1) += 1e-6 * good.P.cwiseAbs().maxCoeff();
+    const CheckReport r = check_shadow<double>(A, L, c);
+    CHECK_FALSE(r.passed);
+    CHECK(r.geometric_error > 1e-9);
+    CHECK(r.geometric_error < 1e-4);
+    const QuadricCheck* w = r.worst_check();
+    REQUIRE(w);
+    REQUIRE(w->worst_approx);
+    // the worst point is a point of the terminator or of its generators, at about the object's size
+    CHECK(w->worst_approx->norm() < 20);
+    const std::string s = r.summary();
+    CHECK_THAT(s, Catch::Contains("FAILED"));
+    CHECK_THAT(s, Catch::Contains("worst point"));
+    CHECK_THAT(s, Catch::Contains("object size"));
+    CHECK_THAT(s, Catch::Contains("expected P"));
+  }
+  SECTION("the pencil's other member sA + (AL)(AL)^T vanishes on the terminator too, but is no cone from L") {
+    const Vec4<double> AL = A * L;
+    ShadowCandidate<double> c = candidate_of(good);
+    c.P = Mat4<double>(L.dot(AL) * A + AL * AL.transpose());
+    const CheckReport r = check_shadow<double>(A, L, c);
+    CHECK_FALSE(r.passed);
+    CHECK(r.find("on_P")->passed);  // the terminator alone cannot tell
+    CHECK_FALSE(r.find("on_generators")->passed);
+  }
+  SECTION("P with the opposite sign") {
+    ShadowCandidate<double> c = candidate_of(good);
+    c.P = Mat4<double>(-good.P);
+    const CheckReport r = check_shadow<double>(A, L, c);
+    CHECK_FALSE(r.passed);
+    CHECK_THAT(r.summary(), Catch::Contains("wrong sign"));
+  }
+  SECTION("a polar plane of the wrong orientation") {
+    ShadowCandidate<double> c = candidate_of(good);
+    c.polar_plane = Vec4<double>(-good.polar_plane);
+    CHECK_FALSE(check_shadow<double>(A, L, c).passed);
+  }
+  SECTION("a status word the exact inputs contradict") {
+    ShadowCandidate<double> c = candidate_of(good);
+    c.status = "degenerate-quadric";
+    CHECK_FALSE(check_shadow<double>(A, L, c).passed);
+  }
+}
+
+TEST_CASE("check_shadow checks only what a renderer gives", "[check]") {
+  const Mat4<double> A = unit_sphere<double>();
+  const Vec4<double> L = lamp<double>();
+  ShadowCandidate<double> c;
+  c.P = tangent_cone<double>(A, L);
+  const CheckReport r = check_shadow<double>(A, L, c);
+  INFO(r.summary());
+  CHECK(r.passed);
+  CHECK(r.find("on_P"));
+  CHECK_FALSE(r.find("on_R"));
+  CHECK_FALSE(r.find("on_polar_plane"));
+}
+
+TEST_CASE("check_shadow judges in the frame the result is given in", "[check]") {
+  // a unit sphere at 10^6: its matrix computed in the frame of its centre is right there, and wrong as a world matrix
+  const Vec3<double> c(1e6, 0, 0);
+  const Mat4<double> Aworld = sphere_quadric<double>(c, 1.0);
+  const Vec4<double> Lworld(1e6 + 3, 4, 8, 1);
+  const Mat4<double> Alocal = unit_sphere<double>();
+  const Vec4<double> Llocal(3, 4, 8, 1);
+  ShadowCandidate<double> cand = candidate_of(shadow<double>(Alocal, Llocal, Method::direct));
+  cand.origin = c;
+  const CheckReport local = check_shadow<double>(Aworld, Lworld, cand);
+  INFO(local.summary());
+  CHECK(local.passed);
+  cand.origin.reset();
+  const CheckReport world = check_shadow<double>(Aworld, Lworld, cand);
+  CHECK_FALSE(world.passed);
+  CHECK(world.geometric_error > 1e3);
+}
+
+TEST_CASE("check_reflection: qverify's reflection passes, wrong ones fail", "[check]") {
+  const Mat4<double> A = ellipsoid_quadric<double>(Vec3<double>(1, 2, 3), Vec3<double>(1, 2, 3), Mat3<double>::Identity());
+  const Vec4<double> plane(0, 0, 1, 0);
+  const Mat4<double> M = mirror_matrix<double>(plane);
+  ReflectionCandidate<double> c;
+  c.M = M;
+  c.B = reflection<double>(A, M, Method::direct).B;
+  const CheckReport r = check_reflection<double>(A, plane, c);
+  INFO(r.summary());
+  CHECK(r.passed);
+  CHECK(r.kind == "reflection");
+  CHECK(r.M_error == 0.0);
+
+  ReflectionCandidate<double> wrongB = c;
+  wrongB.B = A;  // the unreflected quadric
+  const CheckReport rb = check_reflection<double>(A, plane, wrongB);
+  CHECK_FALSE(rb.passed);
+  CHECK_THAT(rb.summary(), Catch::Contains("expected B"));
+
+  ReflectionCandidate<double> wrongM = c;
+  wrongM.M = Mat4<double>::Identity();
+  CHECK_FALSE(check_reflection<double>(A, plane, wrongM).passed);
+
+  ReflectionCandidate<double> onlyB;
+  onlyB.B = c.B;
+  CHECK(check_reflection<double>(A, plane, onlyB).passed);
+
+  ReflectionCandidate<Q> exact;
+  const Mat4<Q> Aq = exact_matrix(A);
+  const Vec4<Q> pq = exact_matrix(plane);
+  exact.M = mirror_matrix<Q>(pq);
+  exact.B = reflection<Q>(Aq, *exact.M, Method::direct).B;
+  const CheckReport re = check_reflection<Q>(Aq, pq, exact);
+  CHECK(re.passed);
+  CHECK(re.proved_exactly == static_cast<int>(re.points));
+}
+
+TEST_CASE("bad input at the check door: an InputError naming the argument, nothing computed", "[check]") {
+  const Mat4<double> A = unit_sphere<double>();
+  const Vec4<double> L = lamp<double>();
+  ShadowCandidate<double> c = candidate_of(shadow<double>(A, L, Method::direct));
+  auto path_of = [](auto&& f) -> std::string {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return e.path;
+    }
+    return "(no error)";
+  };
+  Mat4<double> nanA = A;
+  nanA(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  CHECK(path_of([&] { check_shadow<double>(nanA, L, c); }) == "A[1][2]");
+  Mat4<double> asym = A;
+  asym(0, 3) = 0.5;
+  CHECK(path_of([&] { check_shadow<double>(asym, L, c); }) == "A[0][3]");
+  CHECK(path_of([&] { check_shadow<double>(A, Vec4<double>::Zero(), c); }) == "L");
+  Vec4<double> infL = L;
+  infL(2) = std::numeric_limits<double>::infinity();
+  CHECK(path_of([&] { check_shadow<double>(A, infL, c); }) == "L[2]");
+  ShadowCandidate<double> nanP = c;
+  (*nanP.P)(3, 3) = std::numeric_limits<double>::quiet_NaN();
+  CHECK(path_of([&] { check_shadow<double>(A, L, nanP); }) == "P[3][3]");
+  CHECK(path_of([&] { check_shadow<double>(A, L, ShadowCandidate<double>{}); }) == "candidate");
+  CheckOptions bad;
+  bad.accuracy = 0;
+  CHECK(path_of([&] { check_shadow<double>(A, L, c, bad); }) == "accuracy");
+  bad.accuracy = std::numeric_limits<double>::quiet_NaN();
+  CHECK(path_of([&] { check_shadow<double>(A, L, c, bad); }) == "accuracy");
+  ReflectionCandidate<double> r;
+  r.B = A;
+  CHECK(path_of([&] { check_reflection<double>(A, Vec4<double>(0, 0, 0, 1), r); }) == "plane");
+}

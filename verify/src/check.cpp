@@ -1,0 +1,558 @@
+#include <qverify/exact/statuses.hpp>
+#include <qverify/verify/check.hpp>
+#include <qverify/verify/frames.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace qverify {
+namespace {
+
+using Q = Rational;
+
+double to_d(const Measure& m) { return m.convert_to<double>(); }
+Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
+const Measure kInf = std::numeric_limits<Measure>::infinity();
+
+template <int R, int C> Eigen::Matrix<Q, R, C> abs_matrix(const Eigen::Matrix<Q, R, C>& m) {
+  return m.unaryExpr([](const Q& x) { return x < 0 ? Q(-x) : x; });
+}
+
+/// Sign of the entry of X at the pivot (largest entry) of the reference.
+template <int R, int C> bool same_orientation(const Eigen::Matrix<Q, R, C>& X, const Eigen::Matrix<Q, R, C>& ref) {
+  const Eigen::Index p = pivot_index(ref);
+  return sign_of<Q>(X(p)) == sign_of<Q>(ref(p));
+}
+
+bool symmetric_within(const Mat4<Q>& X, const Measure& tol) {
+  const Mat4<Q> d = X - X.transpose();
+  const Q big = max_abs(X);
+  if (tol == 0) return d.isZero();
+  return !(to_measure(max_abs(d)) > tol * to_measure(big));
+}
+
+Measure inf_norm(const Mat4<Q>& m) {
+  Measure best = 0;
+  for (int i = 0; i < 4; ++i) {
+    Measure s = 0;
+    for (int j = 0; j < 4; ++j) s += abs(to_measure(m(i, j)));
+    best = mmax(best, s);
+  }
+  return best;
+}
+
+/// y^T X y.
+Q form(const Mat4<Q>& X, const Vec4<Q>& y) { return y.dot(X * y); }
+
+/// Test points e_i and e_i +- e_j: for a non-zero symmetric X one of them has
+/// |y^T X y| >= |X|_max, so the sign there is robust to small errors of X.
+std::vector<Vec4<Q>> sign_probes() {
+  std::vector<Vec4<Q>> ys;
+  for (int i = 0; i < 4; ++i) {
+    ys.push_back(Vec4<Q>::Unit(i));
+    for (int j = i + 1; j < 4; ++j) {
+      ys.push_back(Vec4<Q>(Vec4<Q>::Unit(i) + Vec4<Q>::Unit(j)));
+      ys.push_back(Vec4<Q>(Vec4<Q>::Unit(i) - Vec4<Q>::Unit(j)));
+    }
+  }
+  return ys;
+}
+
+/// Does `got` have the sign of the reference quadratic form `ref` (computed
+/// here from A and L or M, not by the functions under test)? Judged at the
+/// probe where |ref| is largest; true when ref vanishes at every probe.
+template <class F> bool same_sign_as(const Mat4<Q>& got, F ref) {
+  Q best = 0;
+  Vec4<Q> at = Vec4<Q>::Zero();
+  for (const Vec4<Q>& y : sign_probes()) {
+    const Q r = ref(y);
+    if (abs_of<Q>(r) > abs_of<Q>(best)) best = r, at = y;
+  }
+  if (best == 0) return true;
+  return sign_of<Q>(form(got, at)) == sign_of<Q>(best);
+}
+
+/// Points on the generator lines of the cone through the terminator points:
+/// x + b L for a few rational b, chosen so that the point lies about
+/// tau * size from x (tau = 1/2, -1/2, 1/4). At most 8 terminator points are used.
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
+  std::vector<RootPoint> out;
+  const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
+  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i) {
+    const RootPoint& x = terminator[i];
+    const auto c = x.coords();
+    const Measure w = to_measure(c[3]);
+    Measure d2 = 0;  // |L_xyz - L_w p|, p the Cartesian point
+    for (int k = 0; k < 3; ++k) {
+      const Measure dk = to_measure(L(k)) - to_measure(L(3)) * to_measure(c[k]) / w;
+      d2 += dk * dk;
+    }
+    if (!(d2 > 0) || !(size > 0)) continue;
+    const double scale = Measure(w * size / sqrt(d2)).convert_to<double>();
+    if (!std::isfinite(scale) || scale == 0) continue;
+    for (const Q& tau : taus) {
+      const Q b = tau * to_rational(scale);
+      out.emplace_back(Vec4<Q>(x.p() + b * L), x.q(), x.delta());
+    }
+  }
+  return out;
+}
+
+/// Rational points of the polar plane inside the object: the rational parts p
+/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + 2q, where
+/// both lie on the plane.
+std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
+  std::vector<RootPoint> out;
+  for (const RootPoint& x : terminator) {
+    if (out.size() >= 16) break;
+    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
+    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + 2 * x.q())})
+      if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
+  }
+  return out;
+}
+
+/// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
+/// for a point light, the plane at infinity for a parallel one), in the
+/// result's frame: R must vanish on it. Point light: rational points of h
+/// near the object (its point nearest to `inside`, and that point moved by
+/// `step` along x and y), the first-order distance divided by the larger of
+/// the object size and the point's distance from `inside` (h may pass far from
+/// the object: an angle, not a length, is what can be asked there). Parallel
+/// light: points at infinity (d, 0), the relative residual |y^T R y| / (|R|_F |y|^2).
+Measure second_plane_error(const Mat4<Q>& R, const Vec4<Q>& L, const Vec4<Q>& inside, const Q& step, const Measure& size,
+                           bool& all_zero) {
+  all_zero = true;
+  Measure worst = 0;
+  std::vector<Vec4<Q>> ys;
+  if (L(3) == 0) {
+    for (const Vec4<Q>& d : {Vec4<Q>(1, 0, 0, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(0, 0, 1, 0), Vec4<Q>(1, 2, 3, 0)}) ys.push_back(d);
+  } else {
+    const Vec4<Q> base(inside(0) / inside(3), inside(1) / inside(3), L(2) / L(3), 1);
+    ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
+  }
+  const Measure rn = frobenius(R);
+  for (const Vec4<Q>& y : ys) {
+    const Q f = form(R, y);
+    if (f == 0) continue;
+    all_zero = false;
+    const Measure fm = abs(to_measure(f));
+    if (L(3) == 0) {
+      worst = mmax(worst, rn > 0 ? Measure(fm / (rn * to_measure(Q(y.squaredNorm())))) : kInf);
+      continue;
+    }
+    const Vec4<Q> g = R * y;
+    const Measure gn = sqrt(to_measure(Q(g.head<3>().squaredNorm())));
+    const Measure dist = sqrt(to_measure(Q((y - inside / inside(3)).head<3>().squaredNorm())));
+    worst = mmax(worst, gn > 0 ? Measure(fm / (2 * gn) / mmax(size, dist)) : kInf);
+  }
+  return worst;
+}
+
+/// One measured quadric, judged (exact: every point exactly on; else geometric error <= T).
+QuadricCheck judged(std::string name, const Metric& m, const std::vector<RootPoint>& pts, const Measure& size, bool exact,
+                    const Measure& T, bool judge = true) {
+  QuadricCheck c;
+  c.name = std::move(name);
+  c.metric = m;
+  const Measure r = relative(m, size);
+  c.geometric_error = r < kInf ? to_d(r) : std::numeric_limits<double>::infinity();
+  c.judged = judge;
+  c.passed = exact ? m.all_zero : !(r > T);
+  if (m.worst && *m.worst < pts.size()) {
+    c.worst = pts[*m.worst];
+    if (!CGAL::is_zero(c.worst->coords()[3])) c.worst_approx = c.worst->approx_cartesian();
+  }
+  return c;
+}
+
+std::string fmt_double(double v) {
+  std::ostringstream s;
+  s << std::setprecision(6) << v;
+  return s.str();
+}
+
+std::string fmt_matrix(const Mat4<Q>& m) {
+  std::ostringstream s;
+  s << std::setprecision(17);
+  for (int i = 0; i < 4; ++i) {
+    s << (i ? "\n     [" : "    [[");
+    for (int j = 0; j < 4; ++j) s << (j ? ", " : "") << to_d(to_measure(m(i, j)));
+    s << (i == 3 ? "]]" : "]");
+  }
+  return s.str();
+}
+
+/// The centre of A's quadratic part, -K^-1 k, when K is invertible.
+std::optional<Vec3<Q>> matrix_center(const Mat4<Q>& A) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  if (K.determinant() == 0) return std::nullopt;
+  return Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
+}
+
+}  // namespace
+
+const QuadricCheck* CheckReport::find(const std::string& name) const {
+  for (const QuadricCheck& c : checks)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+const QuadricCheck* CheckReport::worst_check() const {
+  const QuadricCheck* w = nullptr;
+  for (const QuadricCheck& c : checks)
+    if (c.judged && !c.passed && (!w || c.geometric_error > w->geometric_error)) w = &c;
+  return w;
+}
+
+std::string CheckReport::summary() const {
+  std::ostringstream s;
+  s << kind << " check: " << (skipped ? "SKIPPED" : passed ? "passed" : "FAILED");
+  if (exact)
+    s << " (exact proof mode: every residual must be exactly zero; " << points << " exact points)\n";
+  else
+    s << " (accuracy target " << fmt_double(accuracy) << " relative to the object size " << fmt_double(object_size)
+      << "; " << points << " exact points; geometric error " << fmt_double(geometric_error) << ")\n";
+  for (const std::string& p : problems) s << "  - " << p << "\n";
+  if (const QuadricCheck* w = worst_check(); w && w->worst_approx) {
+    const Vec3<double>& x = *w->worst_approx;
+    s << "  worst point (" << w->name << "): (" << std::setprecision(17) << x(0) << ", " << x(1) << ", " << x(2) << ")";
+    if (origin) s << " in the frame with origin (" << (*origin)(0) << ", " << (*origin)(1) << ", " << (*origin)(2) << ")";
+    const Measure dist = w->metric.distance;
+    s << std::setprecision(6) << " lies " << to_d(dist) << " from the result (" << w->geometric_error
+      << " object sizes; target " << fmt_double(accuracy) << ")\n";
+  }
+  if (reference && !passed && !skipped)
+    s << "  expected " << (kind == "shadow" ? "P = (L^T A L) A - (A L)(A L)^T" : "B = M^T A M")
+      << " up to a positive factor (exact, rounded to double):\n" << fmt_matrix(*reference) << "\n";
+  for (const std::string& n : notes) s << "  note: " << n << "\n";
+  return s.str();
+}
+
+std::string exact_shadow_word(const Mat4<Q>& A, const Vec4<Q>& L, Method method) {
+  StatusDecision status = exact_shadow_status(A, L);
+  if (method == Method::paper && L(2) == 0) status.flags |= static_cast<unsigned>(ShadowFlag::singular_frame);
+  ShadowResult<Q> r;
+  r.flags = status.flags;
+  return r.status();
+}
+
+std::string exact_reflection_word(const Mat4<Q>& A) { return exact_degenerate(A) ? "degenerate-quadric" : "ok"; }
+
+Measure machine_epsilon(const Precision& p) {
+  switch (p.kind) {
+    case Precision::Kind::f32: return ldexp(Measure(1), -23);
+    case Precision::Kind::f64:
+    case Precision::Kind::interval: return ldexp(Measure(1), -52);
+    case Precision::Kind::f80: return ldexp(Measure(1), -63);
+    case Precision::Kind::f128: return ldexp(Measure(1), -112);
+    case Precision::Kind::mpfr: return ldexp(Measure(1), 1 - static_cast<int>(digits_for_bits(p.bits).bits));
+    case Precision::Kind::exact: return Measure(0);
+  }
+  return Measure(0);
+}
+
+CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const ExactShadowCandidate& got,
+                               const CheckOptions& opt, const Measure& eps, std::size_t item) {
+  const bool exact = eps == 0;
+  const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
+  const bool paper = opt.method == Method::paper;
+  CheckReport rep;
+  rep.kind = "shadow";
+  rep.exact = exact;
+  rep.accuracy = to_d(T);
+  rep.origin = got.origin;
+  rep.exact_status = exact_shadow_word(Aw, Lw, opt.method);
+  rep.item_status = got.status.empty() ? rep.exact_status : got.status;
+
+  // Everything is judged in the frame the result is given in (local when it has an origin).
+  const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
+  const Mat4<Q> Ae = quadric_to_local(Aw, o);
+  const Vec4<Q> Le = point_to_local(Lw, o);
+  const Vec4<Q> pi_ref = Ae * Le;  // A L, computed here
+  const Q s = Le.dot(pi_ref);
+  const Mat4<Q> P_ref = s * Ae - pi_ref * pi_ref.transpose();
+  rep.reference = P_ref;
+  // The same world points for every frame: sampled on the world terminator, then moved exactly.
+  const ItemPoints pts = terminator_points(Aw, Lw, opt.samples, item_seed(opt.seed, 1, item));
+  if (pts.points.empty()) {
+    rep.skipped = true;
+    rep.problems.push_back(std::string("the terminator has no real point to sample (exact status: ") + rep.exact_status + ")");
+    return rep;
+  }
+  rep.points = pts.points.size();
+  rep.exhausted = pts.exhausted;
+  rep.object_size = to_d(pts.size);
+  const std::vector<RootPoint> local = in_frame(pts.points, got.origin);
+  std::vector<std::string>& problems = rep.problems;
+  auto judge = [&](const QuadricCheck& c, const char* what) {
+    if (!c.passed)
+      problems.push_back(std::string(what) + (exact ? ": a point is not exactly on the result"
+                                                    : ": geometric error beyond the accuracy target"));
+  };
+  if (got.A) rep.checks.push_back(judged("on_A", measure_quadric(local, *got.A), local, pts.size, exact, T, false));
+  std::optional<QuadricCheck> onP, onR, onPolar, onGen, onPlane;
+  if (got.P) onP = judged("on_P", measure_quadric(local, *got.P), local, pts.size, exact, T);
+  if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T);
+  if (got.polar_plane) onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T);
+  if (got.P) {  // P is *the* cone with apex L: exact points of its generator lines
+    const auto gen = in_frame(generator_points(pts.points, Lw, pts.size), got.origin);
+    onGen = judged("on_generators", measure_quadric(gen, *got.P), gen, pts.size, exact, T);
+  }
+  if (got.R) {  // R contains the polar plane (the plane S carried back, read as a quadric): points of the plane off A
+    const auto pl = in_frame(plane_points(pts.points, Vec4<Q>(Aw * Lw)), got.origin);
+    onPlane = judged("R_on_polar_plane", measure_quadric(pl, *got.R), pl, pts.size, exact, T);
+  }
+  for (auto* c : {&onP, &onR, &onPolar, &onGen, &onPlane})
+    if (*c) rep.checks.push_back(**c);
+  if (onP) judge(*onP, "on_P");
+  if (onR) judge(*onR, "on_R");
+  if (onPolar) judge(*onPolar, "on_polar_plane");
+  if (onGen) judge(*onGen, "on_generators (P is not the cone from L through the terminator)");
+  if (onPlane) judge(*onPlane, "R on the polar plane");
+  if (got.R) {
+    bool h_zero = true;
+    Measure h_err = 0;
+    for (const RootPoint& x : local)  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
+      if (x.p()(3) != 0) {
+        h_err = second_plane_error(*got.R, Le, x.p(), to_rational(pts.size.convert_to<double>()), pts.size, h_zero);
+        break;
+      }
+    rep.second_plane_error = h_err < kInf ? to_d(h_err) : std::numeric_limits<double>::infinity();
+    if (exact ? !h_zero : h_err > T)
+      problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane "
+                         "pair polar plane + h)");
+  }
+  if (got.P && !symmetric_within(*got.P, T)) problems.push_back("P is not symmetric");
+  if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
+  if (got.P && !same_sign_as(*got.P, [&](const Vec4<Q>& y) { const Q t = pi_ref.dot(y); return Q(s * form(Ae, y) - t * t); }))
+    problems.push_back("P has the wrong sign (the contract fixes (L^T A L) A - (A L)(A L)^T up to a positive factor)");
+  if (got.polar_plane && !pi_ref.isZero() && !same_orientation(*got.polar_plane, pi_ref))
+    problems.push_back("polar_plane has the wrong orientation (must be A L up to a positive factor)");
+  if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
+  if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
+  if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
+    problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+
+  // The rounding verdict of earlier versions, kept as information.
+  Measure kappa = 1;
+  if (!exact) {
+    const Mat4<Q> absA = abs_matrix(Ae);
+    const Vec4<Q> absL = abs_matrix(Le);
+    const Vec4<Q> absAL = absA * absL;
+    const Mat4<Q> Pabs = absL.dot(absAL) * absA + absAL * absAL.transpose();
+    const Vec4<Q> h = Le(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, Le(3), -Le(2));
+    const Mat4<Q> Rabs = abs_matrix(Vec4<Q>(h)) * absAL.transpose() + absAL * abs_matrix(h).transpose();
+    const Mat4<Q> Rref = h * pi_ref.transpose() + pi_ref * h.transpose();
+    const Measure nP = frobenius(P_ref), nR = frobenius(Rref), nPi = frobenius(pi_ref);
+    if (nP > 0) kappa = mmax(kappa, Measure(frobenius(Pabs) / nP));
+    if (nR > 0) kappa = mmax(kappa, Measure(frobenius(Rabs) / nR));
+    if (nPi > 0) kappa = mmax(kappa, Measure(frobenius(absAL) / nPi));
+    if (paper && Lw(2) != 0) {
+      const PaperFrame<Q> f = paper_frame<Q>(Lw);
+      const Measure cond = inf_norm(Mat4<Q>(f.T * f.M)) * inf_norm(Mat4<Q>(f.Minv * f.Tinv));
+      kappa *= cond * cond;
+    }
+  }
+  const Measure tol = 64 * eps * kappa;
+  rep.consistent_with_precision = true;
+  for (const auto* c : {&onP, &onR, &onPolar})
+    if (*c) rep.consistent_with_precision &= exact ? (*c)->metric.all_zero : !((*c)->metric.residual > tol);
+  if (exact)
+    for (const RootPoint& x : local)
+      if ((!got.A || CGAL::is_zero(x.form(*got.A))) && (!got.P || CGAL::is_zero(x.form(*got.P))) &&
+          (!got.R || CGAL::is_zero(x.form(*got.R))))
+        ++rep.proved_exactly;
+  rep.rounding_tolerance = to_d(tol);
+  rep.kappa = to_d(kappa);
+  Measure geo = 0;
+  for (const auto* c : {&onP, &onPolar, &onR, &onGen, &onPlane})
+    if (*c) geo = mmax(geo, relative((*c)->metric, pts.size));
+  rep.geometric_error = geo < kInf ? to_d(geo) : std::numeric_limits<double>::infinity();
+  if (pts.exhausted) rep.notes.push_back("only " + std::to_string(pts.points.size()) + " real point(s) found on this terminator");
+  if (!(pts.size > 0))
+    rep.notes.push_back("the terminator is a single real point: no object size to measure distances against; judged by "
+                        "the relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy");
+  rep.passed = problems.empty();
+  return rep;
+}
+
+CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, const ExactReflectionCandidate& got,
+                                   const CheckOptions& opt, const Measure& eps, std::size_t item,
+                                   const std::optional<Vec3<Q>>& center) {
+  const bool exact = eps == 0;
+  const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
+  const bool paper = opt.method == Method::paper;
+  CheckReport rep;
+  rep.kind = "reflection";
+  rep.exact = exact;
+  rep.accuracy = to_d(T);
+  rep.origin = got.origin;
+  rep.exact_status = exact_reflection_word(Aw);
+  rep.item_status = got.status.empty() ? rep.exact_status : got.status;
+  const Mat4<Q> Mw = reference_mirror(plane);  // written out here, not the core's
+  const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
+  // M and B of the reference, in the result's frame: M_local = T^-1 M T, B_local = T^T M^T A M T.
+  const Mat4<Q> M_ref = translation<Q>(Vec3<Q>(-o)) * Mw * translation<Q>(o);
+  const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(Mw.transpose() * Aw * Mw), o);
+  rep.reference = B_ref;
+  const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, item));
+  if (pts.points.empty()) {
+    rep.skipped = true;
+    rep.problems.push_back("the quadric has no real point to sample");
+    return rep;
+  }
+  rep.points = pts.points.size();
+  rep.exhausted = pts.exhausted;
+  rep.object_size = to_d(pts.size);
+  const std::vector<RootPoint> local = in_frame(pts.points, got.origin);
+  std::vector<std::string>& problems = rep.problems;
+  Measure m_err = 0;
+  if (got.B) {
+    rep.checks.push_back(judged("on_B", measure_quadric(local, *got.B), local, pts.size, exact, T));
+    if (!rep.checks.back().passed)
+      problems.push_back(exact ? "on_B: a reflected point is not exactly on B" : "on_B: geometric error beyond the accuracy target");
+  }
+  if (got.M) {  // M must be the reflection (exactly, or within the accuracy target relative to its largest entry)
+    m_err = to_measure(max_abs(Mat4<Q>(*got.M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
+    rep.M_error = to_d(m_err);
+    if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
+  }
+  if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
+  if (got.B && !same_sign_as(*got.B, [&](const Vec4<Q>& y) { return form(B_ref, y); }))
+    problems.push_back("B has the wrong sign (must be M^T A M up to a positive factor)");
+  if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
+    problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+
+  Measure kappa = 1;
+  if (!exact) {
+    // Conditioning of B in its own frame: B_local = G^T A_c G with A_c the quadric in the frame of its
+    // own centre c (when it has one) and G = T_c^-1 M T_o mapping the image frame into it.
+    const Vec3<Q> cc = center ? *center : Vec3<Q>::Zero();
+    const Mat4<Q> G = translation<Q>(Vec3<Q>(-cc)) * Mw * translation<Q>(o);
+    const Mat4<Q> absG = abs_matrix(G);
+    const Measure nB = frobenius(B_ref);
+    if (nB > 0)
+      kappa = mmax(kappa, Measure(frobenius(Mat4<Q>(absG.transpose() * abs_matrix(quadric_to_local(Aw, cc)) * absG)) / nB));
+    const Measure m = inf_norm(G);
+    kappa *= paper ? m * m * m * m : m * m;
+  }
+  const Measure tol = 64 * eps * kappa;
+  if (exact && got.B)
+    for (const RootPoint& y : local)
+      if (CGAL::is_zero(y.form(*got.B))) ++rep.proved_exactly;
+  const QuadricCheck* onB = rep.find("on_B");
+  rep.geometric_error = onB ? onB->geometric_error : 0;
+  rep.consistent_with_precision = exact ? (!onB || onB->metric.all_zero) && (!got.M || *got.M == M_ref)
+                                        : !(onB && onB->metric.residual > tol) && !(m_err > tol);
+  rep.rounding_tolerance = to_d(tol);
+  rep.kappa = to_d(kappa);
+  rep.passed = problems.empty();
+  return rep;
+}
+
+CheckReport check_reflection_exact(const Mat4<Q>& A, const Vec4<Q>& plane, const ExactReflectionCandidate& c,
+                                   const CheckOptions& opt, const Measure& eps, std::size_t item) {
+  return check_reflection_exact(A, plane, c, opt, eps, item, matrix_center(A));
+}
+
+// ------------------------------------------------------------------ inputs
+
+namespace {
+/// Machine epsilon of the scalar a candidate was computed in (0: exact, proof
+/// mode); an interval's results are judged at their midpoints, doubles.
+template <class S> Measure epsilon_of() {
+  if constexpr (std::is_same_v<S, Interval>) return machine_epsilon(Precision{Precision::Kind::interval});
+  else return to_measure(exact_value(S(Eigen::NumTraits<S>::epsilon())));
+}
+
+std::string entry_name(const std::string& name, Eigen::Index i, Eigen::Index j, bool vector) {
+  return vector ? name + "[" + std::to_string(i) + "]" : name + "[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+}
+}  // namespace
+
+void validate_quadric(const Mat4<Q>& A, const std::string& where, const std::string& name) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if (A(i, j) != A(j, i))
+        throw InputError(where, entry_name(name, i, j, false),
+                         "not symmetric: " + name + "[" + std::to_string(i) + "][" + std::to_string(j) + "] = " +
+                             A(i, j).str() + " but " + name + "[" + std::to_string(j) + "][" + std::to_string(i) +
+                             "] = " + A(j, i).str() + " (a quadric's matrix is symmetric)");
+  if (A.isZero()) throw InputError(where, name, "the zero matrix is not a quadric");
+}
+
+void validate_light(const Vec4<Q>& L, const std::string& where, const std::string& name) {
+  if (L.isZero()) throw InputError(where, name, "the light (0, 0, 0, 0) is no point: give (x, y, z, 1) or a direction (v, 0)");
+}
+
+void validate_plane(const Vec4<Q>& p, const std::string& where, const std::string& name) {
+  if (p.head<3>().isZero()) throw InputError(where, name, "the mirror plane has a zero normal (a, b, c)");
+}
+
+namespace detail {
+template <class S, int R, int C>
+Eigen::Matrix<Q, R, C> exact_checked(const Eigen::Matrix<S, R, C>& m, const std::string& where, const std::string& name) {
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j)
+      if (!ScalarOps<S>::finite(m(i, j)))
+        throw InputError(where, entry_name(name, i, j, C == 1), "not a finite number (NaN or infinite)");
+  return exact_matrix(m);
+}
+}  // namespace detail
+
+template <class S> CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const CheckOptions& opt) {
+  const std::string where = "check_shadow";
+  if (!(opt.accuracy > 0) || !std::isfinite(opt.accuracy))
+    throw InputError(where, "accuracy", "the accuracy target must be a positive number");
+  if (opt.samples < 1) throw InputError(where, "samples", "at least one sample point is needed");
+  const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
+  const Vec4<Q> Le = detail::exact_checked(L, where, "L");
+  validate_quadric(Ae, where, "A");
+  validate_light(Le, where, "L");
+  if (!c.P && !c.polar_plane && !c.R) throw InputError(where, "candidate", "nothing to check: give P, polar_plane or R");
+  ExactShadowCandidate e;
+  if (c.P) e.P = detail::exact_checked(*c.P, where, "P");
+  if (c.polar_plane) e.polar_plane = detail::exact_checked(*c.polar_plane, where, "polar_plane");
+  if (c.R) e.R = detail::exact_checked(*c.R, where, "R");
+  if (c.origin) e.origin = detail::exact_checked(*c.origin, where, "origin");
+  if (c.A) e.A = detail::exact_checked(*c.A, where, "candidate.A");
+  e.status = c.status;
+  return check_shadow_exact(Ae, Le, e, opt, epsilon_of<S>());
+}
+
+template <class S>
+CheckReport check_reflection(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c, const CheckOptions& opt) {
+  const std::string where = "check_reflection";
+  if (!(opt.accuracy > 0) || !std::isfinite(opt.accuracy))
+    throw InputError(where, "accuracy", "the accuracy target must be a positive number");
+  if (opt.samples < 1) throw InputError(where, "samples", "at least one sample point is needed");
+  const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
+  const Vec4<Q> pe = detail::exact_checked(plane, where, "plane");
+  validate_quadric(Ae, where, "A");
+  validate_plane(pe, where, "plane");
+  if (!c.M && !c.B) throw InputError(where, "candidate", "nothing to check: give M or B");
+  ExactReflectionCandidate e;
+  if (c.M) e.M = detail::exact_checked(*c.M, where, "M");
+  if (c.B) e.B = detail::exact_checked(*c.B, where, "B");
+  if (c.origin) e.origin = detail::exact_checked(*c.origin, where, "origin");
+  e.status = c.status;
+  return check_reflection_exact(Ae, pe, e, opt, epsilon_of<S>());
+}
+
+#define QVERIFY_CHECK_INSTANTIATE(S)                                                                              \
+  template CheckReport check_shadow<S>(const Mat4<S>&, const Vec4<S>&, const ShadowCandidate<S>&, const CheckOptions&); \
+  template CheckReport check_reflection<S>(const Mat4<S>&, const Vec4<S>&, const ReflectionCandidate<S>&,               \
+                                           const CheckOptions&);
+QVERIFY_CHECK_INSTANTIATE(float)
+QVERIFY_CHECK_INSTANTIATE(double)
+QVERIFY_CHECK_INSTANTIATE(long double)
+QVERIFY_CHECK_INSTANTIATE(Float128)
+QVERIFY_CHECK_INSTANTIATE(Mpfr)
+QVERIFY_CHECK_INSTANTIATE(Interval)
+QVERIFY_CHECK_INSTANTIATE(Rational)
+#undef QVERIFY_CHECK_INSTANTIATE
+
+}  // namespace qverify
