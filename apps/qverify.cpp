@@ -1,4 +1,5 @@
-// qverify command line: see shared/spec/cli.md for the contract.
+// qverify command line. The contract: README ("Command line"), docs/json-documents.md (documents,
+// exit status) and docs/scene-format.md (input).
 #include <qverify/exact/number_text.hpp>
 #include <qverify/render/render.hpp>
 #include <qverify/verify/eval.hpp>
@@ -6,6 +7,7 @@
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/bench.hpp>
+#include <qverify/verify/files.hpp>
 #include <qverify/verify/stress.hpp>
 #include <qverify/verify/verifier.hpp>
 
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <chrono>
 #include <fstream>
+#include <vector>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -262,12 +265,9 @@ json pixel_json(const render::Renderer& r, const render::PixelId& id) {
   return {{"surface", id.surface}, {"mirror", id.mirror}, {"shadowed", id.shadowed}, {"reads", r.describe(id)}};
 }
 
+/// Throws FileWriteError (exit 2, the path named) when the file cannot be written.
 void write_image(const std::string& file, const render::Image& img, const std::vector<std::uint8_t>& rgb) {
-  try {
-    render::write_png(file, img.width, img.height, rgb);
-  } catch (const std::runtime_error& e) {
-    throw UsageError(e.what());
-  }
+  render::write_png(file, img.width, img.height, rgb);
 }
 
 int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
@@ -478,6 +478,29 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   render_cmd->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
 
+  // The first word that is not an option names the command: an unknown one is named back, with the
+  // list (CLI11 alone would say "A subcommand is required").
+  std::string commands;
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    commands += (commands.empty() ? "" : ", ") + sub->get_name();
+    names.push_back(sub->get_name());
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (!word.empty() && word[0] == '-') continue;
+    if (std::find(names.begin(), names.end(), word) == names.end()) {
+      std::cerr << "qverify: unknown command \"" << word << "\" (commands: " << commands
+                << ")\n(run 'qverify --help' for usage)\n";
+      return kUsage;
+    }
+    break;
+  }
+  if (argc < 2) {
+    std::cerr << "qverify: a command is required (commands: " << commands << ")\n(run 'qverify --help' for usage)\n";
+    return kUsage;
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -578,6 +601,9 @@ int main(int argc, char** argv) {
     std::cerr << "qverify: " << e.what() << "\n";
     return kUsage;
   } catch (const InputError& e) {
+    std::cerr << "qverify: error: " << e.what() << "\n";
+    return kUsage;
+  } catch (const FileWriteError& e) {  // an output file or --out directory: nothing claims it was written
     std::cerr << "qverify: error: " << e.what() << "\n";
     return kUsage;
   } catch (const std::exception& e) {

@@ -19,7 +19,7 @@
 
 // Boost 1.74's cpp_int asks whether any argument type is a "byte container" (has a
 // const_iterator over bytes); Eigen 3.4 declares const_iterator = void for matrices and
-// expressions, which breaks the trait (shared/notes/toolchain.md). This translation unit
+// expressions, which breaks the trait. This translation unit
 // never builds a cpp_int from bytes, so the trait is switched off here, and only here.
 namespace boost::multiprecision::detail {
 template <class C> struct is_byte_container_imp<C, true> : boost::false_type {};

@@ -1,5 +1,7 @@
-// The CLI contract (shared/spec/cli.md): JSON shapes, number encodings, exit codes.
+// The CLI contract (README "Command line", docs/json-documents.md): JSON shapes, number encodings, exit codes.
 #include "cli_run.hpp"
+
+#include <qverify/verify/files.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -300,4 +302,123 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
                         "reflection/double/direct", "reflection/double/paper", "reflection/interval/direct",
                         "reflection/exact/direct"})
     CHECK(seen.count(k) == 1);
+}
+
+// ------------------------------------------------------------------ output files and commands
+
+namespace {
+
+/// Runs the qverify binary with stdout and stderr captured apart.
+struct RunBoth {
+  int code = -1;
+  std::string out, err;
+};
+RunBoth run_both(const std::string& args) {
+  static int n = 0;
+  const std::string err_file = temp_file("stderr-" + std::to_string(n++) + ".txt", "");
+  RunBoth r;
+  FILE* p = popen((std::string(QVERIFY_EXE) + " " + args + " 2>" + err_file).c_str(), "r");
+  REQUIRE(p);
+  std::array<char, 4096> buf{};
+  std::size_t k;
+  while ((k = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), k);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return r;
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("qverify-files-" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("an unknown command is named, with the list of commands, exit 2", "[cli]") {
+  const RunBoth r = run_both("frobnicate");
+  CHECK(r.code == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.find("unknown command \"frobnicate\"") != std::string::npos);
+  for (const char* c : {"eval", "verify", "audit", "stress", "render", "bench", "paper"}) CHECK(r.err.find(c) != std::string::npos);
+  const RunBoth none = run_both("");
+  CHECK(none.code == 2);
+  CHECK(none.err.find("commands: eval") != std::string::npos);
+  CHECK(run_both("--help").code == 0);
+}
+
+TEST_CASE("an --out directory that cannot be created is exit 2 naming it, before any work", "[cli][files]") {
+  const auto dir = fresh_dir("not-a-dir");
+  const std::string file = temp_file("plain-file", "x");
+  for (const std::string& out : {file + "/sub", file}) {
+    for (const std::string& args : {"audit " + scene("ball-lamp-floor.json") + " --batch-ms 1 --out " + out,
+                                    "stress --family far-from-origin --out " + out}) {
+      INFO(args);
+      const RunBoth r = run_both(args);
+      CHECK(r.code == 2);
+      CHECK(r.out.empty());
+      CHECK(r.err.find("cannot create directory " + out) != std::string::npos);
+      CHECK(r.err.find("internal error") == std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("a report that cannot be written is exit 2 naming it, and nothing claims it was written", "[cli][files]") {
+  for (const std::string cmd : {"audit", "stress"}) {
+    const auto dir = fresh_dir(cmd + "-blocked");
+    std::filesystem::create_directories(dir / "report.json");  // a directory where the report goes
+    const std::string args = cmd == "audit" ? "audit " + scene("ball-lamp-floor.json") + " --batch-ms 1 --out " + dir.string()
+                                            : "stress --family far-from-origin --out " + dir.string();
+    for (const std::string& json : {std::string(""), std::string(" --json")}) {
+      INFO(args + json);
+      const RunBoth r = run_both(args + json);
+      CHECK(r.code == 2);
+      CHECK(r.out.find("wrote") == std::string::npos);
+      CHECK(r.out.find("qverify-") == std::string::npos);  // no document printed either
+      CHECK(r.err.find("cannot write " + (dir / "report.json").string()) != std::string::npos);
+      CHECK(r.err.find("Is a directory") != std::string::npos);
+    }
+    CHECK(std::filesystem::is_directory(dir / "report.json"));
+    for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporary left behind
+      CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+  }
+}
+
+TEST_CASE("a PNG that cannot be written is exit 2 naming it", "[cli][files]") {
+  const auto dir = fresh_dir("png-blocked");
+  std::filesystem::create_directories(dir / "image.png");
+  const RunBoth r = run_both("render " + scene("ball-lamp-floor.json") + " --out " + (dir / "image.png").string());
+  CHECK(r.code == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.find("cannot write " + (dir / "image.png").string() + ": Is a directory") != std::string::npos);
+  const RunBoth nodir = run_both("render " + scene("ball-lamp-floor.json") + " --out " + (dir / "none" / "x.png").string());
+  CHECK(nodir.code == 2);
+  CHECK(nodir.err.find("cannot write " + (dir / "none" / "x.png").string() + ": No such file or directory") != std::string::npos);
+}
+
+TEST_CASE("write_file replaces its target whole and leaves no temporary", "[cli][files]") {
+  const auto dir = fresh_dir("write-file");
+  const auto target = dir / "out.txt";
+  qverify::write_file(target, "first version, longer than the second\n");
+  qverify::write_file(target, "second\n");
+  std::ifstream in(target);
+  CHECK(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()) == "second\n");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+  CHECK(entries == 1);
+  try {
+    qverify::write_file(dir / "missing" / "x.txt", "x");
+    FAIL("no error");
+  } catch (const qverify::FileWriteError& e) {
+    CHECK(e.path == dir / "missing" / "x.txt");
+    CHECK(e.reason == "No such file or directory");
+    CHECK(std::string(e.what()) == "cannot write " + (dir / "missing" / "x.txt").string() + ": No such file or directory");
+  }
+  CHECK_THROWS_AS(qverify::create_output_directory(target / "sub"), qverify::FileWriteError);
+  CHECK_THROWS_AS(qverify::create_output_directory(target), qverify::FileWriteError);
+  CHECK_NOTHROW(qverify::create_output_directory(dir / "a" / "b"));
+  CHECK(std::filesystem::is_directory(dir / "a" / "b"));
 }

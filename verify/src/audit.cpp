@@ -1,11 +1,11 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/verify/audit.hpp>
+#include <qverify/verify/files.hpp>
 #include <qverify/verify/plot.hpp>
 #include <qverify/verify/report.hpp>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 
 namespace qverify {
@@ -74,6 +74,7 @@ std::string row_key(const json& r) { return r["precision"].get<std::string>() + 
 }  // namespace
 
 json run_audit(const Scene& sc, const AuditOptions& opt) {
+  create_output_directory(opt.out_dir);  // before the measurements: a bad --out fails at once
   const auto ladder = opt.ladder.empty() ? default_ladder() : opt.ladder;
   const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
   const std::size_t n_items = sc.shadows.size() + sc.reflections.size();
@@ -111,7 +112,7 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
       r["reps_per_batch"] = tr.reps_per_batch;
       r["batches"] = tr.batches;
       r["inputs_rounded"] = tr.inputs_rounded;
-      if (prec.kind == Precision::Kind::mpfr) r["working_bits"] = set_mpfr_bits(prec.bits);
+      if (prec.kind == Precision::Kind::mpfr) r["working_bits"] = digits_for_bits(prec.bits).bits;
       rows.push_back(r);
       errors.push_back(std::move(e));
     }
@@ -172,7 +173,6 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
   doc["skipped"] = skipped_json(sc);
 
   // ---- files
-  std::filesystem::create_directories(opt.out_dir);
   Plot plot;
   plot.title = "error against run time: " + sc.name;
   plot.x_label = "ns per item (median, single thread)";
@@ -196,9 +196,10 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
   paper.labels_below = true;
   plot.series = {direct, paper, front};
   const std::string svg = render_svg(plot);
-  std::ofstream(std::filesystem::path(opt.out_dir) / "error-vs-time.svg") << svg;
-  std::ofstream(std::filesystem::path(opt.out_dir) / "report.json") << doc.dump(2) << "\n";
-  std::ofstream(std::filesystem::path(opt.out_dir) / "report.html") << audit_html(doc, svg);
+  const std::filesystem::path dir(opt.out_dir);
+  write_file(dir / "error-vs-time.svg", svg);
+  write_file(dir / "report.json", doc.dump(2) + "\n");
+  write_file(dir / "report.html", audit_html(doc, svg));
   return doc;
 }
 

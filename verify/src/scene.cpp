@@ -8,18 +8,6 @@
 
 namespace qverify {
 
-const char* shape_name(Shape s) {
-  switch (s) {
-    case Shape::matrix: return "matrix";
-    case Shape::coefficients: return "coefficients";
-    case Shape::sphere: return "sphere";
-    case Shape::ellipsoid: return "ellipsoid";
-    case Shape::cylinder: return "cylinder";
-    case Shape::cone: return "cone";
-  }
-  return "?";
-}
-
 namespace {
 
 using Kind = JsonNode::Kind;

@@ -2,6 +2,7 @@
 #include <qverify/exact/sampling.hpp>
 #include <qverify/verify/accuracy.hpp>
 #include <qverify/verify/audit.hpp>
+#include <qverify/verify/files.hpp>
 #include <qverify/verify/plot.hpp>
 #include <qverify/verify/report.hpp>
 #include <qverify/verify/stress.hpp>
@@ -9,7 +10,6 @@
 #include <cmath>
 #include <optional>
 #include <filesystem>
-#include <fstream>
 
 namespace qverify {
 
@@ -165,6 +165,7 @@ const std::vector<StressFamily>& stress_families() {
 }
 
 json run_stress(const StressOptions& opt) {
+  create_output_directory(opt.out_dir);  // before the sweeps: a bad --out fails at once
   const auto specs = run_specs();
   json families = json::array();
   std::vector<std::pair<std::string, std::string>> svgs;
@@ -343,10 +344,10 @@ json run_stress(const StressOptions& opt) {
                                "frame, divided by the object's size"},
            {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"},
            {"families", families}};
-  std::filesystem::create_directories(opt.out_dir);
-  for (const auto& [name, svg] : svgs) std::ofstream(std::filesystem::path(opt.out_dir) / (name + ".svg")) << svg;
-  std::ofstream(std::filesystem::path(opt.out_dir) / "report.json") << doc.dump(2) << "\n";
-  std::ofstream(std::filesystem::path(opt.out_dir) / "report.html") << stress_html(doc, svgs);
+  const std::filesystem::path dir(opt.out_dir);
+  for (const auto& [name, svg] : svgs) write_file(dir / (name + ".svg"), svg);
+  write_file(dir / "report.json", doc.dump(2) + "\n");
+  write_file(dir / "report.html", stress_html(doc, svgs));
   return doc;
 }
 

@@ -8,8 +8,8 @@
 /// that field is CGAL's `Sqrt_extension` (exact zero tests and signs).
 ///
 /// CGAL's precondition that two operands share the same root is checked only
-/// in debug builds (with NDEBUG a mixed root silently gives a wrong value,
-/// shared/notes/toolchain.md). A RootPoint therefore keeps one delta, and
+/// in debug builds (CGAL_precondition; with NDEBUG a mixed root silently gives
+/// a wrong value). A RootPoint therefore keeps one delta, and
 /// every value it produces is checked against it, in release builds too.
 
 #include <qverify/core/scalar.hpp>

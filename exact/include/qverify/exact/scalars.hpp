@@ -4,13 +4,14 @@
 ///
 ///  - `Rational`: GMP rationals through Boost.Multiprecision with expression
 ///    templates *off* (Eigen's fixed-size kernels do not compile with
-///    expression templates; see shared/notes/toolchain.md). Exact: NumTraits
+///    Boost's expression templates: they hand Eigen expression objects where
+///    it expects the scalar type). Exact: NumTraits
 ///    epsilon is 0, so every tolerance of the core collapses to an equality.
 ///  - `Float128`: IEEE binary128 (libquadmath).
 ///  - `Mpfr`: MPFR with run-time precision (`Mpfr::default_precision(bits)`
 ///    in digits10, or `set_mpfr_bits`).
 /// The choice of Rational over CGAL::Gmpq and cpp_rational is measured by
-/// `bench/bench_rational` (README, "Exact arithmetic").
+/// `bench/bench_scalars` (README, "Exact arithmetic: which rational type").
 
 #include <boost/multiprecision/float128.hpp>
 #include <boost/multiprecision/gmp.hpp>

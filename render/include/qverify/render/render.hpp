@@ -129,7 +129,9 @@ Comparison compare_methods(const Renderer& r, int repeat = 3, long max_checked =
 /// The ID buffer as an RGB image (Renderer::id_colour).
 std::vector<std::uint8_t> id_image(const Image& img);
 
-/// Writes an 8-bit RGB PNG (libpng). Throws std::runtime_error naming the file.
+/// Writes an 8-bit RGB PNG (libpng), through the checked write of
+/// qverify/verify/files.hpp: throws FileWriteError naming the file and the
+/// reason when it cannot be written (std::runtime_error on a size mismatch).
 void write_png(const std::string& file, int width, int height, const std::vector<std::uint8_t>& rgb);
 
 }  // namespace qverify::render

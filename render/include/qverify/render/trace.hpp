@@ -18,7 +18,7 @@
 ///  - behind mirror m the primary ray is intersected with the mirror images
 ///    B = M^T A M of eq. (11) (the point seen is y; x = M y is its original);
 ///  - the shadow test is a point-in-quadric test with P of eq. (3) and the
-///    polar plane pi = A L of eq. (6):
+///    polar plane pi = A L (eq. (5): the plane S carried back to world coordinates):
 ///
 ///      x shadowed  <=>  x^T P x < 0  and  ( s (x^T A x) < 0  or  s (pi.x) < 0 ),
 ///      s = L^T A L.

@@ -76,10 +76,11 @@ struct AuditOptions {
   std::function<void(const std::string&)> progress;  ///< called with a line of progress
 };
 
-/// The default ladder: float, double, long-double, float128, mpfr:128, mpfr:256, exact.
+/// The default ladder: float, double, long-double, float128, mpfr:128, mpfr:256, interval, exact.
 std::vector<Precision> default_ladder();
 
-/// Runs the audit, writes the three files, returns report.json's document.
+/// Runs the audit, writes the three files into `out_dir` (created first; checked
+/// writes, files.hpp: throws FileWriteError naming the path), returns report.json's document.
 nlohmann::ordered_json run_audit(const Scene& sc, const AuditOptions& opt);
 
 }  // namespace qverify

@@ -46,9 +46,6 @@ inline Mat4<Rational> quadric_from_local(const Mat4<Rational>& A, const Vec3<Rat
   const Mat4<Rational> T = translation<Rational>(Vec3<Rational>(-o));
   return T.transpose() * A * T;
 }
-inline Vec4<Rational> plane_to_local(const Vec4<Rational>& p, const Vec3<Rational>& o) {
-  return translation<Rational>(o).transpose() * p;
-}
 inline Vec4<Rational> plane_from_local(const Vec4<Rational>& p, const Vec3<Rational>& o) {
   return translation<Rational>(Vec3<Rational>(-o)).transpose() * p;
 }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file scene.hpp
-/// The scene model of `qverify-scene/1` (shared/spec/scene-format.md).
+/// The scene model of `qverify-scene/1` (docs/scene-format.md).
 ///
 /// Every number is kept as an exact Rational together with the JSON path it
 /// came from. A scalar type is chosen only when a typed scene is built
@@ -32,7 +32,6 @@ struct Num {
 };
 
 enum class Shape { matrix, coefficients, sphere, ellipsoid, cylinder, cone };
-const char* shape_name(Shape s);
 
 /// A quadric as written: its shape and its numbers, in the order
 ///  matrix: 16 entries row by row; coefficients: xx yy zz xy xz yz x y z c;

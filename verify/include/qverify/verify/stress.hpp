@@ -34,7 +34,8 @@ struct StressOptions {
 };
 
 /// Runs the sweeps, writes report.json (qverify-stress/1), report.html and
-/// one SVG per family; returns the document.
+/// one SVG per family into `out_dir` (created first; checked writes, files.hpp:
+/// throws FileWriteError naming the path); returns the document.
 nlohmann::ordered_json run_stress(const StressOptions& opt);
 
 }  // namespace qverify

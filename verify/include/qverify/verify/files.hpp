@@ -1,0 +1,38 @@
+#pragma once
+/// \file files.hpp
+/// Checked file output. Every file qverify writes (the reports and plots of
+/// `audit` and `stress`, the images of `render`) goes through `write_file`:
+/// the contents go to a new temporary file in the target's directory, every
+/// write and the close are checked, and only then is the temporary renamed
+/// over the target. A reader never sees a half-written file, and a file that
+/// could not be written is an error naming the path and the reason, never a
+/// silent success.
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace qverify {
+
+/// A file or directory that could not be written or created. `what()` is
+/// "cannot write PATH: REASON" (or "cannot create directory PATH: REASON").
+struct FileWriteError : std::runtime_error {
+  FileWriteError(const std::string& message, std::filesystem::path path, std::string reason)
+      : std::runtime_error(message), path(std::move(path)), reason(std::move(reason)) {}
+  std::filesystem::path path;  ///< the file or directory that failed
+  std::string reason;          ///< the operating system's reason, e.g. "Is a directory"
+};
+
+/// Writes `contents` to `path`: to a temporary file in the same directory
+/// first (every write checked, flushed to disk, closed), then renamed over
+/// `path`. Permissions are those of a new file under the process's umask.
+/// Throws FileWriteError (nothing is left behind: the temporary is removed).
+void write_file(const std::filesystem::path& path, std::string_view contents);
+
+/// Creates `dir` and its missing parents; succeeds when it is already a
+/// directory. Throws FileWriteError when it cannot be created or exists as
+/// something else.
+void create_output_directory(const std::filesystem::path& dir);
+
+}  // namespace qverify
