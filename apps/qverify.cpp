@@ -524,7 +524,7 @@ int main(int argc, char** argv) {
       if (tolerance > 0 && tolerance < std::ldexp(1.0, -53))
         throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
                          "result rounded to double is that far); use --precision exact");
-      const json doc = tolerance > 0 ? adaptive_eval_document(sc, method, tolerance)
+      const json doc = tolerance > 0 ? adaptive_eval_document(sc, method, tolerance, AccuracyOptions{accuracy})
                                      : eval_document(sc, prec, method, frame_of(frame_text), AccuracyOptions{accuracy});
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_eval(doc);

@@ -126,8 +126,9 @@ struct Part {
 /// enclosure of the exact result; the stage certifies when every candidate entry is within
 /// tol x (largest |exact entry|) of every point of the enclosure. Stages: the double result
 /// (enclosure: interval), the interval midpoints, the MPFI midpoints (256 bits), the exact result
-/// rounded. Writes the parts and `certified` into j and returns the stage.
-std::string certify(json& j, const std::vector<Part>& parts, double tol) {
+/// rounded. Writes the parts and `certified` into j, the values written into `chosen`, and
+/// returns the stage.
+std::string certify(json& j, const std::vector<Part>& parts, double tol, std::vector<Eigen::MatrixXd>& chosen) {
   using Candidate = std::function<std::pair<Eigen::MatrixXd, Enclosure>(const Part&)>;
   const std::vector<std::pair<std::string, Candidate>> stages = {
       {"double", [](const Part& p) { return std::make_pair(p.dbl, enclosure(p.enc)); }},
@@ -151,15 +152,24 @@ std::string certify(json& j, const std::vector<Part>& parts, double tol) {
     if (bound <= tol || name == "exact") {
       for (std::size_t k = 0; k < parts.size(); ++k) j[parts[k].key] = matrix_json(values[k]);
       j["certified"] = {{"by", name}, {"relative_error_bound", bound}};
+      chosen = std::move(values);
       return name;
     }
   }
   return "exact";  // not reached
 }
 
+/// The item's error_bound (its geometric error on exact points, eval's rule) and `inaccurate` flag.
+void accuracy_of(json& j, const ItemAccuracy& acc) {
+  if (acc.inaccurate) j["flags"].push_back("inaccurate");
+  accuracy_json(j, &acc);
+}
+
+Mat4<Q> exact4(const Eigen::MatrixXd& m) { return exact_matrix(Mat4<double>(m)); }
+
 }  // namespace
 
-json adaptive_eval_document(const Scene& sc, Method method, double tol) {
+json adaptive_eval_document(const Scene& sc, Method method, double tol, const AccuracyOptions& accuracy) {
   if (!(tol >= std::ldexp(1.0, -53))) throw std::invalid_argument("adaptive tolerance below 2^-53 cannot be certified in double");
   // Every stage in world coordinates and without rescaling, so that the stages are comparable.
   const Evaluation<double> d = evaluate<double>(sc, method, Frame::world);
@@ -190,6 +200,11 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
                               "that result: the double result (against the interval enclosure), else the interval "
                               "midpoints, else the MPFI midpoints rounded to double, else the exact result rounded "
                               "to double; relative_error_bound is the certified bound"}};
+  doc["accuracy"] = accuracy.target;
+  doc["error_bound_rule"] = "the geometric error of the item as written (largest first-order distance of " +
+                            std::to_string(accuracy.samples) + " exact points from it, divided by the object size), times " +
+                            std::to_string(kBoundMargin) + "; inaccurate when it exceeds the accuracy target";
+  const TypedScene<Q> exs = typed_scene<Q>(sc);
   json shadows = json::array();
   std::map<std::string, int> count;
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
@@ -197,6 +212,7 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     const ShadowResult<Interval>& ii = iv.shadows[k].result;
     json j = shadow_json(sc, dd);
     j["status"] = exact().shadows[k].result.status();  // statuses: exact
+    std::vector<Eigen::MatrixXd> v;
     ++count[certify(j,
                     {{"P", dd.result.P, ii.P, [&] { return MpfiMatrix(mpfi().shadows[k].result.P); },
                       [&] { return ExactMatrix(exact().shadows[k].result.P); }},
@@ -205,7 +221,11 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
                       [&] { return ExactMatrix(exact().shadows[k].result.polar_plane); }},
                      {"R", dd.result.R, ii.R, [&] { return MpfiMatrix(mpfi().shadows[k].result.R); },
                       [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
-                    tol)];
+                    tol, v)];
+    const ItemPoints pts = terminator_points(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy.samples,
+                                             item_seed(accuracy.seed, 1, k));
+    const ShadowError e = shadow_error(pts, std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2]));
+    accuracy_of(j, item_accuracy(e.geometric, !pts.points.empty(), accuracy.target));
     shadows.push_back(j);
   }
   json reflections = json::array();
@@ -214,12 +234,17 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol) {
     const ReflectionItem<Interval>& ii = iv.reflections[k];
     json j = reflection_json(sc, dd);
     j["status"] = exact().reflections[k].result.status();
+    std::vector<Eigen::MatrixXd> v;
     ++count[certify(j,
                     {{"M", dd.M, ii.M, [&] { return MpfiMatrix(mpfi().reflections[k].M); },
                       [&] { return ExactMatrix(exact().reflections[k].M); }},
                      {"B", dd.result.B, ii.result.B, [&] { return MpfiMatrix(mpfi().reflections[k].result.B); },
                       [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
-                    tol)];
+                    tol, v)];
+    const ItemPoints pts = reflected_points(exs.A[dd.pair.quadric], reference_mirror(exs.planes[dd.pair.other]),
+                                            accuracy.samples, item_seed(accuracy.seed, 2, k));
+    accuracy_of(j, item_accuracy(reflection_error(pts, std::nullopt, exact4(v[1])).geometric, !pts.points.empty(),
+                                 accuracy.target));
     reflections.push_back(j);
   }
   doc["shadows"] = shadows;

@@ -5,12 +5,15 @@
 /// *certified* within T (relative to its largest entry) of the exact result of
 /// the same formula: every entry within T x scale of every point of a
 /// certified enclosure of the exact result. The document says, per item, which
-/// stage certified it and the certified bound.
+/// stage certified it and the certified bound, and, like every floating
+/// item of eval, its error_bound (the geometric error of the matrices written,
+/// on exact points) with `inaccurate` when that may exceed the accuracy target.
 
 #include <qverify/verify/eval.hpp>
 
 namespace qverify {
 
-nlohmann::ordered_json adaptive_eval_document(const Scene& sc, Method method, double tolerance);
+nlohmann::ordered_json adaptive_eval_document(const Scene& sc, Method method, double tolerance,
+                                              const AccuracyOptions& accuracy = AccuracyOptions{});
 
 }  // namespace qverify

@@ -316,6 +316,23 @@ struct AccuracyOptions {
   std::uint64_t seed = 1;
 };
 
+/// error_bound of an item from its geometric error measured on the sampled
+/// points (times the margin kBoundMargin), and `inaccurate` when it may exceed
+/// the target; no bound (with the reason) when there is nothing to measure on.
+inline ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target) {
+  ItemAccuracy acc;
+  if (!has_points) {
+    acc.reason = "no real point to measure the result on";
+  } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
+    acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
+    acc.inaccurate = true;
+  } else {
+    acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
+    acc.inaccurate = *acc.bound > target;
+  }
+  return acc;
+}
+
 /// error_bound and `inaccurate` of every floating item: the geometric error
 /// measured exactly on the seeded sample points (the points `verify` uses by
 /// default), times kBoundMargin. On the default path (builtin floating types,
@@ -332,16 +349,7 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     return;
   } else {
     auto judge = [&](ItemAccuracy& acc, const Measure& geometric, bool has_points) {
-      acc = {};
-      if (!has_points) {
-        acc.reason = "no real point to measure the result on";
-      } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
-        acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
-        acc.inaccurate = true;
-      } else {
-        acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
-        acc.inaccurate = *acc.bound > opt.target;
-      }
+      acc = item_accuracy(geometric, has_points, opt.target);
     };
     for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
       const ItemPoints pts = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
