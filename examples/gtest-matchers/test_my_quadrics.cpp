@@ -3,21 +3,14 @@
 
 #include <gtest/gtest-spi.h>
 
-#include "my_quadrics.hpp"
+#include "fixtures.hpp"
+#include "my_quadrics.hpp"  // the code under test
 
 using qverify::testing::AssertShadowCone;
 using qverify::testing::IsMirrorImageOf;
 using qverify::testing::IsShadowConeOf;
 
-namespace {
-// An ellipsoid (semi-axes 1, 2, 3) centred at (1, 2, 3): x^T A x = 0.
-Eigen::Matrix4d ellipsoid() {
-  return qverify::ellipsoid_quadric<double>(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1, 2, 3), Eigen::Matrix3d::Identity());
-}
-const Eigen::Vector4d lamp(4, 5, 12, 1);          // a point light (x, y, z, 1)
-const Eigen::Vector4d sun(-1, -2, -10, 0);        // a parallel light (direction, 0)
-const Eigen::Vector4d floor_mirror(0, 0, 1, 2);   // the mirror z = -2
-}  // namespace
+using namespace fixtures;
 
 TEST(MyShadows, ConeFromALampAndTheSun) {
   const Eigen::Matrix4d A = ellipsoid();

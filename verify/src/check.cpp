@@ -192,6 +192,19 @@ std::optional<Vec3<Q>> matrix_center(const Mat4<Q>& A) {
   return Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
 }
 
+/// A report's header: what is checked, in which mode (eps 0: proof), against which status.
+CheckReport begin_report(const char* kind, const std::optional<Vec3<Q>>& origin, const std::string& status,
+                         std::string exact_status, const CheckOptions& opt, const Measure& eps) {
+  CheckReport rep;
+  rep.kind = kind;
+  rep.exact = eps == 0;
+  rep.accuracy = rep.exact ? 0.0 : opt.accuracy;
+  rep.origin = origin;
+  rep.exact_status = std::move(exact_status);
+  rep.item_status = status.empty() ? rep.exact_status : status;
+  return rep;
+}
+
 }  // namespace
 
 const QuadricCheck* CheckReport::find(const std::string& name) const {
@@ -256,16 +269,10 @@ Measure machine_epsilon(const Precision& p) {
 
 CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const ExactShadowCandidate& got,
                                const CheckOptions& opt, const Measure& eps, std::size_t item) {
-  const bool exact = eps == 0;
+  CheckReport rep = begin_report("shadow", got.origin, got.status, exact_shadow_word(Aw, Lw, opt.method), opt, eps);
+  const bool exact = rep.exact;
   const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
   const bool paper = opt.method == Method::paper;
-  CheckReport rep;
-  rep.kind = "shadow";
-  rep.exact = exact;
-  rep.accuracy = to_d(T);
-  rep.origin = got.origin;
-  rep.exact_status = exact_shadow_word(Aw, Lw, opt.method);
-  rep.item_status = got.status.empty() ? rep.exact_status : got.status;
 
   // Everything is judged in the frame the result is given in (local when it has an origin).
   const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
@@ -382,16 +389,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
 CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, const ExactReflectionCandidate& got,
                                    const CheckOptions& opt, const Measure& eps, std::size_t item,
                                    const std::optional<Vec3<Q>>& center) {
-  const bool exact = eps == 0;
+  CheckReport rep = begin_report("reflection", got.origin, got.status, exact_reflection_word(Aw), opt, eps);
+  const bool exact = rep.exact;
   const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
   const bool paper = opt.method == Method::paper;
-  CheckReport rep;
-  rep.kind = "reflection";
-  rep.exact = exact;
-  rep.accuracy = to_d(T);
-  rep.origin = got.origin;
-  rep.exact_status = exact_reflection_word(Aw);
-  rep.item_status = got.status.empty() ? rep.exact_status : got.status;
   const Mat4<Q> Mw = reference_mirror(plane);  // written out here, not the core's
   const Vec3<Q> o = got.origin ? *got.origin : Vec3<Q>::Zero();
   // M and B of the reference, in the result's frame: M_local = T^-1 M T, B_local = T^T M^T A M T.

@@ -87,7 +87,16 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
               "here from A, L and the mirror. consistent_with_precision (information only): every relative residual "
               "|x^T Q x| / (|Q|_F |x|^2) within 64 eps kappa, kappa the rounding amplification of the formulas";
   json checks = json::array();
-  auto count = [&](const CheckReport& r) { (r.skipped ? out.skipped : r.passed ? out.passed : out.failed)++; };
+  // Counts a report; a skipped one (nothing to sample) is written here and needs nothing more.
+  auto skipped = [&](json& c, const CheckReport& r) {
+    c["exact_status"] = r.exact_status;
+    (r.skipped ? out.skipped : r.passed ? out.passed : out.failed)++;
+    if (!r.skipped) return false;
+    c["status"] = "skipped";
+    c["reason"] = r.problems.front();
+    checks.push_back(c);
+    return true;
+  };
   auto missing = [&](json& c, const std::string& problem) {
     c["reason"] = problem.empty() ? "missing" : problem;
     c["status"] = "fail";
@@ -114,14 +123,7 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     cand.status = got.status;
     cand.A = got.A ? *got.A : quadric_to_local(rs.A[pr.quadric], got.origin ? *got.origin : Vec3<Q>::Zero());
     const CheckReport r = check_shadow_exact(Aw, Lw, cand, copt, eps, k);
-    c["exact_status"] = r.exact_status;
-    count(r);
-    if (r.skipped) {
-      c["status"] = "skipped";
-      c["reason"] = r.problems.front();
-      checks.push_back(c);
-      continue;
-    }
+    if (skipped(c, r)) continue;
     check_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane"});
     c["R_on_second_plane"] = number_or_null(r.second_plane_error.value_or(0));
     if (exact) c["proved_exactly"] = r.proved_exactly;
@@ -154,14 +156,7 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     cand.origin = got.origin;
     cand.status = got.status;
     const CheckReport r = check_reflection_exact(Aw, plane, cand, copt, eps, k, center);
-    c["exact_status"] = r.exact_status;
-    count(r);
-    if (r.skipped) {
-      c["status"] = "skipped";
-      c["reason"] = r.problems.front();
-      checks.push_back(c);
-      continue;
-    }
+    if (skipped(c, r)) continue;
     check_json(c, r, {"on_B"});
     if (exact) c["proved_exactly"] = r.proved_exactly;
     c["consistent_with_precision"] = r.consistent_with_precision;

@@ -21,6 +21,12 @@
 namespace qverify::testing {
 
 namespace detail {
+/// A matcher's verdict, with the report for the failure message.
+inline bool explained(const CheckReport& r, ::testing::MatchResultListener* listener) {
+  *listener << "\n" << r.summary();
+  return r.passed;
+}
+
 inline ::testing::AssertionResult verdict(const CheckReport& r, const std::string& claim) {
   if (r.passed) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << claim << "\n" << r.summary();
@@ -70,33 +76,23 @@ template <class S>
 /// gMock matchers: EXPECT_THAT(P, IsShadowConeOf(A, L)). The scalar type is
 /// the candidate's; A and L are taken in it.
 MATCHER_P2(IsShadowConeOf, A, L, "is the shadow cone of the quadric from the light (qverify)") {
-  const CheckReport r = shadow_cone_check(arg, A, L);
-  *result_listener << "\n" << r.summary();
-  return r.passed;
+  return detail::explained(shadow_cone_check(arg, A, L), result_listener);
 }
 
 MATCHER_P2(IsPolarPlaneOf, A, L, "is the polar plane of the light with respect to the quadric (qverify)") {
-  const CheckReport r = polar_plane_check(arg, A, L);
-  *result_listener << "\n" << r.summary();
-  return r.passed;
+  return detail::explained(polar_plane_check(arg, A, L), result_listener);
 }
 
 MATCHER_P2(IsTerminatorQuadricOf, A, L, "is the terminator quadric R of the quadric from the light (qverify)") {
-  const CheckReport r = terminator_quadric_check(arg, A, L);
-  *result_listener << "\n" << r.summary();
-  return r.passed;
+  return detail::explained(terminator_quadric_check(arg, A, L), result_listener);
 }
 
 MATCHER_P2(IsMirrorImageOf, A, plane, "is the mirror image of the quadric in the plane (qverify)") {
-  const CheckReport r = mirror_image_check(arg, A, plane);
-  *result_listener << "\n" << r.summary();
-  return r.passed;
+  return detail::explained(mirror_image_check(arg, A, plane), result_listener);
 }
 
 MATCHER_P(IsMirrorMatrixOf, plane, "is the reflection in the plane (qverify)") {
-  const CheckReport r = mirror_matrix_check(arg, plane);
-  *result_listener << "\n" << r.summary();
-  return r.passed;
+  return detail::explained(mirror_matrix_check(arg, plane), result_listener);
 }
 
 }  // namespace qverify::testing
