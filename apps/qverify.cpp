@@ -7,6 +7,7 @@
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/bench.hpp>
+#include <qverify/verify/candidate_run.hpp>
 #include <qverify/verify/files.hpp>
 #include <qverify/verify/stress.hpp>
 #include <qverify/verify/verifier.hpp>
@@ -148,18 +149,33 @@ void print_verify(const json& doc) {
 
 void print_audit(const json& doc, const std::string& dir) {
   fmt::print("precision audit of {} (reference: exact)\n\n", doc["scene"].get<std::string>());
-  fmt::print("{:<12} {:<7} {:>12} {:>14} {:>14} {:>8} {:>11}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
+  fmt::print("{:<12} {:<9} {:>12} {:>14} {:>14} {:>8} {:>11}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
              "bits", "inaccurate", "pareto");
   std::vector<std::string> front;
   for (const auto& p : doc["pareto"]) front.push_back(p.get<std::string>());
+  auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.3g}", v.get<double>()); };
   for (const auto& r : doc["rows"]) {
     const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
-    auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.3g}", v.get<double>()); };
-    fmt::print("{:<12} {:<7} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r["precision"].get<std::string>(),
+    const bool candidate = r.contains("source");
+    fmt::print("{:<12} {:<9} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r["precision"].get<std::string>(),
                r["method"].get<std::string>(), r["ns_per_item"].get<double>(), num(r["max_rel_error"]),
-               num(r["median_rel_error"]), r["correct_bits"].is_null() ? std::string("exact") : num(r["correct_bits"]),
-               fmt::format("{}/{}", r["inaccurate_items"].get<int>(), r["items"].get<int>()),
+               num(r["median_rel_error"]),
+               r["correct_bits"].is_null() ? std::string(candidate && !r.contains("exact_match") ? "-" : "exact")
+                                           : num(r["correct_bits"]),
+               candidate ? std::string("-") : fmt::format("{}/{}", r["inaccurate_items"].get<int>(), r["items"].get<int>()),
                std::find(front.begin(), front.end(), key) != front.end() ? "*" : "");
+  }
+  if (doc.contains("candidate")) {
+    const json& c = doc["candidate"];
+    for (const auto& r : doc["rows"])
+      if (r.contains("source")) {
+        fmt::print("\ncandidate {}: {}", c["name"].get<std::string>(), r["status"].get<std::string>());
+        if (r.contains("error")) fmt::print(" ({})", r["error"].get<std::string>());
+        fmt::print("; {:.3f} s per call; largest geometric error {} (target {:.3g})\n", r["seconds_per_call"].get<double>(),
+                   num(r["max_geometric_error"]), c["accuracy"].get<double>());
+      }
+    for (const auto& rep : c["reproducers"]) fmt::print("reproducer: {}/{} ({})\n", dir, rep["scene"].get<std::string>(),
+                                                        rep["reason"].get<std::string>());
   }
   fmt::print("\nwrote {0}/report.json, {0}/report.html, {0}/error-vs-time.svg\n", dir);
 }
@@ -178,9 +194,25 @@ void print_stress(const json& doc, const std::string& dir) {
     auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.2e}", v.get<double>()); };
     for (const auto& p : f["points"]) {
       fmt::print("{:>10} {:>10} {:>10}", num(p["param"]), num(p["predicted_double_error"]), num(p["rounded_exact_error"]));
-      for (const auto& r : p["runs"]) fmt::print(" {:>12}", num(r["geometric_error"]));
+      for (const auto& r : p["runs"])
+        fmt::print(" {:>12}", r["status"] == "candidate-failed" ? std::string("FAILED") : num(r["geometric_error"]));
       fmt::print("\n");
     }
+    if (f.contains("candidate")) {
+      const json& c = f["candidate"];
+      if (c["breakdown"].is_null())
+        fmt::print("candidate {}: within the target at every point\n", c["name"].get<std::string>());
+      else
+        fmt::print("candidate {}: breaks at {} = {:.3g}: {}\n", c["name"].get<std::string>(), f["parameter"].get<std::string>(),
+                   c["breakdown"].get<double>(), c["breakdown_reason"].get<std::string>());
+    }
+  }
+  if (doc.contains("candidate")) {
+    const json& c = doc["candidate"];
+    fmt::print("\ncandidate {}: {} calls, {} failed, {} beyond the target {:.3g}; {} reproducer(s){}\n",
+               c["name"].get<std::string>(), c["calls"].get<int>(), c["failed_calls"].get<int>(),
+               c["beyond_accuracy"].get<int>(), c["accuracy"].get<double>(), c["reproducers"].size(),
+               c["reproducers"].empty() ? std::string() : " in " + dir + "/failures/");
   }
   fmt::print("\nwrote {0}/report.json, {0}/report.html and one SVG per family\n", dir);
 }
@@ -430,6 +462,29 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 10000.0));
   audit->add_flag("--json", as_json, "Also print report.json on stdout");
 
+  // Another program audited beside qverify's precisions (audit and stress --candidate-cmd).
+  std::string candidate_cmd, candidate_name = "candidate";
+  double candidate_timeout = 60;
+  auto add_candidate = [&](CLI::App* sub) {
+    CLI::Option* cmd = sub->add_option(
+        "--candidate-cmd", candidate_cmd,
+        "Also run this program on every scene: run through /bin/sh -c with {scene} and {out} replaced by file paths; "
+        "it reads the scene and writes a qverify-eval/1 document to {out}");
+    sub->add_option("--candidate-name", candidate_name, "Label of the candidate (its runs, its reproducers' file names)")
+        ->capture_default_str()
+        ->needs(cmd);
+    sub->add_option("--candidate-timeout", candidate_timeout, "Seconds each call may take (then its process group is killed)")
+        ->capture_default_str()
+        ->needs(cmd);
+    sub->add_option("--accuracy", accuracy,
+                    "The candidate's accuracy target T: a point where its geometric error exceeds T (relative to the "
+                    "object's size), or its call failed, is written as a reproducer into DIR/failures/")
+        ->capture_default_str()
+        ->needs(cmd);
+    return cmd;
+  };
+  CLI::Option* audit_candidate = add_candidate(audit);
+
   CLI::App* stress = app.add_subcommand("stress", "Stability sweeps of stiff and extreme cases (families: --list); "
                                                   "writes report.json, report.html and one SVG per family");
   std::vector<std::string> families;
@@ -442,6 +497,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   stress->add_flag("--json", as_json, "Also print report.json on stdout");
+  CLI::Option* stress_candidate = add_candidate(stress);
 
   CLI::App* bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
                                                 "per item and roofline fraction per op, precision and method");
@@ -513,8 +569,17 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if ((eval->parsed() || verify->parsed()) && !(std::isfinite(accuracy) && accuracy > 0))
+    if ((eval->parsed() || verify->parsed() || audit->parsed() || stress->parsed()) &&
+        !(std::isfinite(accuracy) && accuracy > 0))
       throw UsageError("--accuracy: expected a positive finite number");
+    // --candidate-cmd of audit and stress: checked before any work
+    if ((audit->parsed() && audit_candidate->count() > 0) || (stress->parsed() && stress_candidate->count() > 0 && !list_families)) {
+      if (const std::string p = candidate_command_problem(candidate_cmd); !p.empty()) throw UsageError("--candidate-cmd: " + p);
+      if (const std::string p = candidate_name_problem(candidate_name); !p.empty())
+        throw UsageError("--candidate-name \"" + candidate_name + "\": " + p);
+      if (!(std::isfinite(candidate_timeout) && candidate_timeout > 0 && candidate_timeout <= 1e6))
+        throw UsageError("--candidate-timeout: expected a positive number of seconds (at most 1e6)");
+    }
     if (eval->parsed()) {
       const Precision prec = precision_of(precision_text);
       const Method method = method_of(method_text);
@@ -548,6 +613,11 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.batch_seconds = batch_ms / 1000;
       opt.progress = progress_after_two_seconds();
+      if (audit_candidate->count() > 0) {
+        create_output_directory(out_dir);  // a bad --out fails before the candidate's work directory is made
+        opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
+        opt.accuracy = accuracy;
+      }
       const json doc = run_audit(sc, opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_audit(doc, out_dir);
@@ -572,6 +642,11 @@ int main(int argc, char** argv) {
       opt.families = families;
       opt.samples = stress_samples;
       opt.progress = progress_after_two_seconds();
+      if (stress_candidate->count() > 0) {
+        create_output_directory(out_dir);  // a bad --out fails before the candidate's work directory is made
+        opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
+        opt.accuracy = accuracy;
+      }
       const json doc = run_stress(opt);
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_stress(doc, out_dir);

@@ -1,10 +1,12 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/verify/audit.hpp>
 #include <qverify/verify/files.hpp>
+#include <qverify/verify/json_tree.hpp>
 #include <qverify/verify/plot.hpp>
 #include <qverify/verify/report.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -117,6 +119,96 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
       errors.push_back(std::move(e));
     }
 
+  // The candidate: one call on the scene, a row beside the ladder's.
+  json candidate_doc = nullptr;
+  std::vector<double> candidate_geo;  // per item: geometric error as verify --candidate measures it
+  if (opt.candidate) {
+    const Candidate& cand = *opt.candidate;
+    if (opt.progress) opt.progress("audit: candidate " + cand.name);
+    const std::filesystem::path failures_dir = std::filesystem::path(opt.out_dir) / "failures";
+    remove_candidate_reproducers(failures_dir, cand.name);
+    const std::string text = opt.scene_text.empty() ? read_text_file(sc.file, JsonLimits{}.max_bytes) : opt.scene_text;
+    const CandidateCall call = call_candidate(cand, sc, text, "audit-0");
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> e(n_items, inf);
+    candidate_geo.assign(n_items, inf);
+    int checks_failed = static_cast<int>(n_items);
+    json r;
+    r["precision"] = cand.name;
+    r["method"] = "candidate";
+    r["source"] = "candidate";
+    r["run"] = cand.name;
+    if (call.ok) {
+      e = item_errors(call.results, ref);
+      const VerifyOutcome v = verify_results(sc, call.results, VerifyOptions{opt.samples, 1, opt.accuracy});
+      checks_failed = v.failed;
+      for (std::size_t i = 0; i < n_items && i < v.document["checks"].size(); ++i) {
+        const json& g = v.document["checks"][i];
+        if (g.contains("geometric_error") && !g["geometric_error"].is_null())
+          candidate_geo[i] = g["geometric_error"].get<double>();
+        else if (g["status"] == "skipped")
+          candidate_geo[i] = NAN;  // nothing to measure on (no real terminator point)
+      }
+      r["status"] = v.failed > 0 ? "fail" : "pass";
+      r["claimed_precision"] = call.results.precision.name();
+      r["claimed_method"] = method_name(call.results.method);
+      r["checks_passed"] = v.passed;
+      r["checks_failed"] = v.failed;
+    } else {
+      r["status"] = "candidate-failed";
+      r["error"] = call.error;
+    }
+    std::vector<double> sorted = e;
+    std::sort(sorted.begin(), sorted.end());
+    const double maxe = sorted.empty() ? 0 : sorted.back();
+    const double mede = sorted.empty() ? 0 : sorted[sorted.size() / 2];
+    double max_geo = 0;
+    for (double g : candidate_geo)
+      if (!std::isnan(g)) max_geo = std::max(max_geo, g);
+    r["ns_per_item"] = call.seconds * 1e9 / static_cast<double>(std::max<std::size_t>(n_items, 1));
+    r["seconds_per_call"] = call.seconds;
+    r["max_rel_error"] = number_or_null(maxe);
+    r["median_rel_error"] = number_or_null(mede);
+    r["correct_bits"] = maxe > 0 ? number_or_null(-std::log2(maxe)) : json(nullptr);
+    if (maxe == 0) r["exact_match"] = true;
+    r["max_geometric_error"] = number_or_null(max_geo);
+    r["items"] = n_items;
+    r["inaccurate_items"] = nullptr;
+    r["reps_per_batch"] = 1;
+    r["batches"] = 1;
+    r["inputs_rounded"] = nullptr;
+    const bool bad = !call.ok || checks_failed > 0 || !(max_geo <= opt.accuracy);
+    r["beyond_accuracy"] = call.ok && bad;
+    json reproducers = json::array();
+    if (bad) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "largest item geometric error %.3g of the object size (accuracy target %.3g); %d of %zu checks failed",
+                    max_geo, opt.accuracy, checks_failed, n_items);
+      const std::string reason = call.ok ? std::string(buf) : "candidate-failed: " + call.error;
+      json rep = write_candidate_reproducer(failures_dir, cand.name, "audit", 0, 0, text, call, reason);
+      rep.erase("param");
+      rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
+      r["reproducer"] = rep["scene"];
+      reproducers.push_back(rep);
+    }
+    rows.push_back(r);
+    errors.push_back(std::move(e));
+    candidate_doc = {{"name", cand.name},
+                     {"source", "candidate"},
+                     {"command", cand.description},
+                     {"timeout_seconds", cand.timeout_seconds > 0 ? json(cand.timeout_seconds) : json(nullptr)},
+                     {"accuracy", opt.accuracy},
+                     {"rule", "the candidate is called once on the scene and must return a qverify-eval/1 document "
+                              "with every requested item; its row has the matrix errors of the ladder and ns_per_item = "
+                              "the wall time of the call (process start included) / items; each item is checked as "
+                              "verify --candidate checks it (" + std::to_string(opt.samples) + " exact points, seed 1): "
+                              "geometric_errors; a failed call, a failed check or a geometric error beyond accuracy "
+                              "writes the scene as a reproducer"},
+                     {"status", r["status"]},
+                     {"failures_dir", reproducers.empty() ? json(nullptr) : json("failures")},
+                     {"reproducers", reproducers}};
+  }
+
   // Pareto front: not dominated in (time, error).
   json pareto = json::array();
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -138,6 +230,7 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
     json errs;
     for (std::size_t r = 0; r < rows.size(); ++r) errs[row_key(rows[r])] = number_or_null(errors[r][k]);
     it["errors"] = errs;
+    if (opt.candidate) it["geometric_errors"] = {{opt.candidate->name, number_or_null(candidate_geo[k])}};
     items.push_back(it);
     ++k;
   };
@@ -171,6 +264,7 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
   doc["pareto"] = pareto;
   doc["items"] = items;
   doc["skipped"] = skipped_json(sc);
+  if (opt.candidate) doc["candidate"] = candidate_doc;
 
   // ---- files
   Plot plot;
@@ -178,13 +272,15 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
   plot.x_label = "ns per item (median, single thread)";
   plot.y_label = "max relative error as quadrics";
   PlotSeries direct{"direct", "#1f77b4", {}, false, true, false, {}}, paper{"paper", "#ff7f0e", {}, false, true, false, {}},
-      front{"Pareto front", "#2ca02c", {}, true, false, true, {}};
+      front{"Pareto front", "#2ca02c", {}, true, false, true, {}},
+      candidate{(opt.candidate ? opt.candidate->name : std::string()) + " (candidate; wall time per call)", "#e377c2", {}, false,
+                true, false, {}};
   for (const auto& r : rows) {
     const double t = r["ns_per_item"].get<double>();
     const double e = r["max_rel_error"].is_null() ? NAN : r["max_rel_error"].get<double>();
-    PlotSeries& s = r["method"] == "direct" ? direct : paper;
+    PlotSeries& s = r.contains("source") ? candidate : r["method"] == "direct" ? direct : paper;
     s.points.emplace_back(t, e);
-    s.labels.push_back(r["precision"].get<std::string>());
+    s.labels.push_back(r.contains("source") ? r["run"].get<std::string>() : r["precision"].get<std::string>());
   }
   std::vector<std::pair<double, double>> fpts;
   for (const auto& r : rows)
@@ -195,6 +291,7 @@ json run_audit(const Scene& sc, const AuditOptions& opt) {
   front.points = fpts;
   paper.labels_below = true;
   plot.series = {direct, paper, front};
+  if (!candidate.points.empty()) plot.series.push_back(candidate);
   const std::string svg = render_svg(plot);
   const std::filesystem::path dir(opt.out_dir);
   write_file(dir / "error-vs-time.svg", svg);

@@ -7,7 +7,9 @@
 #include <qverify/verify/report.hpp>
 #include <qverify/verify/stress.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <filesystem>
 
@@ -110,6 +112,58 @@ std::vector<StressFamily> make_families() {
                  return scene_text("decimal-inputs", sphere(cx, cy, cz, Q(7, 10) * S),
                                    point_light(cx + 2 * S, cy + 3 * S, cz + 6 * S), "");
                }, false});
+  // Where another implementation breaks and the families above would not show it.
+  f.push_back({"light-near-infinity", "unit sphere at (1/2, 1/4, 1/8); point light at the centre + D (2,3,6)/7, D -> "
+               "1e300: a light almost at infinity given as a point (L^T A L ~ D^2 overflows a naive double)", "D",
+               decades(20, 300, 20), [](double d) {
+                 const Q D = pow10(exponent_of(d));
+                 const Q cx(1, 2), cy(1, 4), cz(1, 8);
+                 return scene_text("light-near-infinity", sphere(cx, cy, cz, 1),
+                                   point_light(cx + Q(2, 7) * D, cy + Q(3, 7) * D, cz + Q(6, 7) * D), "");
+               }, false});
+  f.push_back({"mirror-through-object", "unit sphere at (0.3, 0.2, 0.1); mirror 2x + 3y + 6z + d = 0 (decimal d) at "
+               "distance eps from the centre, eps -> 1e-15: the mirror almost through the object", "eps",
+               decades(0, -15, -1), [](double e) {
+                 const Q E = pow10(exponent_of(e));
+                 const Q cx(3, 10), cy(2, 10), cz(1, 10);
+                 const Q d = -(2 * cx + 3 * cy + 6 * cz) - 7 * E;  // signed distance (n.c + d) / |n| = -eps
+                 return scene_text("mirror-through-object", sphere(cx, cy, cz, 1), "",
+                                   R"({"id": "mirror", "plane": [2, 3, 6, )" + q(d) + "]}");
+               }, true});
+  f.push_back({"skewed-ellipsoid", "ellipsoid at (1/2, -1/4, 1), radii 1, 1, 1, axes given as the non-orthogonal "
+               "columns (1,0,0), (1,s,0), (0,1/3,1): the second axis turns onto the first as s -> 1e-12; light at (2,3,6)",
+               "s", decades(0, -12, -1), [](double sv) {
+                 const Q S = pow10(exponent_of(sv));
+                 const std::string e = R"({"id": "obj", "ellipsoid": {"center": )" + vec(Q(1, 2), Q(-1, 4), 1) +
+                                       R"(, "radii": [1, 1, 1], "axes": [[1, 1, 0], [0, )" + q(S) +
+                                       R"(, "1/3"], [0, 0, 1]]}})";
+                 return scene_text("skewed-ellipsoid", e, point_light(2, 3, 6), "");
+               }, false});
+  f.push_back({"mixed-magnitudes", "ellipsoid s x'^2 + y'^2 + z'^2 / s = 1 centred at (1/2, 1/4, 1/8), given as a "
+               "matrix whose entries range from s to 1/s, s -> 1e12; light at the centre + (2,3,6)", "s",
+               decades(0, 12), [](double sv) {
+                 const Q S = pow10(exponent_of(sv));
+                 const Q c[3] = {Q(1, 2), Q(1, 4), Q(1, 8)};
+                 const Q k[3] = {S, Q(1), Q(1) / S};
+                 Q A[4][4];
+                 for (int i = 0; i < 4; ++i)
+                   for (int j = 0; j < 4; ++j) A[i][j] = 0;
+                 Q c0 = -1;
+                 for (int i = 0; i < 3; ++i) {
+                   A[i][i] = k[i];
+                   A[i][3] = A[3][i] = -k[i] * c[i];
+                   c0 += k[i] * c[i] * c[i];
+                 }
+                 A[3][3] = c0;
+                 std::string m = R"({"id": "obj", "matrix": [)";
+                 for (int i = 0; i < 4; ++i) {
+                   m += i ? ", [" : "[";
+                   for (int j = 0; j < 4; ++j) m += (j ? ", " : "") + q(A[i][j]);
+                   m += "]";
+                 }
+                 return scene_text("mixed-magnitudes", m + "]}",
+                                   point_light(c[0] + 2, c[1] + 3, c[2] + 6), "");
+               }, false});
   return f;
 }
 
@@ -142,6 +196,34 @@ double geometric_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& orig
   return relative(measure_quadric(in_frame(pts.points, origin), Qm), pts.size).convert_to<double>();
 }
 
+/// One run's item measured against the exact result: the one measurement of every run, qverify's own and a
+/// candidate's. Infinite errors when the run gave no finite item.
+struct RunMeasure {
+  double matrix = INFINITY;          ///< projective error of P (B) against the exact one
+  double geometric = INFINITY;       ///< geometric error of P (B)
+  double item_geometric = INFINITY;  ///< over every result of the item: P, polar plane and R, or B
+  bool present = false;
+  std::optional<Vec3<Q>> origin;
+};
+
+RunMeasure measure_run(const StressFamily& fam, const ResultSet& rs, const ItemPoints& pts, const Evaluation<Q>& ref) {
+  RunMeasure m;
+  m.present = fam.reflection ? rs.reflections[0].present : rs.shadows[0].present;
+  if (!m.present) return m;
+  m.origin = fam.reflection ? rs.reflections[0].origin : rs.shadows[0].origin;
+  // the family's one item: B of a reflection or P of a shadow, in its own frame
+  const Mat4<Q>& got = fam.reflection ? rs.reflections[0].B : rs.shadows[0].P;
+  const Mat4<Q>& want = fam.reflection ? ref.reflections[0].result.B : ref.shadows[0].result.P;
+  const Vec3<Q> o = m.origin ? *m.origin : Vec3<Q>::Zero();
+  m.matrix = projective_error(quadric_from_local(got, o), want, true);
+  m.geometric = geometric_error(pts, m.origin, got);
+  // the item's geometric error, over all its results (what eval's flag and a candidate's verdict are about)
+  m.item_geometric = (fam.reflection ? reflection_error(pts, m.origin, got).geometric
+                                     : shadow_error(pts, m.origin, got, rs.shadows[0].polar, rs.shadows[0].R).geometric)
+                         .convert_to<double>();
+  return m;
+}
+
 /// Least-squares slope of log10(y) against log10(x) over finite, positive points.
 json slope(const std::vector<double>& x, const std::vector<double>& y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -157,6 +239,45 @@ json slope(const std::vector<double>& x, const std::vector<double>& y) {
 
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+const char* const kCandidateColor = "#e377c2";
+
+/// The candidate's section of report.html: its breaking points per family and its reproducers.
+std::string candidate_html(const json& doc) {
+  const json& c = doc["candidate"];
+  const std::string name = html_escape(c["name"].get<std::string>());
+  std::string b = "<h2 id=\"candidate\">Candidate " + name + "</h2>\n<p>Command: <code>" +
+                  html_escape(c["command"].get<std::string>()) + "</code>" +
+                  (c["timeout_seconds"].is_null() ? std::string() : ", at most " + sci(c["timeout_seconds"]) + " s per call") +
+                  ". Accuracy target " + sci(c["accuracy"]) + ". " + sci(c["calls"]) + " calls, " + sci(c["failed_calls"]) +
+                  " failed, " + sci(c["beyond_accuracy"]) + " beyond the target; median " +
+                  sci(c["median_seconds_per_call"]) + " s per call.</p>\n<p class=\"note\">" + html_escape(c["rule"].get<std::string>()) +
+                  ".</p>\n<table id=\"candidate-breakdown\"><tr><th class=\"l\">family</th><th>first breaking parameter</th>"
+                  "<th>failed calls</th><th>beyond target</th><th class=\"l\">first reason</th></tr>\n";
+  for (const auto& f : doc["families"]) {
+    if (!f.contains("candidate")) continue;
+    const json& fc = f["candidate"];
+    b += "<tr><td class=\"l\"><a href=\"#" + html_escape(f["name"].get<std::string>()) + "\">" + sci(f["name"]) +
+         "</a></td><td>" + (fc["breakdown"].is_null() ? std::string("never") : sci(f["parameter"]) + " = " + sci(fc["breakdown"])) +
+         "</td><td>" + sci(fc["failed_calls"]) + "</td><td>" + sci(fc["beyond_accuracy"]) + "</td><td class=\"l\">" +
+         (fc["breakdown_reason"].is_null() ? std::string() : sci(fc["breakdown_reason"])) + "</td></tr>\n";
+  }
+  b += "</table>\n<h3>Reproducers</h3>\n";
+  if (c["reproducers"].empty()) return b + "<p>None: every call returned every item within the target.</p>\n";
+  b += "<p class=\"note\">Each is the scene the candidate was given, beside what it returned and its log: a failing "
+       "case to put into its own test suite.</p>\n<table id=\"reproducers\"><tr><th class=\"l\">family</th><th>point</th>"
+       "<th>parameter</th><th class=\"l\">status</th><th>item geometric error</th><th class=\"l\">files</th>"
+       "<th class=\"l\">reason</th></tr>\n";
+  auto link = [](const json& v, const char* text) {
+    return v.is_null() ? std::string() : "<a href=\"" + html_escape(v.get<std::string>()) + "\">" + text + "</a> ";
+  };
+  for (const auto& r : c["reproducers"])
+    b += "<tr><td class=\"l\">" + sci(r["family"]) + "</td><td>" + sci(r["k"]) + "</td><td>" + sci(r["param"]) +
+         "</td><td class=\"l\">" + sci(r["status"]) + "</td><td>" + sci(r["item_geometric_error"]) + "</td><td class=\"l\">" +
+         link(r["scene"], "scene") + link(r["returned"], "returned") + link(r["log"], "log") + "</td><td class=\"l\">" +
+         sci(r["reason"]) + "</td></tr>\n";
+  return b + "</table>\n";
+}
+
 }  // namespace
 
 const std::vector<StressFamily>& stress_families() {
@@ -167,21 +288,34 @@ const std::vector<StressFamily>& stress_families() {
 json run_stress(const StressOptions& opt) {
   create_output_directory(opt.out_dir);  // before the sweeps: a bad --out fails at once
   const auto specs = run_specs();
+  const Candidate* cand = opt.candidate ? &*opt.candidate : nullptr;
+  const std::filesystem::path dir(opt.out_dir);
+  const std::filesystem::path failures_dir = dir / "failures";
+  if (cand) remove_candidate_reproducers(failures_dir, cand->name);
+  const std::size_t n_runs = specs.size() + (cand ? 1 : 0);  // the candidate's run comes last
   json families = json::array();
+  json reproducers = json::array();
+  std::vector<double> call_seconds;
+  int failed_calls = 0, beyond_calls = 0;
   std::vector<std::pair<std::string, std::string>> svgs;
   for (const StressFamily& fam : stress_families()) {
     if (!opt.families.empty() && std::find(opt.families.begin(), opt.families.end(), fam.name) == opt.families.end())
       continue;
     if (opt.progress) opt.progress("stress: " + fam.name);
     json points = json::array();
-    std::vector<std::vector<double>> geo(specs.size()), mat(specs.size());
+    std::vector<std::vector<double>> geo(n_runs), mat(n_runs);
     std::vector<std::vector<bool>> flags(specs.size());
+    std::vector<bool> cand_failed, cand_bad;  // per point: the call failed; failed or beyond the accuracy target
+    json cand_first_reason = nullptr;
+    int fam_failed = 0, fam_beyond = 0;
     json missed = json::array(), flagged_below = json::array();
     std::vector<double> params, predicted, floors;
     bool all_meet = true;
-    const std::vector<double> values = opt.worst_only ? std::vector<double>{fam.values.back()} : fam.values;
-    for (double v : values) {
-      const Scene sc = parse_scene(fam.scene(v), fam.name + ".json");
+    const std::size_t first = opt.worst_only ? fam.values.size() - 1 : 0;
+    for (std::size_t K = first; K < fam.values.size(); ++K) {
+      const double v = fam.values[K];
+      const std::string text = fam.scene(v);
+      const Scene sc = parse_scene(text, fam.name + ".json");
       const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
       const Mat4<Q>& A = ref.scene.A[0];
       // exact sample points (world) of the item, and the object's size
@@ -208,15 +342,12 @@ json run_stress(const StressOptions& opt) {
       std::optional<Vec3<Q>> robust_origin;  // the frame of the default double run
       for (std::size_t r = 0; r < specs.size(); ++r) {
         const RunSpec& spec = specs[r];
-        json run{{"run", spec.label}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
-        double me = INFINITY, ge = INFINITY, item_ge = INFINITY;
+        json run{{"run", spec.label}, {"source", "qverify"}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
+        RunMeasure m;
         bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
         std::string status;
         try {
           const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
-          // the family's one item: B of a reflection or P of a shadow, in its own frame
-          const bool present = fam.reflection ? rs.reflections[0].present : rs.shadows[0].present;
-          const auto& origin = fam.reflection ? rs.reflections[0].origin : rs.shadows[0].origin;
           status = fam.reflection ? rs.reflections[0].status : rs.shadows[0].status;
           const auto& acc = fam.reflection ? rs.reflections[0].accuracy : rs.shadows[0].accuracy;
           if (acc) {  // also for a non-finite result, which eval flags
@@ -224,37 +355,78 @@ json run_stress(const StressOptions& opt) {
             flagged = acc->inaccurate;
             run["error_bound"] = acc->bound ? json(*acc->bound) : json(nullptr);
           }
-          if (present) {
-            const Mat4<Q>& got = fam.reflection ? rs.reflections[0].B : rs.shadows[0].P;
-            const Mat4<Q>& want = fam.reflection ? ref.reflections[0].result.B : ref.shadows[0].result.P;
-            const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
-            me = projective_error(quadric_from_local(got, o), want, true);
-            ge = geometric_error(pts, origin, got);
-            // the item's geometric error, over all its results (what eval's flag is about)
-            item_ge = (fam.reflection ? reflection_error(pts, origin, got).geometric
-                                      : shadow_error(pts, origin, got, rs.shadows[0].polar, rs.shadows[0].R).geometric)
-                          .convert_to<double>();
-            run["frame"] = origin ? "local" : "world";
-            if (r == kDefaultRun) robust_origin = origin;
+          m = measure_run(fam, rs, pts, ref);
+          if (m.present) {
+            run["frame"] = m.origin ? "local" : "world";
+            if (r == kDefaultRun) robust_origin = m.origin;
           }
         } catch (const InputError& e) {
           status = std::string("refused: ") + e.problem;
         }
         run["status"] = status;
-        run["matrix_error"] = num(me);
-        run["geometric_error"] = num(ge);
-        run["item_geometric_error"] = num(item_ge);
+        run["matrix_error"] = num(m.matrix);
+        run["geometric_error"] = num(m.geometric);
+        run["item_geometric_error"] = num(m.item_geometric);
         run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
         // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
         // below: an error above the target here proves the flag missing; a flag where these points show less
         // than target / 100 proves nothing (the error may sit between them) and is listed as information.
-        const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(item_ge)}};
-        if (returned && !(item_ge <= kDefaultAccuracy) && !flagged) missed.push_back(at);
-        if (item_ge < kDefaultAccuracy / 100 && flagged) flagged_below.push_back(at);
+        const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(m.item_geometric)}};
+        if (returned && !(m.item_geometric <= kDefaultAccuracy) && !flagged) missed.push_back(at);
+        if (m.item_geometric < kDefaultAccuracy / 100 && flagged) flagged_below.push_back(at);
         runs.push_back(run);
-        geo[r].push_back(ge);
+        geo[r].push_back(m.geometric);
         flags[r].push_back(flagged);
-        mat[r].push_back(me);
+        mat[r].push_back(m.matrix);
+      }
+      if (cand) {
+        // The candidate, on the very scene text, measured by the same code as the runs above.
+        const CandidateCall call = call_candidate(*cand, sc, text, fam.name + "-" + std::to_string(K));
+        json run{{"run", cand->name}, {"source", "candidate"}};
+        RunMeasure m;
+        if (call.ok) {
+          run["precision"] = call.results.precision.name();
+          run["method"] = method_name(call.results.method);
+          m = measure_run(fam, call.results, pts, ref);
+          run["frame"] = m.origin ? "local" : "world";
+          const std::string& claimed = fam.reflection ? call.results.reflections[0].status : call.results.shadows[0].status;
+          run["status"] = claimed.empty() ? std::string("unstated") : claimed;
+        } else {
+          run["precision"] = nullptr;
+          run["method"] = nullptr;
+          run["status"] = "candidate-failed";
+          run["error"] = call.error;
+        }
+        run["seconds"] = call.seconds;
+        run["matrix_error"] = num(m.matrix);
+        run["geometric_error"] = num(m.geometric);
+        run["item_geometric_error"] = num(m.item_geometric);
+        run["flags"] = json::array();
+        const bool beyond = call.ok && !(m.item_geometric <= opt.accuracy);
+        run["beyond_accuracy"] = beyond;
+        call_seconds.push_back(call.seconds);
+        if (!call.ok || beyond) {
+          char buf[64];
+          std::snprintf(buf, sizeof buf, "%.3g", m.item_geometric);
+          char tbuf[32];
+          std::snprintf(tbuf, sizeof tbuf, "%.3g", opt.accuracy);
+          const std::string reason =
+              !call.ok ? "candidate-failed: " + call.error
+                       : std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
+                             " of the object size exceeds the accuracy target " + tbuf;
+          json rep = write_candidate_reproducer(failures_dir, cand->name, fam.name, K, v, text, call, reason);
+          run["reproducer"] = rep["scene"];
+          rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
+          rep["item_geometric_error"] = num(m.item_geometric);
+          reproducers.push_back(rep);
+          if (cand_first_reason.is_null()) cand_first_reason = reason;
+          (call.ok ? fam_beyond : fam_failed) += 1;
+        }
+        cand_failed.push_back(!call.ok);
+        cand_bad.push_back(!call.ok || beyond);
+        runs.push_back(run);
+        geo[specs.size()].push_back(m.geometric);
+        mat[specs.size()].push_back(m.matrix);
       }
       // The floor: the exact result in the default run's frame, correctly rounded to double (with the same
       // exact power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
@@ -283,6 +455,8 @@ json run_stress(const StressOptions& opt) {
                         {"default_meets_target", meets},
                         {"runs", runs}});
     }
+    failed_calls += fam_failed;
+    beyond_calls += fam_beyond;
     // slopes and breakdown
     json slopes, breakdown;
     slopes["predicted_double_error (eps * kappa)"] = slope(params, predicted);
@@ -295,6 +469,17 @@ json run_stress(const StressOptions& opt) {
           break;
         }
       breakdown[specs[r].label] = at;
+    }
+    json cand_at = nullptr;
+    if (cand) {
+      const std::size_t c = specs.size();
+      slopes[cand->name] = {{"matrix_error", slope(params, mat[c])}, {"geometric_error", slope(params, geo[c])}};
+      for (std::size_t i = 0; i < params.size(); ++i)
+        if (cand_bad[i]) {
+          cand_at = params[i];
+          break;
+        }
+      breakdown[cand->name] = cand_at;
     }
     json famj{{"name", fam.name},     {"description", fam.description}, {"parameter", fam.parameter},
               {"item", fam.reflection ? "reflection B" : "shadow P"},
@@ -309,6 +494,13 @@ json run_stress(const StressOptions& opt) {
                 {"ok", missed.empty()}, {"missed", missed}, {"flagged_below", flagged_below}}},
               {"points", points}, {"slopes", slopes},
               {"breakdown", breakdown}};
+    if (cand)
+      famj["candidate"] = {{"name", cand->name},
+                           {"breakdown", cand_at},
+                           {"breakdown_reason", cand_first_reason},
+                           {"failed_calls", fam_failed},
+                           {"beyond_accuracy", fam_beyond},
+                           {"reproducers", fam_failed + fam_beyond}};
     families.push_back(famj);
 
     Plot plot;
@@ -319,6 +511,23 @@ json run_stress(const StressOptions& opt) {
       PlotSeries s{specs[r].label, kColors[r], {}, true, true, r == kNaiveRun, {}};
       for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[r][i]);
       plot.series.push_back(s);
+    }
+    if (cand) {
+      PlotSeries s{cand->name + " (candidate)", kCandidateColor, {}, true, true, false, {}};
+      for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[specs.size()][i]);
+      plot.series.push_back(s);
+      // failed calls have no error: marked above every measured value
+      double top = 1;
+      for (const auto& g : geo)
+        for (double y : g)
+          if (std::isfinite(y)) top = std::max(top, y);
+      PlotSeries failed{cand->name + " failed (candidate-failed)", kCandidateColor, {}, false, true, false, {}};
+      for (std::size_t i = 0; i < params.size(); ++i)
+        if (cand_failed[i] || !std::isfinite(geo[specs.size()][i])) {
+          failed.points.emplace_back(params[i], top * 10);
+          failed.labels.push_back(cand_failed[i] ? "failed" : "non-finite");
+        }
+      if (!failed.points.empty()) plot.series.push_back(failed);
     }
     PlotSeries flagged{"flagged inaccurate by eval", "#d62728", {}, false, true, false, {}};
     for (std::size_t r = 0; r < specs.size(); ++r)
@@ -333,6 +542,12 @@ json run_stress(const StressOptions& opt) {
     plot.series.push_back(pred_series);
     if (!breakdown[specs[kNaiveRun].label].is_null())
       plot.x_marks.emplace_back(breakdown[specs[kNaiveRun].label].get<double>(), "naive double > 1e-9");
+    if (!cand_at.is_null()) {
+      const double x = cand_at.get<double>();
+      auto same = std::find_if(plot.x_marks.begin(), plot.x_marks.end(), [&](const auto& m) { return m.first == x; });
+      if (same != plot.x_marks.end()) same->second += "; " + cand->name + " breaks";  // one label per line
+      else plot.x_marks.emplace_back(x, cand->name + " breaks");
+    }
     plot.height = 520;
     plot.width = 900;
     svgs.emplace_back(fam.name, render_svg(plot));
@@ -342,12 +557,37 @@ json run_stress(const StressOptions& opt) {
            {"geometric_error", "max over exact sample points (terminator points for P, reflected points of A for B, "
                                "sampled in Q(sqrt d)) of the first-order distance |x^T Q x| / |grad|, in the result's own "
                                "frame, divided by the object's size"},
-           {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"},
-           {"families", families}};
-  const std::filesystem::path dir(opt.out_dir);
+           {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"}};
+  if (cand) {
+    std::vector<double> sorted = call_seconds;
+    std::sort(sorted.begin(), sorted.end());
+    doc["candidate"] = {
+        {"name", cand->name},
+        {"source", "candidate"},
+        {"command", cand->description},
+        {"timeout_seconds", cand->timeout_seconds > 0 ? json(cand->timeout_seconds) : json(nullptr)},
+        {"accuracy", opt.accuracy},
+        {"rule", "the candidate is given each point's scene (the file of its reproducer) and must return a "
+                 "qverify-eval/1 document with the family's item; its results are measured like every run (matrix and "
+                 "geometric error against exact on the same points); a point is a reproducer when the call failed "
+                 "(status candidate-failed, with error) or the item's geometric error over all its results (P, polar "
+                 "plane and R, or B) exceeds accuracy; breakdown is the first such parameter value"},
+        {"calls", call_seconds.size()},
+        {"failed_calls", failed_calls},
+        {"beyond_accuracy", beyond_calls},
+        {"median_seconds_per_call", sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2])},
+        {"failures_dir", reproducers.empty() ? json(nullptr) : json("failures")},
+        {"reproducers", reproducers}};
+  }
+  doc["families"] = families;
   for (const auto& [name, svg] : svgs) write_file(dir / (name + ".svg"), svg);
   write_file(dir / "report.json", doc.dump(2) + "\n");
-  write_file(dir / "report.html", stress_html(doc, svgs));
+  std::string html = stress_html(doc, svgs);
+  if (cand) {
+    const std::size_t at = html.rfind("</body>");
+    html.insert(at == std::string::npos ? html.size() : at, candidate_html(doc));
+  }
+  write_file(dir / "report.html", html);
   return doc;
 }
 

@@ -5,7 +5,13 @@
 /// result as quadrics (scale removed by cross-multiplication). Writes
 /// report.json (qverify-audit/1), report.html (self-contained) and
 /// error-vs-time.svg.
+///
+/// With a candidate (another implementation, candidate_run.hpp), it is called
+/// once on the scene and its results are a row beside the ladder's: the same
+/// matrix error against exact, the wall time of the call per item, and the
+/// geometric error of every item as `verify --candidate` measures it.
 
+#include <qverify/verify/candidate_run.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <algorithm>
@@ -74,13 +80,21 @@ struct AuditOptions {
   int batches = 7;
   std::vector<Precision> ladder;  ///< empty: the default ladder
   std::function<void(const std::string&)> progress;  ///< called with a line of progress
+  /// Another implementation, called once on the scene (audit --candidate-cmd): a row with "source": "candidate".
+  std::optional<Candidate> candidate;
+  std::string scene_text;              ///< the scene as given to the candidate (empty: read from the scene's file)
+  double accuracy = kDefaultAccuracy;  ///< the candidate's accuracy target T
+  int samples = kDefaultSamples;       ///< exact points per item for its geometric error (verify's, seed 1)
 };
 
 /// The default ladder: float, double, long-double, float128, mpfr:128, mpfr:256, interval, exact.
 std::vector<Precision> default_ladder();
 
 /// Runs the audit, writes the three files into `out_dir` (created first; checked
-/// writes, files.hpp: throws FileWriteError naming the path), returns report.json's document.
+/// writes, files.hpp: throws FileWriteError naming the path), with a candidate
+/// that fails or misses the target also its reproducer (out_dir/failures/
+/// NAME-audit-0.*; earlier NAME-* files there are removed first); returns
+/// report.json's document.
 nlohmann::ordered_json run_audit(const Scene& sc, const AuditOptions& opt);
 
 }  // namespace qverify

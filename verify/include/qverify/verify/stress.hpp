@@ -6,10 +6,20 @@
 /// world frame and in the robust local frame), and compared with exact: as a
 /// matrix (projective error) and geometrically (distance of exact terminator or
 /// reflected points from the computed P or B, relative to the object's size).
+///
+/// With a candidate (another implementation, candidate_run.hpp) every point's
+/// scene is also given to it: its result is measured by the same code as
+/// qverify's own runs and added to the point as a run with "source":
+/// "candidate"; a failed call or a result beyond the accuracy target is
+/// written as a reproducer into out_dir/failures/.
+
+#include <qverify/verify/accuracy.hpp>
+#include <qverify/verify/candidate_run.hpp>
 
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,11 +41,18 @@ struct StressOptions {
   int samples = 8;                    ///< exact points per item for the geometric error
   bool worst_only = false;            ///< only the last (most extreme) parameter value of each family
   std::function<void(const std::string&)> progress;
+  /// Another implementation run on every point beside qverify's own runs (stress --candidate-cmd).
+  std::optional<Candidate> candidate;
+  /// The candidate's accuracy target T: a point where its item geometric error (P, polar plane and R, or B)
+  /// exceeds T, or its call failed, is a reproducer (out_dir/failures/NAME-FAMILY-K.json, K the point's index).
+  double accuracy = kDefaultAccuracy;
 };
 
 /// Runs the sweeps, writes report.json (qverify-stress/1), report.html and
 /// one SVG per family into `out_dir` (created first; checked writes, files.hpp:
-/// throws FileWriteError naming the path); returns the document.
+/// throws FileWriteError naming the path), with a candidate also its
+/// reproducers into out_dir/failures/ (earlier NAME-* files there are removed
+/// first); returns the document.
 nlohmann::ordered_json run_stress(const StressOptions& opt);
 
 }  // namespace qverify
