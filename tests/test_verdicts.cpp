@@ -300,6 +300,23 @@ TEST_CASE("eval --tolerance: every item has an error_bound, and its flag agrees 
   CHECK(flagged == 2);  // the far sphere's shadow and reflection; none on the example
 }
 
+TEST_CASE("qverify's own eval document, read back as a candidate, passes: far origins survive the JSON text",
+          "[verdicts][verify]") {
+  // A unit sphere reflected 1e12 away: eval writes the image in a local frame whose origin (a double of
+  // about 5.7e11) is written as its shortest text; taken exactly, that text is 1e-5 off the double.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far mirror", "quadrics": [{"id": "ball",
+      "sphere": {"center": ["1/2", "1/4", 0], "radius": 1}}], "lights": [{"id": "lamp", "position": [3, 4, 8]}],
+      "mirrors": [{"id": "m", "plane": [2, 3, 6, "-7000000000000"]}]})",
+                               "far-mirror.json");
+  const auto doc = eval_document(sc, *parse_precision("double"), Method::direct, std::nullopt, AccuracyOptions{});
+  REQUIRE(doc["reflections"][0].contains("origin"));
+  const ResultSet rs = candidate_results_text(sc, doc.dump(), "eval.json", *parse_precision("double"));
+  const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{});
+  INFO(v.document.dump(1));
+  CHECK(v.failed == 0);
+  CHECK(v.passed == 2);
+}
+
 namespace {
 
 ResultSet exact_results(const Scene& sc) {

@@ -45,6 +45,46 @@ Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
   return best;
 }
 
+/// Points on the generator lines of the cone through the terminator points:
+/// x + b L for a few rational b, chosen so that the point lies about
+/// tau * size from x (tau = 1/2, -1/2, 1/4). At most 8 terminator points are used.
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
+  std::vector<RootPoint> out;
+  const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
+  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i) {
+    const RootPoint& x = terminator[i];
+    const auto c = x.coords();
+    const Measure w = to_measure(c[3]);
+    Measure d2 = 0;  // |L_xyz - L_w p|, p the Cartesian point
+    for (int k = 0; k < 3; ++k) {
+      const Measure dk = to_measure(L(k)) - to_measure(L(3)) * to_measure(c[k]) / w;
+      d2 += dk * dk;
+    }
+    if (!(d2 > 0) || !(size > 0)) continue;
+    const double scale = Measure(w * size / sqrt(d2)).convert_to<double>();
+    if (!std::isfinite(scale) || scale == 0) continue;
+    for (const Q& tau : taus) {
+      const Q b = tau * to_rational(scale);
+      out.emplace_back(Vec4<Q>(x.p() + b * L), x.q(), x.delta());
+    }
+  }
+  return out;
+}
+
+/// Rational points of the polar plane inside the object: the rational parts p
+/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + 2q, where
+/// both lie on the plane.
+std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
+  std::vector<RootPoint> out;
+  for (const RootPoint& x : terminator) {
+    if (out.size() >= 16) break;
+    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
+    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + 2 * x.q())})
+      if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index) {
@@ -57,6 +97,8 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.points = s.points;
   out.exhausted = s.exhausted;
   out.size = object_size(out.points, A);
+  out.generators = generator_points(out.points, L, out.size);
+  out.plane = plane_points(out.points, Vec4<Q>(A * L));
   return out;
 }
 
@@ -143,7 +185,9 @@ ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& or
   e.P = measure_quadric(local, P);
   e.polar = measure_plane(local, polar);
   e.R = measure_quadric(local, R);
-  e.geometric = mmax(relative(e.P, pts.size), mmax(relative(e.polar, pts.size), relative(e.R, pts.size)));
+  e.generators = measure_quadric(in_frame(pts.generators, origin), P);
+  e.R_plane = measure_quadric(in_frame(pts.plane, origin), R);
+  for (const Metric* m : {&e.P, &e.polar, &e.R, &e.generators, &e.R_plane}) e.geometric = mmax(e.geometric, relative(*m, pts.size));
   return e;
 }
 

@@ -74,46 +74,6 @@ template <class F> bool same_sign_as(const Mat4<Q>& got, F ref) {
   return sign_of<Q>(form(got, at)) == sign_of<Q>(best);
 }
 
-/// Points on the generator lines of the cone through the terminator points:
-/// x + b L for a few rational b, chosen so that the point lies about
-/// tau * size from x (tau = 1/2, -1/2, 1/4). At most 8 terminator points are used.
-std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
-  std::vector<RootPoint> out;
-  const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
-  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i) {
-    const RootPoint& x = terminator[i];
-    const auto c = x.coords();
-    const Measure w = to_measure(c[3]);
-    Measure d2 = 0;  // |L_xyz - L_w p|, p the Cartesian point
-    for (int k = 0; k < 3; ++k) {
-      const Measure dk = to_measure(L(k)) - to_measure(L(3)) * to_measure(c[k]) / w;
-      d2 += dk * dk;
-    }
-    if (!(d2 > 0) || !(size > 0)) continue;
-    const double scale = Measure(w * size / sqrt(d2)).convert_to<double>();
-    if (!std::isfinite(scale) || scale == 0) continue;
-    for (const Q& tau : taus) {
-      const Q b = tau * to_rational(scale);
-      out.emplace_back(Vec4<Q>(x.p() + b * L), x.q(), x.delta());
-    }
-  }
-  return out;
-}
-
-/// Rational points of the polar plane inside the object: the rational parts p
-/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + 2q, where
-/// both lie on the plane.
-std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
-  std::vector<RootPoint> out;
-  for (const RootPoint& x : terminator) {
-    if (out.size() >= 16) break;
-    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
-    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + 2 * x.q())})
-      if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
-  }
-  return out;
-}
-
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
 /// for a point light, the plane at infinity for a parallel one), in the
 /// result's frame: R must vanish on it. Point light: rational points of h
@@ -305,11 +265,11 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T);
   if (got.polar_plane) onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T);
   if (got.P) {  // P is *the* cone with apex L: exact points of its generator lines
-    const auto gen = in_frame(generator_points(pts.points, Lw, pts.size), got.origin);
+    const auto gen = in_frame(pts.generators, got.origin);
     onGen = judged("on_generators", measure_quadric(gen, *got.P), gen, pts.size, exact, T);
   }
   if (got.R) {  // R contains the polar plane (the plane S carried back, read as a quadric): points of the plane off A
-    const auto pl = in_frame(plane_points(pts.points, Vec4<Q>(Aw * Lw)), got.origin);
+    const auto pl = in_frame(pts.plane, got.origin);
     onPlane = judged("R_on_polar_plane", measure_quadric(pl, *got.R), pl, pts.size, exact, T);
   }
   for (auto* c : {&onP, &onR, &onPolar, &onGen, &onPlane})

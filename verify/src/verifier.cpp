@@ -314,9 +314,20 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
       }
       std::optional<Vec3<Q>> origin;
       if (const JsonNode* o = it.find("origin")) {
+        // An origin written as a JSON number is the double that the number's text denotes (a
+        // program's origin is a double, and JSON writes the shortest text that reads back as it;
+        // that text, taken exactly, can be 1e-5 off for an origin of 1e11, many object sizes for a
+        // small object). A string ("p/q" or decimal) is taken exactly.
         Vec3<Q> v;
         if (!r.entries(*o, path + ".origin", 3, [&](int i, const Q& x) { v(i) = x; }, "expected 3 numbers"))
           r.fail(path + ".origin", "origin must be finite");
+        for (int i = 0; i < 3; ++i)
+          if (o->items[static_cast<std::size_t>(i)].kind == JsonNode::Kind::number) {
+            RoundingReport rep;
+            const double d = round_rational<double>(v(i), rep);
+            if (rep.overflow) r.fail(path + ".origin[" + std::to_string(i) + "]", "origin beyond the range of a double");
+            v(i) = to_rational(d);
+          }
         origin = v;
       }
       const JsonNode* st = it.find("status");

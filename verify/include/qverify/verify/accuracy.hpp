@@ -51,6 +51,11 @@ struct Metric {
 /// Exact points of one item and the size of its object.
 struct ItemPoints {
   std::vector<RootPoint> points;  ///< world frame
+  /// Shadow items (world frame): points of the generator lines of the cone from L through the
+  /// terminator (every quadric of the pencil alpha A + beta (AL)(AL)^T vanishes on the
+  /// terminator; only the cone P vanishes on these), and rational points of the polar plane
+  /// inside the object (R, the plane pair through it, vanishes there; A does not).
+  std::vector<RootPoint> generators, plane;
   Measure size = 0;               ///< largest distance of the object's points from A's centre
   bool exhausted = false;         ///< fewer real points than asked
 };
@@ -59,7 +64,7 @@ struct ItemPoints {
 /// and verify sample the same points for the same (seed, samples).
 std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index);
 
-/// Terminator points of the exact (A, L).
+/// Terminator points of the exact (A, L), with the points of its generator lines and its plane.
 ItemPoints terminator_points(const Mat4<Rational>& A, const Vec4<Rational>& L, int n, std::uint64_t seed);
 /// Points of A reflected by the exact mirror matrix M (size measured on A's points).
 ItemPoints reflected_points(const Mat4<Rational>& A, const Mat4<Rational>& M, int n, std::uint64_t seed);
@@ -82,7 +87,9 @@ Measure relative(const Metric& m, const Measure& size);
 /// Geometric errors of one shadow item's results (relative to the object size).
 struct ShadowError {
   Metric P, polar, R;
-  Measure geometric = 0;  ///< the largest of the three
+  Metric generators;      ///< P on the generator lines
+  Metric R_plane;         ///< R on the polar plane
+  Measure geometric = 0;  ///< the largest of the five
 };
 ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& P,
                          const Vec4<Rational>& polar, const Mat4<Rational>& R);
