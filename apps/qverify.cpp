@@ -218,16 +218,31 @@ void print_stress(const json& doc, const std::string& dir) {
 }
 
 void print_bench(const json& doc) {
-  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({})\n\n",
+  auto text = [](const json& j) { return j.is_string() ? j.get<std::string>() : std::string("?"); };
+  const json& cpu = doc["processor"];
+  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({})\n"
+             "processor: {} {} (family {}, model {})\n\n",
              doc["n"].get<long>(), doc["threads"].get<int>(), doc["memory_bandwidth_gbps"].get<double>(),
-             doc["simd"]["lanes"].get<int>(), doc["simd"]["instruction_set"].get<std::string>());
-  fmt::print("{:<11} {:<10} {:<7} {:>14} {:>10} {:>8} {:>9} {:>10}\n", "op", "precision", "method", "items/s", "ns/item",
-             "bytes", "roofline", "x double");
-  for (const auto& r : doc["rows"])
-    fmt::print("{:<11} {:<10} {:<7} {:>14.4g} {:>10.2f} {:>8} {:>9.2f} {:>10.1f}\n", r["op"].get<std::string>(),
-               r["precision"].get<std::string>(), r["method"].get<std::string>(), r["items_per_s"].get<double>(),
-               r["ns_per_item"].get<double>(), r["bytes_per_item"].get<int>(), r["roofline_fraction"].get<double>(),
-               r["cost_vs_double_direct"].get<double>());
+             doc["simd"]["lanes"].get<int>(), doc["simd"]["instruction_set"].get<std::string>(), text(cpu["vendor"]),
+             text(cpu["model_name"]), cpu["family"].dump(), cpu["model"].dump());
+  fmt::print("{:<17} {:<9} {:<8} {:<14} {:>12} {:>10} {:>6} {:>8} {:>9}\n", "op", "precision", "method", "inputs",
+             "items/s", "ns/item", "bytes", "roofline", "x double");
+  for (const auto& r : doc["rows"]) {
+    fmt::print("{:<17} {:<9} {:<8} {:<14} {:>12.4g} {:>10.2f} {:>6} {:>8.2f} {:>9.1f}", r["op"].get<std::string>(),
+               r["precision"].get<std::string>(), r["method"].get<std::string>(), r["inputs"].get<std::string>(),
+               r["items_per_s"].get<double>(), r["ns_per_item"].get<double>(), r["bytes_per_item"].get<long>(),
+               r["roofline_fraction"].get<double>(), r["cost_vs_double_direct"].get<double>());
+    if (r.contains("points"))  // verification rows: point checks
+      fmt::print("  {:.3g} checks/s per thread{}", r["points_per_s_per_thread"].get<double>(),
+                 r["precision"] == "exact" ? std::string(", proof mode")
+                                           : fmt::format(", {} of {} past the filter", r["exact_fallbacks"].get<long>(),
+                                                         r["points"].get<long>()));
+    fmt::print("\n");
+  }
+  fmt::print("\nverification rows: point checks ((point, result) pairs) of double-valued items; sampling the exact "
+             "points took {:.2f} s (shadow) and {:.2f} s (reflection), not timed in the rows\n",
+             doc["verification"]["sampling_s"]["shadow"].get<double>(),
+             doc["verification"]["sampling_s"]["reflection"].get<double>());
 }
 
 /// MemAvailable of /proc/meminfo in bytes, or 0 where there is none.
@@ -500,7 +515,8 @@ int main(int argc, char** argv) {
   CLI::Option* stress_candidate = add_candidate(stress);
 
   CLI::App* bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
-                                                "per item and roofline fraction per op, precision and method");
+                                                "per item and roofline fraction per op, precision, method and kind of "
+                                                "inputs; the filtered verifier's point checks per second; the processor");
   BenchOptions bench_opt;
   bench->add_option("--n", bench_opt.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
   bench->add_option("--threads", bench_opt.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));

@@ -1,0 +1,471 @@
+#include <qverify/verify/point_filter.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace qverify {
+
+namespace {
+
+using I = FilterInterval;
+
+I unprotected(const Interval& x) { return I(x.inf(), x.sup()); }
+
+/// pass when all of |f|^2 is at most all of the bound, fail when all of it is
+/// beyond; a NaN anywhere compares false both ways: undecided.
+FilterVerdict decide(const I& f2, const I& bound) {
+  if (f2.sup() <= bound.inf()) return FilterVerdict::pass;
+  if (f2.inf() > bound.sup()) return FilterVerdict::fail;
+  return FilterVerdict::undecided;
+}
+
+I norm2(const EnclosedPoint& x) {
+  return CGAL::square(x.x[0]) + CGAL::square(x.x[1]) + CGAL::square(x.x[2]) + CGAL::square(x.x[3]);
+}
+
+}  // namespace
+
+EnclosedPoint enclose_point(const RootPoint& x) {
+  I p[4], s[4];
+  bool root[4];
+  for (int i = 0; i < 4; ++i) {
+    p[i] = unprotected(enclose(x.p()(i)));
+    root[i] = x.q()(i) != 0 && x.delta() != 0;
+    if (root[i]) s[i] = unprotected(enclose(Rational(x.delta() * x.q()(i) * x.q()(i))));
+  }
+  FilterRounding guard;
+  EnclosedPoint e;
+  for (int i = 0; i < 4; ++i) {
+    if (!root[i]) {
+      e.x[i] = p[i];
+      continue;
+    }
+    const I r = CGAL::sqrt(s[i]);
+    e.x[i] = x.q()(i) > 0 ? p[i] + r : p[i] - r;
+  }
+  return e;
+}
+
+FilterTarget::FilterTarget(double accuracy_, const Measure& size_)
+    : accuracy(accuracy_), T(accuracy_), size(size_), residual_rule(!(size_ > 0)) {
+  if (residual_rule) {
+    bound = I(accuracy);
+    return;
+  }
+  // T * size to 80 digits, rounded to nearest, then one ulp each way: a strict
+  // enclosure (the product's own rounding is ~1e-80 relative).
+  const double c = static_cast<double>(Measure(T * size));
+  bound = I(std::nextafter(c, -std::numeric_limits<double>::infinity()),
+            std::nextafter(c, std::numeric_limits<double>::infinity()));
+}
+
+FilterVerdict filter_quadric(const EnclosedPoint& x, const Mat4<double>& Q, const FilterTarget& t) {
+  const auto& X = x.x;
+  I y[4];
+  for (int i = 0; i < 4; ++i) y[i] = X[0] * Q(i, 0) + X[1] * Q(i, 1) + X[2] * Q(i, 2) + X[3] * Q(i, 3);
+  const I f = X[0] * y[0] + X[1] * y[1] + X[2] * y[2] + X[3] * y[3];
+  const I f2 = CGAL::square(f);
+  if (!t.residual_rule) {
+    // |f| <= T size |w| 2 |g|, squared: f^2 <= 4 (T size)^2 w^2 |g|^2
+    const I g2 = CGAL::square(y[0]) + CGAL::square(y[1]) + CGAL::square(y[2]);
+    return decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * g2 * 4.0);
+  }
+  // |f| <= T |Q|_F |x|^2, squared
+  I q2(0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) q2 += CGAL::square(I(Q(i, j)));
+  return decide(f2, CGAL::square(t.bound) * q2 * CGAL::square(norm2(x)));
+}
+
+FilterVerdict filter_plane(const EnclosedPoint& x, const Vec4<double>& pi, const FilterTarget& t) {
+  const auto& X = x.x;
+  const I f = X[0] * pi(0) + X[1] * pi(1) + X[2] * pi(2) + X[3] * pi(3);
+  const I f2 = CGAL::square(f);
+  const I n2 = CGAL::square(I(pi(0))) + CGAL::square(I(pi(1))) + CGAL::square(I(pi(2)));
+  if (!t.residual_rule)  // |f| <= T size |w| |pi_xyz|, squared
+    return decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * n2);
+  // |f| <= T |pi| |x|, squared
+  return decide(f2, CGAL::square(t.bound) * (n2 + CGAL::square(I(pi(3)))) * norm2(x));
+}
+
+FilterVerdict filter_quadric_guarded(const EnclosedPoint& x, const Mat4<double>& Q, const FilterTarget& t) {
+  FilterRounding guard;
+  return filter_quadric(x, Q, t);
+}
+
+FilterVerdict filter_plane_guarded(const EnclosedPoint& x, const Vec4<double>& pi, const FilterTarget& t) {
+  FilterRounding guard;
+  return filter_plane(x, pi, t);
+}
+
+bool exact_quadric_passes(const RootPoint& x, const Mat4<Rational>& Q, const FilterTarget& t) {
+  return !(relative(measure_quadric({x}, Q), t.size) > t.T);
+}
+
+bool exact_plane_passes(const RootPoint& x, const Vec4<Rational>& pi, const FilterTarget& t) {
+  return !(relative(measure_plane({x}, pi), t.size) > t.T);
+}
+
+// --------------------------------------------------- exact integers (stage 2, proof mode)
+
+namespace {
+
+/// The integer vector v * D with D the lcm of v's denominators (D > 0).
+void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, BigInt& D) {
+  D = 1;
+  for (int i = 0; i < 4; ++i) mpz_lcm(D.backend().data(), D.backend().data(), mpq_denref(v(i).backend().data()));
+  for (int i = 0; i < 4; ++i) {
+    mpz_divexact(out[i].backend().data(), D.backend().data(), mpq_denref(v(i).backend().data()));
+    mpz_mul(out[i].backend().data(), out[i].backend().data(), mpq_numref(v(i).backend().data()));
+  }
+}
+
+/// out = sum_j row[j] * x[j] (zero entries skipped).
+void dot4(mpz_t out, const BigInt* row, const std::array<BigInt, 4>& x) {
+  mpz_set_ui(out, 0);
+  for (int j = 0; j < 4; ++j)
+    if (mpz_sgn(row[j].backend().data()) != 0) mpz_addmul(out, row[j].backend().data(), x[j].backend().data());
+}
+
+mpz_ptr z(BigInt& x) { return x.backend().data(); }
+mpz_srcptr z(const BigInt& x) { return x.backend().data(); }
+
+/// Scratch numbers of one thread (no allocation per check once they have grown).
+constexpr mpfr_prec_t kStageBits = 64;
+struct Scratch {
+  BigInt y[4], zz[4], a, b, c, t, f0, f1, g0, g1, abs_a, abs_b, conj;
+  mpfr_t lo[8], hi[8], sdlo, sdhi, tmp, tmp2;
+  Scratch() {
+    for (int k = 0; k < 8; ++k) mpfr_init2(lo[k], kStageBits), mpfr_init2(hi[k], kStageBits);
+    for (mpfr_ptr x : {&sdlo[0], &sdhi[0], &tmp[0], &tmp2[0]}) mpfr_init2(x, kStageBits);
+  }
+  ~Scratch() {
+    for (int k = 0; k < 8; ++k) mpfr_clear(lo[k]), mpfr_clear(hi[k]);
+    for (mpfr_ptr x : {&sdlo[0], &sdhi[0], &tmp[0], &tmp2[0]}) mpfr_clear(x);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+};
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+/// [lo, hi] encloses |a + b sqrt(d)| (d >= 0; [sdlo, sdhi] encloses sqrt(d)),
+/// rounded outwards and without cancellation: where a and b sqrt(d) have
+/// opposite signs, |a^2 - b^2 d| / (|a| + |b| sqrt(d)) (an exact integer over a sum).
+void enclose_abs(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, bool root, Scratch& s) {
+  mpz_abs(z(s.abs_a), z(a));
+  mpz_abs(z(s.abs_b), z(b));
+  const int sa = mpz_sgn(z(a)), sb = root ? mpz_sgn(z(b)) : 0;
+  if (sb == 0) {
+    mpfr_set_z(lo, z(s.abs_a), MPFR_RNDD);
+    mpfr_set_z(hi, z(s.abs_a), MPFR_RNDU);
+    return;
+  }
+  // |a| + |b| sqrt(d), down and up
+  auto sum = [&](mpfr_ptr out, mpfr_srcptr sd, mpfr_rnd_t r) {
+    mpfr_set_z(out, z(s.abs_b), r);
+    mpfr_mul(out, out, sd, r);
+    mpfr_set_z(s.tmp, z(s.abs_a), r);
+    mpfr_add(out, out, s.tmp, r);
+  };
+  if (sa == 0 || sa == sb) {
+    sum(lo, s.sdlo, MPFR_RNDD);
+    sum(hi, s.sdhi, MPFR_RNDU);
+    return;
+  }
+  // d itself is the radicand squared away: conj = |a^2 - b^2 d|
+  sum(s.tmp2, s.sdhi, MPFR_RNDU);  // denominator, up (for the lower bound)
+  mpfr_set_z(lo, z(s.conj), MPFR_RNDD);
+  mpfr_div(lo, lo, s.tmp2, MPFR_RNDD);
+  sum(s.tmp2, s.sdlo, MPFR_RNDD);  // denominator, down (for the upper bound)
+  mpfr_set_z(hi, z(s.conj), MPFR_RNDU);
+  mpfr_div(hi, hi, s.tmp2, MPFR_RNDU);
+}
+
+/// conj = |a^2 - b^2 d| (for enclose_abs's opposite-sign case).
+void conjugate_norm(const BigInt& a, const BigInt& b, const BigInt& d, Scratch& s) {
+  mpz_mul(z(s.conj), z(a), z(a));
+  mpz_mul(z(s.t), z(b), z(b));
+  mpz_submul(z(s.conj), z(s.t), z(d));
+  mpz_abs(z(s.conj), z(s.conj));
+}
+
+void enclose_root(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, const BigInt& d, bool root, Scratch& s) {
+  if (root && mpz_sgn(z(a)) * mpz_sgn(z(b)) < 0) conjugate_norm(a, b, d, s);
+  enclose_abs(lo, hi, a, b, root, s);
+}
+
+/// pass / fail / undecided from [lhs] against [rhs] (both non-negative).
+FilterVerdict decide_mp(mpfr_srcptr lhs_lo, mpfr_srcptr lhs_hi, mpfr_srcptr rhs_lo, mpfr_srcptr rhs_hi) {
+  if (mpfr_lessequal_p(lhs_hi, rhs_lo)) return FilterVerdict::pass;
+  if (mpfr_greater_p(lhs_lo, rhs_hi)) return FilterVerdict::fail;
+  return FilterVerdict::undecided;
+}
+
+/// rhs = k c^2 |w|^2 N, down and up: c from the target's enclosure, |w| in [lo[1], hi[1]],
+/// N in [lo[2], hi[2]]; into lo[3], hi[3].
+void bound_mp(Scratch& s, const FilterTarget& t, double k) {
+  mpfr_set_d(s.lo[3], t.bound.inf(), MPFR_RNDD);
+  mpfr_sqr(s.lo[3], s.lo[3], MPFR_RNDD);
+  mpfr_mul_d(s.lo[3], s.lo[3], k, MPFR_RNDD);
+  mpfr_sqr(s.tmp, s.lo[1], MPFR_RNDD);
+  mpfr_mul(s.lo[3], s.lo[3], s.tmp, MPFR_RNDD);
+  mpfr_mul(s.lo[3], s.lo[3], s.lo[2], MPFR_RNDD);
+  mpfr_set_d(s.hi[3], t.bound.sup(), MPFR_RNDU);
+  mpfr_sqr(s.hi[3], s.hi[3], MPFR_RNDU);
+  mpfr_mul_d(s.hi[3], s.hi[3], k, MPFR_RNDU);
+  mpfr_sqr(s.tmp, s.hi[1], MPFR_RNDU);
+  mpfr_mul(s.hi[3], s.hi[3], s.tmp, MPFR_RNDU);
+  mpfr_mul(s.hi[3], s.hi[3], s.hi[2], MPFR_RNDU);
+}
+
+}  // namespace
+
+IntegerQuadric::IntegerQuadric(const Mat4<Rational>& Q) {
+  BigInt D = 1;
+  for (int k = 0; k < 16; ++k) mpz_lcm(z(D), z(D), mpq_denref(Q(k / 4, k % 4).backend().data()));
+  for (int k = 0; k < 16; ++k) {
+    const auto* e = Q(k / 4, k % 4).backend().data();
+    BigInt& out = q[static_cast<std::size_t>(k)];
+    mpz_divexact(z(out), z(D), mpq_denref(e));
+    mpz_mul(z(out), z(out), mpq_numref(e));
+  }
+}
+
+IntegerQuadric::IntegerQuadric(const Mat4<double>& Q)
+    : IntegerQuadric(Mat4<Rational>(Q.unaryExpr([](double v) { return Rational(v); }))) {}
+
+IntegerPlane::IntegerPlane(const Vec4<Rational>& p) {
+  BigInt D;
+  clear_denominators(p, pi, D);
+}
+
+IntegerPlane::IntegerPlane(const Vec4<double>& p)
+    : IntegerPlane(Vec4<Rational>(p.unaryExpr([](double v) { return Rational(v); }))) {}
+
+ClearedPoints::ClearedPoints(const std::vector<RootPoint>& points) {
+  pts_.reserve(points.size());
+  for (const RootPoint& x : points) {
+    Point pt;
+    clear_denominators(x.p(), pt.P, pt.Dp);
+    clear_denominators(x.q(), pt.V, pt.Dv);
+    pt.d = numerator(x.delta());  // RootPoint keeps an integer radicand
+    pt.rational = pt.d == 0 || x.q().isZero();
+    pt.ka = pt.Dv * pt.Dv;
+    pt.kb = pt.d * pt.Dp * pt.Dp;
+    pt.m = 2 * pt.Dp * pt.Dv;
+    pt.w0 = pt.P[3] * pt.Dv;
+    pt.w1 = pt.V[3] * pt.Dp;
+    if (!pt.rational) {
+      pt.square = mpz_perfect_square_p(z(pt.d)) != 0;
+      if (pt.square) {
+        const BigInt r = sqrt(pt.d);
+        pt.kc = r * pt.m;
+        pt.la = pt.Dv;
+        pt.lb = r * pt.Dp;
+      }
+    }
+    pts_.push_back(std::move(pt));
+  }
+}
+
+bool ClearedPoints::on_quadric(std::size_t k, const IntegerQuadric& Q) const {
+  const Point& x = pts_[k];
+  Scratch& s = scratch();
+  auto form = [&](const std::array<BigInt, 4>& u, const std::array<BigInt, 4>& v, BigInt& out) {
+    // out = u^T Q v
+    for (int i = 0; i < 4; ++i) dot4(z(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], v);
+    mpz_set_ui(z(out), 0);
+    for (int i = 0; i < 4; ++i) mpz_addmul(z(out), z(u[static_cast<std::size_t>(i)]), z(s.y[i]));
+  };
+  if (x.rational) {
+    form(x.P, x.P, s.a);
+    return s.a == 0;
+  }
+  // c = P^T Q V first: a failing candidate usually shows there
+  form(x.P, x.V, s.c);
+  if (!x.square && s.c != 0) return false;
+  form(x.V, x.V, s.b);
+  form(x.P, x.P, s.a);
+  mpz_mul(z(s.t), z(s.a), z(x.ka));
+  mpz_addmul(z(s.t), z(s.b), z(x.kb));
+  if (x.square) mpz_addmul(z(s.t), z(s.c), z(x.kc));
+  return s.t == 0;
+}
+
+bool ClearedPoints::on_plane(std::size_t k, const IntegerPlane& p) const {
+  const Point& x = pts_[k];
+  Scratch& s = scratch();
+  dot4(z(s.a), p.pi.data(), x.P);
+  if (x.rational) return s.a == 0;
+  dot4(z(s.b), p.pi.data(), x.V);
+  if (!x.square) return s.a == 0 && s.b == 0;
+  mpz_mul(z(s.t), z(s.a), z(x.la));
+  mpz_addmul(z(s.t), z(s.b), z(x.lb));
+  return s.t == 0;
+}
+
+FilterCounts ClearedPoints::check_quadric(const IntegerQuadric& Q) const {
+  FilterCounts n;
+  for (std::size_t k = 0; k < pts_.size(); ++k) {
+    ++n.checked;
+    if (!on_quadric(k, Q)) ++n.failed;
+  }
+  return n;
+}
+
+FilterCounts ClearedPoints::check_plane(const IntegerPlane& pi) const {
+  FilterCounts n;
+  for (std::size_t k = 0; k < pts_.size(); ++k) {
+    ++n.checked;
+    if (!on_plane(k, pi)) ++n.failed;
+  }
+  return n;
+}
+
+FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric& Q, const FilterTarget& t) const {
+  if (t.residual_rule) return FilterVerdict::undecided;
+  const Point& x = pts_[k];
+  Scratch& s = scratch();
+  const bool root = !x.rational;
+  // y = Q P, zz = Q V; a = P.y, b = V.zz, c = P.zz
+  for (int i = 0; i < 4; ++i) dot4(z(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.P);
+  mpz_set_ui(z(s.a), 0);
+  for (int i = 0; i < 4; ++i) mpz_addmul(z(s.a), z(x.P[static_cast<std::size_t>(i)]), z(s.y[i]));
+  mpz_mul(z(s.f0), z(s.a), z(x.ka));
+  mpz_set_ui(z(s.f1), 0);
+  if (root) {
+    for (int i = 0; i < 4; ++i) dot4(z(s.zz[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.V);
+    mpz_set_ui(z(s.b), 0);
+    mpz_set_ui(z(s.c), 0);
+    for (int i = 0; i < 4; ++i) {
+      mpz_addmul(z(s.b), z(x.V[static_cast<std::size_t>(i)]), z(s.zz[i]));
+      mpz_addmul(z(s.c), z(x.P[static_cast<std::size_t>(i)]), z(s.zz[i]));
+    }
+    mpz_addmul(z(s.f0), z(s.b), z(x.kb));
+    mpz_mul(z(s.f1), z(s.c), z(x.m));
+    mpfr_set_z(s.sdlo, z(x.d), MPFR_RNDD);
+    mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
+    mpfr_set_z(s.sdhi, z(x.d), MPFR_RNDU);
+    mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
+  }
+  // |f| in [lo0, hi0] (times (Dp Dv)^2), |w| in [lo1, hi1], |g|^2 in [lo2, hi2] (times (Dp Dv)^2)
+  enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
+  enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
+  mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);
+  mpfr_set_ui(s.hi[2], 0, MPFR_RNDU);
+  for (int i = 0; i < 3; ++i) {
+    mpz_mul(z(s.g0), z(s.y[i]), z(x.Dv));
+    if (root) mpz_mul(z(s.g1), z(s.zz[i]), z(x.Dp));
+    else mpz_set_ui(z(s.g1), 0);
+    enclose_root(s.lo[4], s.hi[4], s.g0, s.g1, x.d, root, s);
+    mpfr_sqr(s.lo[4], s.lo[4], MPFR_RNDD);
+    mpfr_add(s.lo[2], s.lo[2], s.lo[4], MPFR_RNDD);
+    mpfr_sqr(s.hi[4], s.hi[4], MPFR_RNDU);
+    mpfr_add(s.hi[2], s.hi[2], s.hi[4], MPFR_RNDU);
+  }
+  // f^2 <= 4 (T size)^2 w^2 |g|^2
+  mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);
+  mpfr_sqr(s.hi[0], s.hi[0], MPFR_RNDU);
+  bound_mp(s, t, 4.0);
+  return decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]);
+}
+
+FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, const FilterTarget& t) const {
+  if (t.residual_rule) return FilterVerdict::undecided;
+  const Point& x = pts_[k];
+  Scratch& s = scratch();
+  const bool root = !x.rational;
+  // f = pi.x times Dp Dv: (pi.P) Dv + sqrt(d) (pi.V) Dp
+  dot4(z(s.a), p.pi.data(), x.P);
+  mpz_mul(z(s.f0), z(s.a), z(x.Dv));
+  mpz_set_ui(z(s.f1), 0);
+  if (root) {
+    dot4(z(s.b), p.pi.data(), x.V);
+    mpz_mul(z(s.f1), z(s.b), z(x.Dp));
+    mpfr_set_z(s.sdlo, z(x.d), MPFR_RNDD);
+    mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
+    mpfr_set_z(s.sdhi, z(x.d), MPFR_RNDU);
+    mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
+  }
+  enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
+  enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
+  // |pi_xyz|^2, exactly as an integer, then rounded outwards
+  mpz_set_ui(z(s.t), 0);
+  for (int i = 0; i < 3; ++i) mpz_addmul(z(s.t), z(p.pi[static_cast<std::size_t>(i)]), z(p.pi[static_cast<std::size_t>(i)]));
+  mpfr_set_z(s.lo[2], z(s.t), MPFR_RNDD);
+  mpfr_set_z(s.hi[2], z(s.t), MPFR_RNDU);
+  // f^2 <= (T size)^2 w^2 |pi_xyz|^2
+  mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);
+  mpfr_sqr(s.hi[0], s.hi[0], MPFR_RNDU);
+  bound_mp(s, t, 1.0);
+  return decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]);
+}
+
+std::size_t ClearedPoints::limb_bytes() const {
+  std::size_t b = 0;
+  auto add = [&](const BigInt& x) { b += mpz_size(z(x)) * sizeof(mp_limb_t); };
+  for (const Point& x : pts_) {
+    for (const BigInt& v : x.P) add(v);
+    for (const BigInt& v : x.V) add(v);
+    add(x.ka), add(x.kb), add(x.kc);
+  }
+  return b;
+}
+
+// ----------------------------------------------------------------- the three stages
+
+FilterPoints::FilterPoints(std::vector<RootPoint> points, const Measure& size, double accuracy)
+    : exact(std::move(points)), cleared(exact), target(accuracy, size) {
+  enclosed.reserve(exact.size());
+  for (const RootPoint& x : exact) enclosed.push_back(enclose_point(x));
+}
+
+namespace {
+
+template <class Candidate, class Integer, class Filter, class Stage2, class Exact>
+FilterCounts check_filtered(const FilterPoints& pts, const Candidate& c, std::vector<char>* passed, Filter filter,
+                            Stage2 stage2, Exact exact) {
+  FilterCounts n;
+  if (passed) passed->assign(pts.exact.size(), 1);
+  std::optional<Integer> integer;
+  std::optional<Eigen::Matrix<Rational, Candidate::RowsAtCompileTime, Candidate::ColsAtCompileTime>> rational;
+  FilterRounding guard;
+  for (std::size_t k = 0; k < pts.enclosed.size(); ++k) {
+    FilterVerdict v = filter(pts.enclosed[k], c, pts.target);
+    if (v == FilterVerdict::undecided) {
+      // exact arithmetic at this point, in round-to-nearest (GMP, MPFR)
+      FilterRounding nearest(CGAL_FE_TONEAREST);
+      ++n.fallbacks;
+      if (!integer) integer.emplace(c);
+      v = (pts.cleared.*stage2)(k, *integer, pts.target);
+      if (v == FilterVerdict::undecided) {
+        ++n.measured;
+        if (!rational) rational = c.unaryExpr([](double x) { return Rational(x); });
+        v = exact(pts.exact[k], *rational, pts.target) ? FilterVerdict::pass : FilterVerdict::fail;
+      }
+    }
+    ++n.checked;
+    if (v == FilterVerdict::fail) {
+      ++n.failed;
+      if (passed) (*passed)[k] = 0;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+FilterCounts check_quadric_filtered(const FilterPoints& pts, const Mat4<double>& Q, std::vector<char>* passed) {
+  return check_filtered<Mat4<double>, IntegerQuadric>(pts, Q, passed, filter_quadric, &ClearedPoints::decide_quadric,
+                                                      exact_quadric_passes);
+}
+
+FilterCounts check_plane_filtered(const FilterPoints& pts, const Vec4<double>& pi, std::vector<char>* passed) {
+  return check_filtered<Vec4<double>, IntegerPlane>(pts, pi, passed, filter_plane, &ClearedPoints::decide_plane,
+                                                    exact_plane_passes);
+}
+
+}  // namespace qverify
