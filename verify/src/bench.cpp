@@ -297,6 +297,7 @@ struct WideReflectionOut {
   int scale = 0;
 };
 constexpr std::size_t kRing = 1024;
+constexpr Eigen::Index kCandidateItems = 4000;  ///< items for the exact arithmetic candidates
 
 void wide_shadow(const Mat4<W>& A, const Vec4<W>& L, WideShadowOut& o) {
   const Vec4<W> p = polar_plane<W>(A, L);
@@ -735,40 +736,50 @@ json run_bench(const BenchOptions& opt) {
       for (int k : {2, 1}) rows[rows.size() - k]["items_beyond_bit_bound"] = beyond.load() / (2 * rounds);
 
     if (kind == Kind::double_valued) {
-      // ---- the candidates for exact arithmetic on doubles, on the same items, one thread
-      const Eigen::Index m = std::min<Eigen::Index>(nx, 2000);
+      // ---- the candidates for exact arithmetic on doubles, on the same items, one thread, all
+      // of them in every round (a shared machine: each round samples the same moments for all)
+      const Eigen::Index m = std::min<Eigen::Index>(nx, kCandidateItems);
       say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
-      auto time_generic = [&](auto tag, const char* name, const char* note) {
+      auto inputs_as = [&](auto tag) {
         using S = decltype(tag);
-        std::vector<Mat4<S>> As(static_cast<std::size_t>(m));
-        std::vector<Vec4<S>> Ls(static_cast<std::size_t>(m));
+        std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>> in;
+        in.first.resize(static_cast<std::size_t>(m)), in.second.resize(static_cast<std::size_t>(m));
         for (Eigen::Index i = 0; i < m; ++i)
           for (int k = 0; k < 14; ++k) {
-            const double v = k < 10 ? da[static_cast<std::size_t>(i) * 10 + k] : dl[static_cast<std::size_t>(i) * 4 + k - 10];
-            if (k < 10) As[i](kSymRow[k], kSymCol[k]) = As[i](kSymCol[k], kSymRow[k]) = S(v);
-            else Ls[i](k - 10) = S(v);
+            const auto u = static_cast<std::size_t>(i);
+            const double v = k < 10 ? da[u * 10 + k] : dl[u * 4 + k - 10];
+            if (k < 10) in.first[u](kSymRow[k], kSymCol[k]) = in.first[u](kSymCol[k], kSymRow[k]) = S(v);
+            else in.second[u](k - 10) = S(v);
           }
-        Mat4<S> X, Y;
-        const auto tt = interleaved_times(
-            rounds,
-            {[&] {
-               for (Eigen::Index i = 0; i < m; ++i) generic_shadow<S>(As[i], Ls[i], X, Y);
-             },
-             [&] {
-               for (Eigen::Index i = 0; i < m; ++i) generic_reflection<S>(As[i], Ls[i], X, Y);
-             }},
-            [](int) {});
-        return json{{"arithmetic", name}, {"note", note},
-                    {"shadow_ns_per_item", 1e9 * best_of(tt[0]) / static_cast<double>(m)},
-                    {"reflection_ns_per_item", 1e9 * best_of(tt[1]) / static_cast<double>(m)}};
+        return in;
       };
-      const auto tw = interleaved_times(rounds, {[&] { shadow_kernel(0, m); }, [&] { reflection_kernel(0, m); }}, [](int) {});
-      candidates.push_back({{"arithmetic", "WideInt<10>"},
-                            {"note", "integers in place after aligning exponents (chosen: the fastest)"},
-                            {"shadow_ns_per_item", 1e9 * best_of(tw[0]) / static_cast<double>(m)},
-                            {"reflection_ns_per_item", 1e9 * best_of(tw[1]) / static_cast<double>(m)}});
-      candidates.push_back(time_generic(CGAL::Mpzf(), "CGAL::Mpzf", "mantissa and exponent per number, no gcd"));
-      candidates.push_back(time_generic(Rational(), "GMP rationals", "boost mpq_rational, a gcd per operation"));
+      const auto mpzf = inputs_as(CGAL::Mpzf());
+      const auto mpq = inputs_as(Rational());
+      auto generic_jobs = [m](const auto& inputs) {
+        using S = typename std::decay_t<decltype(inputs.first)>::value_type::Scalar;
+        const auto* in = &inputs;  // outlives the jobs
+        return std::vector<std::function<void()>>{
+            [in, m] {
+              Mat4<S> X, Y;
+              for (Eigen::Index i = 0; i < m; ++i) generic_shadow<S>(in->first[i], in->second[i], X, Y);
+            },
+            [in, m] {
+              Mat4<S> X, Y;
+              for (Eigen::Index i = 0; i < m; ++i) generic_reflection<S>(in->first[i], in->second[i], X, Y);
+            }};
+      };
+      std::vector<std::function<void()>> jobs{[&] { shadow_kernel(0, m); }, [&] { reflection_kernel(0, m); }};
+      for (auto& j : generic_jobs(mpzf)) jobs.push_back(j);
+      for (auto& j : generic_jobs(mpq)) jobs.push_back(j);
+      const auto tc = interleaved_times(rounds, jobs, [](int) {});
+      const char* names[] = {"WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
+      const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
+                             "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
+      for (int c = 0; c < 3; ++c)
+        candidates.push_back({{"arithmetic", names[c]},
+                              {"note", notes[c]},
+                              {"shadow_ns_per_item", 1e9 * best_of(tc[2 * c]) / static_cast<double>(m)},
+                              {"reflection_ns_per_item", 1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)}});
     }
   }
   // ---- verification: the filtered point check and the exact proof, on double-valued items
@@ -995,11 +1006,11 @@ json run_bench(const BenchOptions& opt) {
                     {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
           {"exact_arithmetic",
            {{"inputs", kind_name(Kind::double_valued)},
-            {"items", std::min<Eigen::Index>(nx, 2000)},
+            {"items", std::min<Eigen::Index>(nx, kCandidateItems)},
             {"threads", 1},
             {"note", "the candidates for exact results from doubles, timed on the same items by the same generic "
-                     "formulas (the direct shadow; the division-free mirror matrix and rank-one image), best of " + R +
-                     " runs, one thread"},
+                     "formulas (the direct shadow; the division-free mirror matrix and rank-one image), all of them in each of " + R +
+                     " rounds, best of the rounds, one thread"},
             {"candidates", candidates}}},
           {"verification", verification},
           {"rows", rows}};
