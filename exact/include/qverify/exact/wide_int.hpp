@@ -29,6 +29,10 @@
 
 #include <gmp.h>
 
+#if defined(__x86_64__)
+#include <immintrin.h>  // _addcarry_u64, _subborrow_u64 (GCC and clang)
+#endif
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -47,6 +51,33 @@ namespace wide_detail {
 
 using Limb = std::uint64_t;
 using Limb2 = unsigned __int128;
+
+/// x + y + carry into *out; the carry out (add / adc on x86, 128-bit arithmetic elsewhere).
+inline unsigned char add_carry(unsigned char carry, Limb x, Limb y, Limb* out) {
+#if defined(__x86_64__)
+  unsigned long long s;
+  carry = _addcarry_u64(carry, x, y, &s);
+  *out = s;
+  return carry;
+#else
+  const Limb2 t = static_cast<Limb2>(x) + y + carry;
+  *out = static_cast<Limb>(t);
+  return static_cast<unsigned char>(t >> 64);
+#endif
+}
+/// x - y - borrow into *out; the borrow out (sub / sbb on x86).
+inline unsigned char sub_borrow(unsigned char borrow, Limb x, Limb y, Limb* out) {
+#if defined(__x86_64__)
+  unsigned long long s;
+  borrow = _subborrow_u64(borrow, x, y, &s);
+  *out = s;
+  return borrow;
+#else
+  const Limb2 t = static_cast<Limb2>(x) - y - borrow;
+  *out = static_cast<Limb>(t);
+  return static_cast<unsigned char>((t >> 64) & 1);
+#endif
+}
 
 /// r[0 .. AN+BN) = a[0 .. AN) * b[0 .. BN), unrolled.
 template <int AN, int BN> inline void mul_fixed(Limb* __restrict r, const Limb* __restrict a, const Limb* __restrict b) {
@@ -256,16 +287,8 @@ template <int N> class WideInt {
       if (xn < yn) std::swap(x, y), std::swap(xn, yn);
       unsigned char c = 0;
       int k = 0;
-      for (; k < yn; ++k) {
-        unsigned long long s;
-        c = __builtin_ia32_addcarryx_u64(c, x[k], y[k], &s);
-        r.d_[k] = s;
-      }
-      for (; k < xn; ++k) {
-        unsigned long long s;
-        c = __builtin_ia32_addcarryx_u64(c, x[k], 0, &s);
-        r.d_[k] = s;
-      }
+      for (; k < yn; ++k) c = wide_detail::add_carry(c, x[k], y[k], &r.d_[k]);
+      for (; k < xn; ++k) c = wide_detail::add_carry(c, x[k], 0, &r.d_[k]);
       int n = xn;
       if (c) {
         if (n >= N) throw WideIntOverflow();
@@ -284,16 +307,8 @@ template <int N> class WideInt {
         }
         unsigned char c = 0;
         int k = 0;
-        for (; k < yn; ++k) {
-          unsigned long long s;
-          c = __builtin_ia32_sbb_u64(c, x[k], y[k], &s);
-          r.d_[k] = s;
-        }
-        for (; k < xn; ++k) {
-          unsigned long long s;
-          c = __builtin_ia32_sbb_u64(c, x[k], 0, &s);
-          r.d_[k] = s;
-        }
+        for (; k < yn; ++k) c = wide_detail::sub_borrow(c, x[k], y[k], &r.d_[k]);
+        for (; k < xn; ++k) c = wide_detail::sub_borrow(c, x[k], 0, &r.d_[k]);
         int n = xn;
         while (n > 0 && r.d_[n - 1] == 0) --n;
         r.size_ = negative ? -n : n;
