@@ -122,7 +122,7 @@ TEST_CASE("candidate commands: paths substituted as shell words, names and comma
   CHECK_FALSE(candidate_command_problem("prog > {out}").empty());
 }
 
-TEST_CASE("stress --candidate-cmd: crash, garbage, missing items, hang and signal are recorded; the sweep completes",
+TEST_CASE("stress --candidate-cmd: crash, garbage, missing items, hang and signal are recorded and the sweep completes",
           "[cli][candidate]") {
   const auto dir = fresh_dir("flaky");
   // A different failure at each of the first five points of far-from-origin, qverify's own eval at the others.
@@ -223,7 +223,7 @@ TEST_CASE("audit --candidate-cmd: a failing candidate is a row with its reason a
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("--candidate-cmd usage errors exit 2 before any work", "[cli][candidate]") {
+TEST_CASE("usage errors of --candidate-cmd exit 2 before any work", "[cli][candidate]") {
   const auto dir = fresh_dir("usage");
   const std::string base = "stress --family far-from-origin --out " + dir.string();
   for (const std::string bad : {" --candidate-cmd 'p {scene} {out}' --candidate-timeout 0",

@@ -8,8 +8,9 @@
 ///   y = x - 2 (n.x + d) n / (n.n),
 /// rational in n and d: no square root, exact for exact types.
 
+#include <qverify/core/method.hpp>
+#include <qverify/core/predicates.hpp>
 #include <qverify/core/quadric.hpp>
-#include <qverify/core/shadow.hpp>
 
 namespace qverify {
 

@@ -19,12 +19,10 @@
 /// Both give P up to a positive factor (1/l_z^2), pi up to a positive factor
 /// (after orienting S) and R up to a non-zero factor.
 
+#include <qverify/core/method.hpp>
 #include <qverify/core/predicates.hpp>
 
 namespace qverify {
-
-/// How a result was computed.
-enum class Method { direct, paper };
 
 // ---------------------------------------------------------------- direct route
 

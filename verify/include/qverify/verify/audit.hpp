@@ -11,6 +11,7 @@
 /// matrix error against exact, the wall time of the call per item, and the
 /// geometric error of every item as `verify --candidate` measures it.
 
+#include <qverify/core/batch.hpp>
 #include <qverify/verify/candidate_run.hpp>
 #include <qverify/verify/verifier.hpp>
 
