@@ -202,7 +202,8 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol, const Ac
                               "to double; relative_error_bound is the certified bound"}};
   doc["accuracy"] = accuracy.target;
   doc["error_bound_rule"] = "the geometric error of the item as written (largest first-order distance of " +
-                            std::to_string(accuracy.samples) + " exact points from it, divided by the object size), times " +
+                            std::to_string(accuracy.samples) + " exact points from it, P also on its generator lines "
+                            "and R on the polar plane, divided by the object size), times " +
                             std::to_string(kBoundMargin) + "; inaccurate when it exceeds the accuracy target";
   const TypedScene<Q> exs = typed_scene<Q>(sc);
   json shadows = json::array();

@@ -536,8 +536,9 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
       "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
-      "points of verify --seed " + std::to_string(accuracy.seed) + "), times " + std::to_string(kBoundMargin) +
-      " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
+      "points of verify --seed " + std::to_string(accuracy.seed) + "; P also on its generator lines, R also on the "
+      "polar plane; near the target again on " + std::to_string(kRefineFactor) + " times as many), times " +
+      std::to_string(kBoundMargin) + " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
   doc["shadows"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < ev.shadows.size(); ++k)
     doc["shadows"].push_back(shadow_json(sc, ev.shadows[k], &ev.shadow_accuracy[k]));
