@@ -464,11 +464,18 @@ Eigen::Matrix<Q, R, C> exact_checked(const Eigen::Matrix<S, R, C>& m, const std:
 }
 }  // namespace detail
 
-template <class S> CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const CheckOptions& opt) {
-  const std::string where = "check_shadow";
+namespace {
+/// The options every check takes: a positive finite accuracy target, at least one sample.
+void validate_options(const CheckOptions& opt, const std::string& where) {
   if (!(opt.accuracy > 0) || !std::isfinite(opt.accuracy))
     throw InputError(where, "accuracy", "the accuracy target must be a positive number");
   if (opt.samples < 1) throw InputError(where, "samples", "at least one sample point is needed");
+}
+}  // namespace
+
+template <class S> CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const CheckOptions& opt) {
+  const std::string where = "check_shadow";
+  validate_options(opt, where);
   const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
   const Vec4<Q> Le = detail::exact_checked(L, where, "L");
   validate_quadric(Ae, where, "A");
@@ -487,9 +494,7 @@ template <class S> CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, 
 template <class S>
 CheckReport check_reflection(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c, const CheckOptions& opt) {
   const std::string where = "check_reflection";
-  if (!(opt.accuracy > 0) || !std::isfinite(opt.accuracy))
-    throw InputError(where, "accuracy", "the accuracy target must be a positive number");
-  if (opt.samples < 1) throw InputError(where, "samples", "at least one sample point is needed");
+  validate_options(opt, where);
   const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
   const Vec4<Q> pe = detail::exact_checked(plane, where, "plane");
   validate_quadric(Ae, where, "A");
