@@ -7,7 +7,7 @@ QVERIFY_PACKAGES=(g++ cmake make libeigen3-dev libboost-dev libgmp-dev libmpfr-d
 qverify_install_deps() {
   local missing=() p
   for p in "${QVERIFY_PACKAGES[@]}" "$@"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" = "install ok installed" ] || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
   if [ "$(id -u)" -ne 0 ]; then
