@@ -1,16 +1,17 @@
 // qverify command line. The contract: README ("Command line"), docs/json-documents.md (documents,
 // exit status) and docs/scene-format.md (input).
 #include <qverify/exact/number_text.hpp>
-#include <qverify/render/render.hpp>
-#include <qverify/verify/eval.hpp>
-#include <qverify/verify/paper_audit.hpp>
+#include <qverify/scene/files.hpp>
+#include <qverify/eval/eval.hpp>
 #include <qverify/verify/adaptive.hpp>
-#include <qverify/verify/audit.hpp>
-#include <qverify/verify/bench.hpp>
 #include <qverify/verify/candidate_run.hpp>
-#include <qverify/verify/files.hpp>
-#include <qverify/verify/stress.hpp>
 #include <qverify/verify/verifier.hpp>
+#include <qverify/studies/audit.hpp>
+#include <qverify/studies/bench.hpp>
+#include <qverify/studies/paper_audit.hpp>
+#include <qverify/studies/stress.hpp>
+#include <qverify/report/report.hpp>
+#include <qverify/render/render.hpp>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -634,7 +635,9 @@ int main(int argc, char** argv) {
         opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
         opt.accuracy = accuracy;
       }
-      const json doc = run_audit(sc, opt);
+      const AuditReport report = run_audit(sc, opt);
+      write_audit_report(out_dir, report);
+      const json& doc = report.document;
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_audit(doc, out_dir);
       return kOk;
@@ -663,7 +666,9 @@ int main(int argc, char** argv) {
         opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
         opt.accuracy = accuracy;
       }
-      const json doc = run_stress(opt);
+      const StressReport report = run_stress(opt);
+      write_stress_report(out_dir, report);
+      const json& doc = report.document;
       if (as_json) std::cout << doc.dump(2) << "\n";
       else print_stress(doc, out_dir);
       return kOk;

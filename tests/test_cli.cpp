@@ -1,7 +1,7 @@
 // The CLI contract (README "Command line", docs/json-documents.md): JSON shapes, number encodings, exit codes.
 #include "cli_run.hpp"
 
-#include <qverify/verify/files.hpp>
+#include <qverify/scene/files.hpp>
 
 #include <nlohmann/json.hpp>
 

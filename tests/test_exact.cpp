@@ -5,9 +5,9 @@
 #include <qverify/exact/polynomial.hpp>
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/sampling.hpp>
-#include <qverify/verify/eval.hpp>
+#include <qverify/eval/eval.hpp>
 #include <qverify/verify/adaptive.hpp>
-#include <qverify/verify/paper_audit.hpp>
+#include <qverify/studies/paper_audit.hpp>
 
 using namespace qverify;
 using Q = Rational;

@@ -1,6 +1,6 @@
 // Scene format: exact numbers, every shape, every error (with its JSON path).
 #include <qverify/exact/number_text.hpp>
-#include <qverify/verify/scene.hpp>
+#include <qverify/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,7 @@
 // The stability families at their worst case, and the local frames of the robust path.
-#include <qverify/verify/audit.hpp>
-#include <qverify/verify/stress.hpp>
+#include <qverify/report/report.hpp>
+#include <qverify/studies/audit.hpp>
+#include <qverify/studies/stress.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <catch2/catch.hpp>
@@ -21,7 +22,7 @@ TEST_CASE("every stress family at its worst case: the default double path meets 
     opt.out_dir = (std::filesystem::temp_directory_path() / ("qverify-stress-" + std::to_string(::getpid()))).string();
     opt.families = {fam.name};
     opt.worst_only = true;
-    const auto doc = run_stress(opt);
+    const auto doc = run_stress(opt).document;
     REQUIRE(doc["families"].size() == 1);
     const auto& f = doc["families"][0];
     const auto& p = f["points"][0];
@@ -46,7 +47,7 @@ TEST_CASE("the sweeps separate the naive and the robust double paths where they 
   opt.out_dir = (std::filesystem::temp_directory_path() / ("qverify-stress2-" + std::to_string(::getpid()))).string();
   opt.families = {"far-from-origin", "mirror-far", "decimal-inputs"};
   opt.worst_only = true;
-  const auto doc = run_stress(opt);
+  const auto doc = run_stress(opt).document;
   for (const auto& f : doc["families"]) {
     INFO(f["name"].get<std::string>());
     double naive = 0, robust = 1;
@@ -122,7 +123,7 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
   opt.worst_only = true;
   SECTION("qverify's default path as the candidate: the same numbers, no reproducer") {
     opt.candidate = eval_candidate("robust", std::nullopt);
-    const auto doc = run_stress(opt);
+    const auto doc = run_stress(opt).document;
     const auto& p = doc["families"][0]["points"][0];
     const auto& c = candidate_run(p);
     CHECK(c["run"] == "robust");
@@ -141,7 +142,7 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
   }
   SECTION("the world frame as the candidate: beyond the target, a reproducer with what it returned") {
     opt.candidate = eval_candidate("world", Frame::world);
-    const auto doc = run_stress(opt);
+    const auto doc = run_stress(opt).document;
     const auto& f = doc["families"][0];
     const auto& c = candidate_run(f["points"][0]);
     CHECK(c["status"] == "ok");
@@ -162,7 +163,7 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
     CHECK(std::filesystem::exists(dir / "failures/world-far-from-origin-12.log"));
     // a second run removes the reproducers of the first
     opt.candidate = eval_candidate("world", std::nullopt);
-    const auto again = run_stress(opt);
+    const auto again = run_stress(opt).document;
     CHECK(again["candidate"]["reproducers"].empty());
     CHECK_FALSE(std::filesystem::exists(dir / "failures/world-far-from-origin-12.json"));
   }
@@ -175,7 +176,7 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
       return o;
     };
     opt.candidate = c;
-    const auto doc = run_stress(opt);
+    const auto doc = run_stress(opt).document;
     const auto& r = candidate_run(doc["families"][0]["points"][0]);
     CHECK(r["precision"] == "float128");
     CHECK(r["item_geometric_error"].get<double>() < 1e-9);
@@ -202,7 +203,9 @@ TEST_CASE("failing candidate calls are recorded at their point and the sweep goe
   opt.out_dir = dir.string();
   opt.families = {"far-from-origin"};
   opt.candidate = c;
-  const auto doc = run_stress(opt);
+  const StressReport report = run_stress(opt);
+  write_stress_report(dir, report);  // the HTML below
+  const auto& doc = report.document;
   const auto& f = doc["families"][0];
   const auto& pts = f["points"];
   REQUIRE(pts.size() == 13);
@@ -252,7 +255,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
   opt.scene_text = "{}";  // what the candidate is given (not parsed by these callables)
   SECTION("right") {
     opt.candidate = eval_candidate("robust", std::nullopt);
-    const auto doc = run_audit(sc, opt);
+    const auto doc = run_audit(sc, opt).document;
     const auto& row = doc["rows"].back();
     CHECK(row["source"] == "candidate");
     CHECK(row["run"] == "robust");
@@ -263,7 +266,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
   }
   SECTION("wrong") {
     opt.candidate = eval_candidate("world", Frame::world);
-    const auto doc = run_audit(sc, opt);
+    const auto doc = run_audit(sc, opt).document;
     const auto& row = doc["rows"].back();
     CHECK(row["status"] == "fail");
     CHECK(row["max_geometric_error"].get<double>() > 1e-3);
@@ -276,7 +279,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
     c.name = "broken";
     c.call = [](const CandidateInput&) -> CandidateOutput { throw CandidateFailure("timed out after 1 s"); };
     opt.candidate = c;
-    const auto doc = run_audit(sc, opt);
+    const auto doc = run_audit(sc, opt).document;
     const auto& row = doc["rows"].back();
     CHECK(row["status"] == "candidate-failed");
     CHECK(row["error"] == "timed out after 1 s");
@@ -295,7 +298,7 @@ TEST_CASE("known gap: eval's inaccurate flag misses on mixed magnitudes", "[stre
   opt.out_dir = fresh_dir("cand-gap").string();
   opt.families = {"mixed-magnitudes"};
   opt.worst_only = true;
-  const auto doc = run_stress(opt);
+  const auto doc = run_stress(opt).document;
   INFO(doc["families"][0]["flag_check"].dump());
   CHECK(doc["families"][0]["flag_check"]["ok"].get<bool>());
   std::filesystem::remove_all(opt.out_dir);

@@ -4,7 +4,7 @@
 // target; verify never passes a geometrically wrong result.
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/adaptive.hpp>
-#include <qverify/verify/json_tree.hpp>
+#include <qverify/scene/json_tree.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <catch2/catch.hpp>

@@ -2,7 +2,7 @@
 // reflection in double (the default robust path, method direct) and checks the results on
 // exact sample points, all through the library. Prints one line per check and a summary;
 // exit 0 when every check passes, 1 when one fails, 2 on a bad scene.
-#include <qverify/verify/scene.hpp>
+#include <qverify/scene/scene.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <iostream>

@@ -12,7 +12,7 @@
 /// throws qverify::InputError with `path` naming the argument and the index
 /// ("A[3][1]"); the module turns it into the Python `qverify.InputError`.
 
-#include <qverify/verify/scene.hpp>
+#include <qverify/scene/scene.hpp>
 
 #include <nlohmann/json.hpp>
 #include <pybind11/eval.h>

@@ -6,7 +6,7 @@
 
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/check.hpp>
-#include <qverify/verify/eval.hpp>
+#include <qverify/eval/eval.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <pybind11/stl.h>

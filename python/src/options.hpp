@@ -5,8 +5,8 @@
 
 #include "convert.hpp"
 
-#include <qverify/verify/eval.hpp>
-#include <qverify/verify/precision.hpp>
+#include <qverify/eval/eval.hpp>
+#include <qverify/exact/precision.hpp>
 
 #include <mutex>
 #include <optional>

@@ -1,5 +1,5 @@
 #include <qverify/render/render.hpp>
-#include <qverify/verify/files.hpp>
+#include <qverify/scene/files.hpp>
 
 #include <png.h>
 

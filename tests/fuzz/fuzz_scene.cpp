@@ -1,7 +1,7 @@
 // libFuzzer target: the scene parser and loader, then evaluation in double and
 // (for small inputs) exact arithmetic. A rejected scene must be an InputError;
 // any other exception, crash, leak or sanitizer report is a finding.
-#include <qverify/verify/eval.hpp>
+#include <qverify/eval/eval.hpp>
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
 #include <qverify/verify/candidate_run.hpp>
-#include <qverify/verify/files.hpp>
-#include <qverify/verify/json_tree.hpp>
+#include <qverify/scene/files.hpp>
+#include <qverify/scene/json_tree.hpp>
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,6 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/check.hpp>
-#include <qverify/verify/frames.hpp>
+#include <qverify/eval/frames.hpp>
 
 #include <cmath>
 #include <iomanip>

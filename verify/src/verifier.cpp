@@ -1,10 +1,10 @@
 #include <qverify/exact/number_text.hpp>
 #include <qverify/exact/sampling.hpp>
-#include <qverify/verify/json_tree.hpp>
-#include <qverify/verify/frames.hpp>
+#include <qverify/scene/json_tree.hpp>
+#include <qverify/eval/frames.hpp>
 #include <qverify/verify/verifier.hpp>
 #include <qverify/verify/check.hpp>
-#include <qverify/verify/accuracy.hpp>
+#include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/statuses.hpp>
 
 #include <limits>

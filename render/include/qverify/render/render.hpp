@@ -23,7 +23,7 @@
 
 #include <qverify/exact/mpfi.hpp>
 #include <qverify/render/trace.hpp>
-#include <qverify/verify/scene.hpp>
+#include <qverify/scene/scene.hpp>
 
 #include <array>
 #include <cstdint>
@@ -130,7 +130,7 @@ Comparison compare_methods(const Renderer& r, int repeat = 3, long max_checked =
 std::vector<std::uint8_t> id_image(const Image& img);
 
 /// Writes an 8-bit RGB PNG (libpng), through the checked write of
-/// qverify/verify/files.hpp: throws FileWriteError naming the file and the
+/// qverify/scene/files.hpp: throws FileWriteError naming the file and the
 /// reason when it cannot be written (std::runtime_error on a size mismatch).
 void write_png(const std::string& file, int width, int height, const std::vector<std::uint8_t>& rgb);
 

@@ -9,7 +9,7 @@
 /// item of eval, its error_bound (the geometric error of the matrices written,
 /// on exact points) with `inaccurate` when that may exceed the accuracy target.
 
-#include <qverify/verify/eval.hpp>
+#include <qverify/eval/eval.hpp>
 
 namespace qverify {
 

@@ -22,8 +22,8 @@
 ///  - an exact candidate (rationals) passes only when every residual is
 ///    exactly zero: a proof on the sampled points.
 
-#include <qverify/verify/accuracy.hpp>
-#include <qverify/verify/precision.hpp>
+#include <qverify/eval/accuracy.hpp>
+#include <qverify/exact/precision.hpp>
 
 #include <optional>
 #include <string>

@@ -42,7 +42,7 @@
 /// d is a square), without the gcds of rational arithmetic.
 
 #include <qverify/exact/interval.hpp>
-#include <qverify/verify/accuracy.hpp>
+#include <qverify/eval/accuracy.hpp>
 
 #include <boost/multiprecision/gmp.hpp>
 

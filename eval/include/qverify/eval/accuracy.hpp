@@ -1,0 +1,113 @@
+#pragma once
+/// \file accuracy.hpp
+/// The geometric error of a result, the one measure behind `verify`'s verdict,
+/// `eval`'s error_bound and the studies' geometric error.
+///
+/// Exact points are sampled (seeded) on the item's exact geometry: terminator
+/// points A ∩ {(A L) . x = 0} for a shadow, points of A reflected exactly by
+/// the mirror for a reflection (RootPoints in Q(sqrt d)). For a result quadric
+/// Q (plane pi) given in a frame with origin o, each point x is moved exactly
+/// into that frame and
+///   distance(x) = |x^T Q x| / (|w| 2 |(Q x)_{xyz}|)   (first order; plane: |pi.x| / (|w| |pi_xyz|)),
+/// evaluated exactly in Q(sqrt d) and rounded to 80 digits. The geometric
+/// error is the largest distance divided by the object size: the largest
+/// distance of the (unreflected) points from the centre of A (the centre of
+/// its quadratic part, -K^-1 k; the points' centroid where K is singular).
+/// A far-away point therefore cannot make a wrong result look small.
+
+#include <qverify/exact/root_point.hpp>
+#include <qverify/exact/sampling.hpp>
+#include <qverify/eval/frames.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace qverify {
+
+/// Default accuracy target T (relative to the object size).
+inline constexpr double kDefaultAccuracy = 1e-9;
+/// Default exact points per item (shared by eval's error bound and verify).
+inline constexpr int kDefaultSamples = 64;
+
+/// Frobenius norm of an exact matrix or vector, to 80 digits.
+template <int R, int C> Measure frobenius(const Eigen::Matrix<Rational, R, C>& m) {
+  Measure s = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const Measure v = to_measure(m(i));
+    s += v * v;
+  }
+  return sqrt(s);
+}
+
+/// Largest residual |x^T Q x| / (|Q|_F |x|^2) and first-order distance over points.
+struct Metric {
+  Measure residual = 0, distance = 0;
+  bool all_zero = true;  ///< every point exactly on the result
+  bool singular = false; ///< a point off the result where its gradient vanishes (distance infinite)
+  std::optional<std::size_t> worst;  ///< index of the point farthest from the result (largest distance)
+};
+
+/// Exact points of one item and the size of its object.
+struct ItemPoints {
+  std::vector<RootPoint> points;  ///< world frame
+  /// Shadow items (world frame): points of the generator lines of the cone from L through the
+  /// terminator (every quadric of the pencil alpha A + beta (AL)(AL)^T vanishes on the
+  /// terminator; only the cone P vanishes on these), and rational points of the polar plane
+  /// inside the object (R, the plane pair through it, vanishes there; A does not).
+  std::vector<RootPoint> generators, plane;
+  Measure size = 0;               ///< largest distance of the object's points from A's centre
+  bool exhausted = false;         ///< fewer real points than asked
+};
+
+/// The seed of item `index` of a kind (1 shadow, 2 reflection): eval's bound
+/// and verify sample the same points for the same (seed, samples).
+std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index);
+
+/// Terminator points of the exact (A, L), with the points of its generator lines and its plane.
+ItemPoints terminator_points(const Mat4<Rational>& A, const Vec4<Rational>& L, int n, std::uint64_t seed);
+/// Points of A reflected by the exact mirror matrix M (size measured on A's points).
+ItemPoints reflected_points(const Mat4<Rational>& A, const Mat4<Rational>& M, int n, std::uint64_t seed);
+
+/// The points moved exactly into the frame with origin o (x_local = x - o).
+std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Rational>>& origin);
+
+/// Metric of a quadric / a plane over points already in its frame.
+Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Rational>& Q);
+Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Rational>& pi);
+
+/// The geometric error of a metric: distance / size; 0 when every point is
+/// exactly on the result; infinite when a point lies off it where its gradient
+/// vanishes. A terminator that is a single real point (a cone lit along its
+/// axis: the apex) has no size to measure distances against, and the result's
+/// gradient vanishes there: its error is the relative residual
+/// |x^T Q x| / (|Q|_F |x|^2) instead.
+Measure relative(const Metric& m, const Measure& size);
+
+/// Geometric errors of one shadow item's results (relative to the object size).
+struct ShadowError {
+  Metric P, polar, R;
+  Metric generators;      ///< P on the generator lines
+  Metric R_plane;         ///< R on the polar plane
+  Measure geometric = 0;  ///< the largest of the five
+};
+ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& P,
+                         const Vec4<Rational>& polar, const Mat4<Rational>& R);
+
+struct ReflectionError {
+  Metric B;
+  Measure geometric = 0;
+};
+ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3<Rational>>& origin,
+                                 const Mat4<Rational>& B);
+
+/// The exact reflection in the plane n.x + d = 0, written out here (not the
+/// core's mirror_matrix, which is under test): x - 2 (n.x + d) n / (n.n).
+Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
+
+/// error_bound of eval: a bound of the geometric error from the measure above.
+/// It is exact on the sampled points and doubled as the margin for the points
+/// between them (kBoundMargin).
+inline constexpr int kBoundMargin = 2;
+
+}  // namespace qverify

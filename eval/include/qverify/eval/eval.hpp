@@ -1,0 +1,558 @@
+#pragma once
+/// \file eval.hpp
+/// Demand-driven evaluation of a scene in one scalar type: only the requested
+/// (quadric, light) and (quadric, mirror) pairs are computed; a mirror matrix
+/// is built only when some reflection needs it.
+
+#include <qverify/exact/statuses.hpp>
+#include <qverify/eval/accuracy.hpp>
+#include <qverify/exact/precision.hpp>
+#include <qverify/eval/scalar_json.hpp>
+#include <qverify/eval/frames.hpp>
+#include <qverify/scene/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <optional>
+#include <limits>
+#include <type_traits>
+
+namespace qverify {
+
+/// Which frame floating results are computed in: `world`, or `local` (the
+/// robust default: per-object origin, exact change of frame, power-of-two
+/// normalisation; see frames.hpp).
+enum class Frame { world, local };
+
+/// The default frame: local for floating types with the direct method (the
+/// paper's route is defined in world coordinates: T depends on l_z).
+template <class S> Frame default_frame(Method method) {
+  return !is_exact<S>() && !ScalarOps<S>::interval && method == Method::direct ? Frame::local : Frame::world;
+}
+
+/// Scales a matrix by an exact power of two so that its largest entry lies in
+/// [2^-64, 2^64]: projective results change by a positive power of two only,
+/// and entries of 1e+-150 neither overflow nor underflow. No-op for types with
+/// a wide exponent range.
+template <class S, int R, int C> void normalise_pow2(Eigen::Matrix<S, R, C>& m) {
+  if constexpr (std::is_floating_point_v<S>) {
+    const S big = max_abs(m);
+    if (!(big > S(0)) || !std::isfinite(big)) return;
+    const int e = std::ilogb(big);
+    if (e > 64 || e < -64) m *= std::ldexp(S(1), -e);
+  }
+}
+
+/// Rounds an exact matrix to S, after an exact power-of-two scaling that keeps
+/// its largest entry near 1 (builtin floating types only).
+template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Matrix<Rational, R, C> m) {
+  if constexpr (std::is_floating_point_v<S>) {
+    const Rational big = max_abs(m);
+    if (big != 0) {
+      const long e = floor_log2(big);
+      if (e > 64 || e < -64) {
+        const Rational f = e > 0 ? Rational(1) / Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e))
+                                 : Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(-e));
+        m *= f;
+      }
+    }
+  }
+  Eigen::Matrix<S, R, C> out;
+  RoundingReport rep;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = round_rational<S>(m(i), rep);
+  return out;
+}
+
+/// Inputs of one shadow item, in its frame (and, in the robust path, their
+/// exact values for escalation).
+template <class S> struct PreparedShadow {
+  Pair pair;
+  Mat4<S> A;
+  Vec4<S> L;
+  std::optional<Vec3<Rational>> origin;
+  std::optional<std::pair<Mat4<Rational>, Vec4<Rational>>> exact;
+};
+
+/// Entrywise cancellation of P = s A - pi pi^T: the largest
+/// (|s| |A_ij| + |pi_i| |pi_j|) / |P_ij| (infinite when P_ij vanishes by
+/// cancellation). Small entries of P computed with large cancellation carry
+/// absolute, not relative, errors: the geometry of the cone is in them.
+template <class S> S cone_cancellation(const Mat4<S>& A, const Vec4<S>& L, const Mat4<S>& P) {
+  const Vec4<S> pi = A * L;
+  const S s = abs_of<S>(S(L.dot(pi)));
+  S worst(0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j) {
+      const S terms = s * abs_of<S>(A(i, j)) + abs_of<S>(pi(i)) * abs_of<S>(pi(j));
+      if (terms == S(0)) continue;
+      const S p = abs_of<S>(P(i, j));
+      if (p == S(0)) return S(std::numeric_limits<double>::infinity());
+      if (worst < terms / p) worst = terms / p;
+    }
+  return worst;
+}
+
+/// Escalation threshold of the robust path: 2^16 (16 of the 53 bits of a double lost).
+inline double escalation_threshold() { return 65536.0; }
+
+/// Conditioning of the quadric's quadratic part K (3x3): |K|_max^3 / |det K|,
+/// infinite for a singular K. Rounding A to S perturbs its geometry by about
+/// eps times this (the small eigenvalues of K carry the shape).
+template <class S> S quadric_conditioning(const Mat4<S>& A) {
+  const Mat3<S> K = A.template topLeftCorner<3, 3>();
+  const S k = max_abs(K), d = abs_of<S>(S(K.determinant()));
+  if (d == S(0)) return S(std::numeric_limits<double>::infinity());
+  return k * k * k / d;
+}
+
+/// Inputs of one reflection item: A in the quadric's frame; in the local path
+/// G maps the image's frame into A's (B = G^T A G) and M is output in the
+/// image's frame.
+template <class S> struct PreparedReflection {
+  Pair pair;
+  Mat4<S> A;
+  bool local = false;
+  Mat4<S> G, M;
+  std::optional<Vec3<Rational>> origin;
+  std::optional<std::pair<Mat4<Rational>, Mat4<Rational>>> exact;  ///< A and G, exactly (robust path)
+};
+
+template <class S> struct ShadowItem {
+  Pair pair;
+  ShadowResult<S> result;
+  std::optional<Vec3<Rational>> origin;  ///< results in local coordinates x - origin
+  Mat4<S> A;                             ///< the quadric as used (same frame)
+  const char* escalated = nullptr;       ///< wider type the item was recomputed in, if any
+};
+template <class S> struct ReflectionItem {
+  Pair pair;
+  Mat4<S> M;
+  ReflectionResult<S> result;
+  std::optional<Vec3<Rational>> origin;
+  const char* escalated = nullptr;
+};
+
+/// What eval says of an item's accuracy (cli.md, "Accuracy"): a bound of its
+/// geometric error (accuracy.hpp) and whether that may exceed the target.
+struct ItemAccuracy {
+  std::optional<double> bound;  ///< error_bound; nullopt with a reason where none can be given
+  std::string reason;
+  bool inaccurate = false;
+};
+
+template <class S> struct Evaluation {
+  TypedScene<S> scene;  ///< world frame, each input rounded once (range checks)
+  std::vector<ItemAccuracy> shadow_accuracy, reflection_accuracy;  ///< filled by assess_accuracy
+  Frame frame = Frame::world;
+  std::vector<PreparedShadow<S>> prepared_shadows;
+  std::vector<PreparedReflection<S>> prepared_reflections;
+  std::vector<ShadowItem<S>> shadows;
+  std::vector<ReflectionItem<S>> reflections;
+};
+
+/// Prepares the inputs of every requested item (not timed by the audit).
+template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev) {
+  ev.frame = frame;
+  ev.prepared_shadows.clear();
+  ev.prepared_reflections.clear();
+  if (frame == Frame::world) {
+    for (const Pair& p : sc.shadows) {
+      PreparedShadow<S> ps{p, ev.scene.A[p.quadric], ev.scene.L[p.other], std::nullopt, std::nullopt};
+      normalise_pow2(ps.A);
+      normalise_pow2(ps.L);
+      ev.prepared_shadows.push_back(ps);
+    }
+    for (const Pair& p : sc.reflections) {
+      PreparedReflection<S> pr;
+      pr.pair = p;
+      pr.A = ev.scene.A[p.quadric];
+      normalise_pow2(pr.A);
+      ev.prepared_reflections.push_back(pr);
+    }
+    return;
+  }
+  // Local frames: exact change of frame, then one rounding.
+  using Q = Rational;
+  std::vector<Mat4<Q>> A_exact;
+  std::vector<std::optional<Vec3<Q>>> origin, center;
+  std::vector<Q> size2;
+  for (const QuadricSpec& q : sc.quadrics) {
+    std::vector<Q> params;
+    for (const Num& n : q.params) params.push_back(n.value);
+    const Mat4<Q> A = build_quadric<Q>(q, params);
+    A_exact.push_back(A);
+    const auto c = natural_center(q, A);
+    center.push_back(c);
+    const Q s2 = c ? size_squared(quadric_to_local(A, *c)) : Q(1);
+    size2.push_back(s2);
+    origin.push_back(c && wants_local_frame(*c, s2) ? std::optional<Vec3<Q>>(rounded_to_double(*c)) : std::nullopt);
+  }
+  std::vector<Vec4<Q>> L_exact, planes_exact;
+  for (const LightSpec& l : sc.lights)
+    L_exact.push_back(homogeneous_light<Q>(l.parallel, Vec3<Q>(l.xyz[0].value, l.xyz[1].value, l.xyz[2].value)));
+  for (const MirrorSpec& m : sc.mirrors)
+    planes_exact.push_back(Vec4<Q>(m.plane[0].value, m.plane[1].value, m.plane[2].value, m.plane[3].value));
+  auto local_A = [&](std::size_t q) {
+    return origin[q] ? quadric_to_local(A_exact[q], *origin[q]) : A_exact[q];
+  };
+  for (const Pair& p : sc.shadows) {
+    PreparedShadow<S> ps;
+    ps.pair = p;
+    ps.origin = origin[p.quadric];
+    const Mat4<Q> Al = local_A(p.quadric);
+    const Vec4<Q> Ll = ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other];
+    ps.A = rounded_scaled<S>(Al);
+    ps.L = rounded_scaled<S>(Ll);
+    if constexpr (std::is_floating_point_v<S>) ps.exact = std::make_pair(Al, Ll);
+    ev.prepared_shadows.push_back(ps);
+  }
+  for (const Pair& p : sc.reflections) {
+    PreparedReflection<S> pr;
+    pr.pair = p;
+    pr.local = true;
+    pr.A = rounded_scaled<S>(local_A(p.quadric));
+    const Mat4<Q> M = mirror_matrix<Q>(planes_exact[p.other]);  // exact, rational in n and d
+    const Vec3<Q> oA = origin[p.quadric] ? *origin[p.quadric] : Vec3<Q>::Zero();
+    std::optional<Vec3<Q>> oB;
+    if (center[p.quadric]) {
+      const Vec4<Q> c(center[p.quadric]->x(), center[p.quadric]->y(), center[p.quadric]->z(), Q(1));
+      const Vec3<Q> mc = (M * c).template head<3>();
+      if (wants_local_frame(mc, size2[p.quadric])) oB = rounded_to_double(mc);
+    }
+    const Vec3<Q> ob = oB ? *oB : Vec3<Q>::Zero();
+    // G: image frame -> A's frame, x_A = M (u + o_B) - o_A; M_local = T_B^-1 M T_B.
+    const Mat4<Q> G = translation<Q>(Vec3<Q>(-oA)) * M * translation<Q>(ob);
+    pr.G = rounded_scaled<S>(G);
+    if constexpr (std::is_floating_point_v<S>) pr.exact = std::make_pair(local_A(p.quadric), G);
+    pr.M = rounded_scaled<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
+    pr.origin = oB;
+    ev.prepared_reflections.push_back(pr);
+  }
+}
+
+/// The item recomputed in binary128 from its exact inputs, rounded once to S.
+/// (Defined in escalate.cpp for float, double and long double.)
+template <class S> ShadowItem<S> escalated_shadow(const PreparedShadow<S>& ps);
+extern template ShadowItem<float> escalated_shadow<float>(const PreparedShadow<float>&);
+extern template ShadowItem<double> escalated_shadow<double>(const PreparedShadow<double>&);
+extern template ShadowItem<long double> escalated_shadow<long double>(const PreparedShadow<long double>&);
+template <class S> ReflectionItem<S> escalated_reflection(const PreparedReflection<S>& pr);
+extern template ReflectionItem<float> escalated_reflection<float>(const PreparedReflection<float>&);
+extern template ReflectionItem<double> escalated_reflection<double>(const PreparedReflection<double>&);
+extern template ReflectionItem<long double> escalated_reflection<long double>(const PreparedReflection<long double>&);
+
+/// Computes every prepared item by `method` (the timed part of an audit).
+template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
+  ev.shadows.clear();
+  ev.reflections.clear();
+  for (const PreparedShadow<S>& ps : ev.prepared_shadows) {
+    ShadowItem<S> item{ps.pair, shadow<S>(ps.A, ps.L, method), ps.origin, ps.A};
+    if constexpr (std::is_floating_point_v<S>) {
+      // Robust path: where P's entries come out of heavy cancellation, recompute the item in
+      // binary128 from the exact inputs and round the results once.
+      if (ps.exact && method == Method::direct &&
+          (!(cone_cancellation<S>(ps.A, ps.L, item.result.P) <= S(escalation_threshold())) ||
+           !(quadric_conditioning<S>(ps.A) <= S(1 << 20))))
+        item = escalated_shadow<S>(ps);
+    }
+    ev.shadows.push_back(std::move(item));
+  }
+  std::vector<std::optional<Mat4<S>>> mirrors(sc.mirrors.size());
+  for (const PreparedReflection<S>& pr : ev.prepared_reflections) {
+    if (pr.local) {
+      ReflectionResult<S> r;
+      set_reflection_status(r, reflection_degenerate<S>(pr.A));
+      r.B = mirror_image<S>(pr.A, pr.G);  // G^T A G
+      ReflectionItem<S> item{pr.pair, pr.M, r, pr.origin};
+      if constexpr (std::is_floating_point_v<S>)
+        if (pr.exact && !(quadric_conditioning<S>(pr.A) <= S(1 << 20))) item = escalated_reflection<S>(pr);
+      ev.reflections.push_back(item);
+      continue;
+    }
+    auto& M = mirrors[pr.pair.other];
+    if (!M) M = mirror_matrix<S>(ev.scene.planes[pr.pair.other]);
+    ev.reflections.push_back(
+        {pr.pair, *M, reflection_in_plane<S>(pr.A, ev.scene.planes[pr.pair.other], method), std::nullopt});
+  }
+}
+
+/// Computes every requested item of `sc` in scalar type S by `method`, in
+/// `frame` (default: see default_frame).
+template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::optional<Frame> frame = std::nullopt) {
+  Evaluation<S> ev;
+  ev.scene = typed_scene<S>(sc);
+  prepare<S>(sc, frame ? *frame : default_frame<S>(method), ev);
+  evaluate_items<S>(sc, method, ev);
+  return ev;
+}
+
+/// The status words of every item, as predicates of the scene's exact inputs
+/// (exact/statuses.hpp: interval filter, rationals on doubt), whatever S is
+/// and whichever frame the item was computed in (the predicates are
+/// projective invariants). Method paper adds singular-frame where the exact
+/// light has l_z = 0 (v_z = 0 for a parallel light).
+/// `ex` is typed_scene<Rational>(sc).
+template <class S> void decide_statuses(const TypedScene<Rational>& ex, Method method, Evaluation<S>& ev) {
+  std::vector<std::optional<bool>> degenerate(ex.A.size());
+  for (auto& it : ev.shadows) {
+    const Vec4<Rational>& L = ex.L[it.pair.other];
+    const StatusDecision d = exact_shadow_status(ex.A[it.pair.quadric], L);
+    it.result.flags = d.flags;
+    it.result.undecided = 0;
+    if (method == Method::paper && L(2) == 0) it.result.flags |= static_cast<unsigned>(ShadowFlag::singular_frame);
+  }
+  for (auto& it : ev.reflections) {
+    auto& deg = degenerate[it.pair.quadric];
+    if (!deg) deg = exact_degenerate(ex.A[it.pair.quadric]);
+    set_reflection_status(it.result, *deg ? Truth::yes : Truth::no);
+  }
+}
+
+/// Options of the accuracy assessment (cli.md "Accuracy"; accuracy.hpp).
+struct AccuracyOptions {
+  double target = kDefaultAccuracy;
+  int samples = kDefaultSamples;
+  std::uint64_t seed = 1;
+};
+
+/// error_bound of an item from its geometric error measured on the sampled
+/// points (times the margin kBoundMargin), and `inaccurate` when it may exceed
+/// the target; no bound (with the reason) when there is nothing to measure on.
+inline ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target) {
+  ItemAccuracy acc;
+  if (!has_points) {
+    acc.reason = "no real point to measure the result on";
+  } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
+    acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
+    acc.inaccurate = true;
+  } else {
+    acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
+    acc.inaccurate = *acc.bound > target;
+  }
+  return acc;
+}
+
+/// Items whose error measured on the sample points is within a factor 100 below
+/// the target (where a sample's underestimate could hide an error beyond it)
+/// are measured again on kRefineFactor times as many other points.
+inline constexpr int kRefineFactor = 8;
+inline bool in_gray_zone(const Measure& geometric, double target) {
+  return geometric * kBoundMargin <= target && geometric * 100 > target;
+}
+
+/// error_bound and `inaccurate` of every floating item: the geometric error
+/// measured exactly on the seeded sample points (the points `verify` uses by
+/// default; near the target, on kRefineFactor times more), times kBoundMargin. On the default path (builtin floating types,
+/// method direct, local frames) an item whose bound exceeds the target is
+/// first recomputed in binary128 from its exact inputs and measured again.
+/// `ex` is typed_scene<Rational>(sc).
+template <class S>
+void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S>& ev, const AccuracyOptions& opt) {
+  ev.shadow_accuracy.assign(ev.shadows.size(), {});
+  ev.reflection_accuracy.assign(ev.reflections.size(), {});
+  if constexpr (std::is_same_v<S, Rational>) {
+    for (auto& a : ev.shadow_accuracy) a.bound = 0;
+    for (auto& a : ev.reflection_accuracy) a.bound = 0;
+    return;
+  } else {
+    auto judge = [&](ItemAccuracy& acc, const Measure& geometric, bool has_points) {
+      acc = item_accuracy(geometric, has_points, opt.target);
+    };
+    for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
+      const ItemPoints pts = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
+                                               opt.samples, item_seed(opt.seed, 1, k));
+      std::optional<ItemPoints> dense;
+      auto measure = [&](const ShadowItem<S>& it, ItemAccuracy& acc) {
+        const ShadowResult<S>& r = it.result;
+        if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R)) {
+          acc = {};
+          acc.reason = "non-finite result";
+          acc.inaccurate = true;
+          return;
+        }
+        const Mat4<Rational> P = exact_matrix(r.P), R = exact_matrix(r.R);
+        const Vec4<Rational> pi = exact_matrix(r.polar_plane);
+        Measure g = shadow_error(pts, it.origin, P, pi, R).geometric;
+        if (in_gray_zone(g, opt.target)) {  // near the target: measured again on more points
+          if (!dense)
+            dense = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
+                                      opt.samples * kRefineFactor, item_seed(opt.seed + 1, 1, k));
+          const Measure h = shadow_error(*dense, it.origin, P, pi, R).geometric;
+          if (g < h) g = h;
+        }
+        judge(acc, g, !pts.points.empty());
+      };
+      measure(ev.shadows[k], ev.shadow_accuracy[k]);
+      if constexpr (std::is_floating_point_v<S>) {
+        const PreparedShadow<S>& ps = ev.prepared_shadows[k];
+        if (ev.shadow_accuracy[k].inaccurate && ps.exact && method == Method::direct && !ev.shadows[k].escalated) {
+          ev.shadows[k] = escalated_shadow<S>(ps);
+          measure(ev.shadows[k], ev.shadow_accuracy[k]);
+        }
+      }
+    }
+    for (std::size_t k = 0; k < ev.reflections.size(); ++k) {
+      const Pair& p = ev.reflections[k].pair;
+      const ItemPoints pts = reflected_points(ex.A[p.quadric], reference_mirror(ex.planes[p.other]), opt.samples,
+                                              item_seed(opt.seed, 2, k));
+      std::optional<ItemPoints> dense;
+      auto measure = [&](const ReflectionItem<S>& it, ItemAccuracy& acc) {
+        if (!all_finite(it.M) || !all_finite(it.result.B)) {
+          acc = {};
+          acc.reason = "non-finite result";
+          acc.inaccurate = true;
+          return;
+        }
+        const Mat4<Rational> B = exact_matrix(it.result.B);
+        Measure g = reflection_error(pts, it.origin, B).geometric;
+        if (in_gray_zone(g, opt.target)) {
+          if (!dense)
+            dense = reflected_points(ex.A[p.quadric], reference_mirror(ex.planes[p.other]), opt.samples * kRefineFactor,
+                                     item_seed(opt.seed + 1, 2, k));
+          const Measure h = reflection_error(*dense, it.origin, B).geometric;
+          if (g < h) g = h;
+        }
+        judge(acc, g, !pts.points.empty());
+      };
+      measure(ev.reflections[k], ev.reflection_accuracy[k]);
+      if constexpr (std::is_floating_point_v<S>) {
+        const PreparedReflection<S>& pr = ev.prepared_reflections[k];
+        if (ev.reflection_accuracy[k].inaccurate && pr.exact && !ev.reflections[k].escalated) {
+          ev.reflections[k] = escalated_reflection<S>(pr);
+          measure(ev.reflections[k], ev.reflection_accuracy[k]);
+        }
+      }
+    }
+  }
+}
+
+/// The items' error bounds (with `accuracy`) and exact statuses, after evaluate_items.
+template <class S>
+void check_items(const Scene& sc, Method method, Evaluation<S>& ev, const std::optional<AccuracyOptions>& accuracy) {
+  const TypedScene<Rational> ex = typed_scene<Rational>(sc);
+  if (accuracy) assess_accuracy<S>(ex, method, ev, *accuracy);
+  decide_statuses<S>(ex, method, ev);
+}
+
+/// A whole evaluation as the command line makes it: the items, their exact
+/// statuses and (with `accuracy`) their error bounds.
+template <class S>
+Evaluation<S> evaluate_checked(const Scene& sc, Method method, std::optional<Frame> frame,
+                               const std::optional<AccuracyOptions>& accuracy) {
+  Evaluation<S> ev = evaluate<S>(sc, method, frame);
+  check_items<S>(sc, method, ev, accuracy);
+  return ev;
+}
+
+inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
+
+/// An origin (exact doubles) as three JSON numbers.
+inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
+  return {o(0).convert_to<double>(), o(1).convert_to<double>(), o(2).convert_to<double>()};
+}
+
+/// error_bound of an item (or null, with the reason in `reason`).
+inline void accuracy_json(nlohmann::ordered_json& j, const ItemAccuracy* acc) {
+  if (!acc) return;
+  j["error_bound"] = acc->bound ? nlohmann::ordered_json(*acc->bound) : nlohmann::ordered_json(nullptr);
+  if (!acc->reason.empty()) j["reason"] = acc->reason;
+}
+
+/// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
+/// (every special case that applies, and `inaccurate`), `error_bound`,
+/// `fallback` and the paper route's intermediates (`paper`: M, T, C, D, S).
+template <class S>
+nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it, const ItemAccuracy* acc = nullptr) {
+  nlohmann::ordered_json j;
+  j["quadric"] = sc.quadrics[it.pair.quadric].id;
+  j["light"] = sc.lights[it.pair.other].id;
+  const ShadowResult<S>& r = it.result;
+  bool finite = all_finite(r.P) && all_finite(r.polar_plane) && all_finite(r.R);
+  j["status"] = finite ? r.status() : "non-finite";
+  if (it.origin) j["origin"] = origin_json(*it.origin);
+  if (it.escalated) j["escalated"] = it.escalated;
+  j["P"] = matrix_json(r.P);
+  j["polar_plane"] = matrix_json(r.polar_plane);
+  j["R"] = matrix_json(r.R);
+  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
+  for (ShadowFlag f : kFlagOrder)
+    if (r.has(f)) flags.push_back(flag_word(f));
+  if (!finite) flags.push_back("non-finite");
+  if (acc && acc->inaccurate) flags.push_back("inaccurate");
+  j["flags"] = flags;
+  accuracy_json(j, acc);
+  if (r.direct_fallback) j["fallback"] = "direct formulas (the paper's frame does not exist for this light)";
+  if (r.has_paper) {
+    j["paper"] = {{"M", matrix_json(r.paper.frame.M)},
+                  {"T", matrix_json(r.paper.frame.T)},
+                  {"C", matrix_json(r.paper.C)},
+                  {"D", matrix_json(r.paper.D)},
+                  {"S", matrix_json(r.paper.S_plane)}};
+  }
+  return j;
+}
+
+template <class S>
+nlohmann::ordered_json reflection_json(const Scene& sc, const ReflectionItem<S>& it, const ItemAccuracy* acc = nullptr) {
+  nlohmann::ordered_json j;
+  j["quadric"] = sc.quadrics[it.pair.quadric].id;
+  j["mirror"] = sc.mirrors[it.pair.other].id;
+  const bool finite = all_finite(it.M) && all_finite(it.result.B);
+  j["status"] = finite ? it.result.status() : "non-finite";
+  if (it.origin) j["origin"] = origin_json(*it.origin);
+  if (it.escalated) j["escalated"] = it.escalated;
+  j["M"] = matrix_json(it.M);
+  j["B"] = matrix_json(it.result.B);
+  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
+  if (it.result.degenerate) flags.push_back("degenerate-quadric");
+  if (!finite) flags.push_back("non-finite");
+  if (acc && acc->inaccurate) flags.push_back("inaccurate");
+  j["flags"] = flags;
+  accuracy_json(j, acc);
+  return j;
+}
+
+/// The `skipped` list: every pair that was not requested, with the reason.
+nlohmann::ordered_json skipped_json(const Scene& sc);
+
+/// The whole `qverify-eval/1` document.
+template <class S>
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                                     const AccuracyOptions& accuracy) {
+  const Evaluation<S> ev = evaluate_checked<S>(sc, method, frame, accuracy);
+  nlohmann::ordered_json doc;
+  doc["format"] = "qverify-eval/1";
+  doc["scene"] = sc.name;
+  doc["precision"] = prec.name();
+  doc["method"] = method_name(method);
+  doc["frame"] = ev.frame == Frame::local ? "local" : "world";
+  if (prec.kind == Precision::Kind::mpfr) doc["working_bits"] = mpfr_working_bits();
+  if (prec.kind == Precision::Kind::interval)
+    doc["certified"] = "every entry is an enclosure {lo, hi} of the exact result of the same formula; statuses "
+                       "decided in exact arithmetic";
+  doc["accuracy"] = accuracy.target;
+  doc["error_bound_rule"] =
+      "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
+      "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
+      "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
+      "points of verify --seed " + std::to_string(accuracy.seed) + "; P also on its generator lines, R also on the "
+      "polar plane; near the target again on " + std::to_string(kRefineFactor) + " times as many), times " +
+      std::to_string(kBoundMargin) + " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
+  doc["shadows"] = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < ev.shadows.size(); ++k)
+    doc["shadows"].push_back(shadow_json(sc, ev.shadows[k], &ev.shadow_accuracy[k]));
+  doc["reflections"] = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < ev.reflections.size(); ++k)
+    doc["reflections"].push_back(reflection_json(sc, ev.reflections[k], &ev.reflection_accuracy[k]));
+  doc["skipped"] = skipped_json(sc);
+  doc["inputs_rounded"] = ev.scene.rounded_inputs;
+  return doc;
+}
+
+/// eval_document for a run-time precision (one explicit instantiation per
+/// scalar type, each in its own translation unit).
+nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method,
+                                     std::optional<Frame> frame = std::nullopt, const AccuracyOptions& accuracy = {});
+
+}  // namespace qverify

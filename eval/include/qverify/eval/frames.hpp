@@ -1,0 +1,59 @@
+#pragma once
+/// \file frames.hpp
+/// Local frames for the robust floating-point path (cli.md, "origin").
+///
+/// A double matrix in world coordinates cannot hold a small object far from
+/// the world origin: |c|^2 - r^2 loses r^2 when |c| >> r. So each item may be
+/// computed in a frame x_local = x - origin, with the origin a double near the
+/// object. The inputs are carried to that frame *exactly* (the scene's numbers
+/// are exact) and rounded once there:
+///   Q_local = T^T Q T,  plane_local = T^T plane,  L_local = T^-1 L,
+///   M_local = T^-1 M T,  T = translation by origin.
+
+#include <qverify/scene/scene.hpp>
+
+#include <optional>
+
+namespace qverify {
+
+/// 4x4 translation by v.
+template <class S> Mat4<S> translation(const Vec3<S>& v) {
+  Mat4<S> T = Mat4<S>::Identity();
+  T.template topRightCorner<3, 1>() = v;
+  return T;
+}
+
+/// The natural centre of a quadric: the shape's centre, point or apex; for a
+/// matrix, the centre -K^-1 k when the quadratic part K is invertible.
+std::optional<Vec3<Rational>> natural_center(const QuadricSpec& q, const Mat4<Rational>& A);
+
+/// The object's size estimate sqrt(|c0| / |K|_max) with c0 the constant term
+/// in its own frame (the radius of a sphere); 1 when c0 = 0 (a cone).
+Rational size_squared(const Mat4<Rational>& A_local);
+
+/// The nearest double to each coordinate (an exactly representable origin).
+Vec3<Rational> rounded_to_double(const Vec3<Rational>& v);
+
+/// Should an object of squared size s2 at `center` be computed in a local
+/// frame? When |center|_inf > 64 size (more than 12 bits would be lost).
+bool wants_local_frame(const Vec3<Rational>& center, const Rational& s2);
+
+inline Mat4<Rational> quadric_to_local(const Mat4<Rational>& A, const Vec3<Rational>& o) {
+  const Mat4<Rational> T = translation<Rational>(o);
+  return T.transpose() * A * T;
+}
+inline Mat4<Rational> quadric_from_local(const Mat4<Rational>& A, const Vec3<Rational>& o) {
+  const Mat4<Rational> T = translation<Rational>(Vec3<Rational>(-o));
+  return T.transpose() * A * T;
+}
+inline Vec4<Rational> plane_from_local(const Vec4<Rational>& p, const Vec3<Rational>& o) {
+  return translation<Rational>(Vec3<Rational>(-o)).transpose() * p;
+}
+inline Vec4<Rational> point_to_local(const Vec4<Rational>& L, const Vec3<Rational>& o) {
+  return translation<Rational>(Vec3<Rational>(-o)) * L;
+}
+
+/// Exact power-of-two exponent e with 2^e <= x < 2^(e+1) (x > 0).
+long floor_log2(const Rational& x);
+
+}  // namespace qverify

@@ -1,0 +1,209 @@
+#include <qverify/eval/accuracy.hpp>
+
+#include <limits>
+
+namespace qverify {
+
+using Q = Rational;
+
+namespace {
+
+Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
+
+Measure norm2(const RootPoint& x) {
+  Measure s = 0;
+  for (const RootNumber& c : x.coords()) {
+    const Measure v = to_measure(c);
+    s += v * v;
+  }
+  return s;
+}
+
+/// Cartesian coordinates of x to 80 digits (w != 0 for every sampled point).
+Vec3<Measure> cartesian(const RootPoint& x) {
+  const auto c = x.coords();
+  const Measure w = to_measure(c[3]);
+  return Vec3<Measure>(to_measure(c[0]) / w, to_measure(c[1]) / w, to_measure(c[2]) / w);
+}
+
+/// Largest distance of the points from A's centre (centroid where K is singular).
+Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
+  if (pts.empty()) return 0;
+  std::vector<Vec3<Measure>> xs;
+  for (const RootPoint& x : pts) xs.push_back(cartesian(x));
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  Vec3<Measure> c = Vec3<Measure>::Zero();
+  if (K.determinant() != 0) {
+    const Vec3<Q> cq = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+    for (int i = 0; i < 3; ++i) c(i) = to_measure(cq(i));
+  } else {
+    for (const auto& x : xs) c += x;
+    c /= Measure(static_cast<long>(xs.size()));
+  }
+  Measure best = 0;
+  for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
+  return best;
+}
+
+/// Points on the generator lines of the cone through the terminator points:
+/// x + b L for a few rational b, chosen so that the point lies about
+/// tau * size from x (tau = 1/2, -1/2, 1/4). At most 8 terminator points are used.
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
+  std::vector<RootPoint> out;
+  const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
+  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i) {
+    const RootPoint& x = terminator[i];
+    const auto c = x.coords();
+    const Measure w = to_measure(c[3]);
+    Measure d2 = 0;  // |L_xyz - L_w p|, p the Cartesian point
+    for (int k = 0; k < 3; ++k) {
+      const Measure dk = to_measure(L(k)) - to_measure(L(3)) * to_measure(c[k]) / w;
+      d2 += dk * dk;
+    }
+    if (!(d2 > 0) || !(size > 0)) continue;
+    const double scale = Measure(w * size / sqrt(d2)).convert_to<double>();
+    if (!std::isfinite(scale) || scale == 0) continue;
+    for (const Q& tau : taus) {
+      const Q b = tau * to_rational(scale);
+      out.emplace_back(Vec4<Q>(x.p() + b * L), x.q(), x.delta());
+    }
+  }
+  return out;
+}
+
+/// Rational points of the polar plane inside the object: the rational parts p
+/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + 2q, where
+/// both lie on the plane.
+std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
+  std::vector<RootPoint> out;
+  for (const RootPoint& x : terminator) {
+    if (out.size() >= 16) break;
+    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
+    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + 2 * x.q())})
+      if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index) {
+  return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + index;
+}
+
+ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uint64_t seed) {
+  const SampleReport s = sample_section(A, Vec4<Q>(A * L), n, seed);
+  ItemPoints out;
+  out.points = s.points;
+  out.exhausted = s.exhausted;
+  out.size = object_size(out.points, A);
+  out.generators = generator_points(out.points, L, out.size);
+  out.plane = plane_points(out.points, Vec4<Q>(A * L));
+  return out;
+}
+
+ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint64_t seed) {
+  const SampleReport s = sample_quadric(A, n, seed);
+  ItemPoints out;
+  out.exhausted = s.exhausted;
+  out.size = object_size(s.points, A);
+  for (const RootPoint& x : s.points) out.points.push_back(x.mapped(M));
+  return out;
+}
+
+std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Q>>& origin) {
+  if (!origin) return pts;
+  const Mat4<Q> T = translation<Q>(Vec3<Q>(-*origin));
+  std::vector<RootPoint> out;
+  out.reserve(pts.size());
+  for (const RootPoint& x : pts) out.push_back(x.mapped(T));
+  return out;
+}
+
+Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
+  Metric m;
+  const Measure qnorm = frobenius(Qm);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const RootPoint& x = pts[k];
+    const RootNumber f = x.form(Qm);
+    if (CGAL::is_zero(f)) continue;
+    m.all_zero = false;
+    const Measure fm = abs(to_measure(f));
+    if (qnorm > 0) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
+    Measure g = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Measure gi = to_measure(x.linear(Qm.row(i).transpose()));
+      g += gi * gi;
+    }
+    const Measure w = abs(to_measure(x.coords()[3]));
+    if (g > 0 && w > 0) {
+      const Measure d = fm / (w * 2 * sqrt(g));
+      m.distance = mmax(m.distance, d);
+      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
+    } else {
+      if (!m.singular) m.worst = k;
+      m.singular = true;
+    }
+  }
+  return m;
+}
+
+Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
+  Metric m;
+  const Measure pn = frobenius(pi), pxyz = frobenius(Vec3<Q>(pi.head<3>()));
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const RootPoint& x = pts[k];
+    const RootNumber f = x.linear(pi);
+    if (CGAL::is_zero(f)) continue;
+    m.all_zero = false;
+    const Measure fm = abs(to_measure(f));
+    if (pn > 0) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
+    const Measure w = abs(to_measure(x.coords()[3]));
+    if (pxyz > 0 && w > 0) {
+      const Measure d = fm / (w * pxyz);
+      m.distance = mmax(m.distance, d);
+      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
+    } else {
+      if (!m.singular) m.worst = k;
+      m.singular = true;
+    }
+  }
+  return m;
+}
+
+Measure relative(const Metric& m, const Measure& size) {
+  if (m.all_zero) return 0;
+  if (!(size > 0)) return m.residual;
+  if (m.singular) return std::numeric_limits<Measure>::infinity();
+  return m.distance / size;
+}
+
+ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P,
+                         const Vec4<Q>& polar, const Mat4<Q>& R) {
+  const std::vector<RootPoint> local = in_frame(pts.points, origin);
+  ShadowError e;
+  e.P = measure_quadric(local, P);
+  e.polar = measure_plane(local, polar);
+  e.R = measure_quadric(local, R);
+  e.generators = measure_quadric(in_frame(pts.generators, origin), P);
+  e.R_plane = measure_quadric(in_frame(pts.plane, origin), R);
+  for (const Metric* m : {&e.P, &e.polar, &e.R, &e.generators, &e.R_plane}) e.geometric = mmax(e.geometric, relative(*m, pts.size));
+  return e;
+}
+
+ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
+  ReflectionError e;
+  e.B = measure_quadric(in_frame(pts.points, origin), B);
+  e.geometric = relative(e.B, pts.size);
+  return e;
+}
+
+Mat4<Q> reference_mirror(const Vec4<Q>& plane) {
+  const Q nn = plane(0) * plane(0) + plane(1) * plane(1) + plane(2) * plane(2);
+  Mat4<Q> M = Mat4<Q>::Identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) M(i, j) -= 2 * plane(i) * plane(j) / nn;
+  return M;
+}
+
+}  // namespace qverify

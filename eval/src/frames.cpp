@@ -1,0 +1,63 @@
+#include <qverify/exact/rounding.hpp>
+#include <qverify/eval/frames.hpp>
+
+namespace qverify {
+
+using Q = Rational;
+
+std::optional<Vec3<Q>> natural_center(const QuadricSpec& q, const Mat4<Q>& A) {
+  auto v3 = [&](std::size_t i) { return Vec3<Q>(q.params[i].value, q.params[i + 1].value, q.params[i + 2].value); };
+  switch (q.shape) {
+    case Shape::sphere:
+    case Shape::ellipsoid:
+    case Shape::cylinder:
+    case Shape::cone: return v3(0);
+    case Shape::matrix:
+    case Shape::coefficients: {
+      const Mat3<Q> K = A.topLeftCorner<3, 3>();
+      if (K.determinant() == 0) return std::nullopt;
+      return Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
+    }
+  }
+  return std::nullopt;
+}
+
+Q size_squared(const Mat4<Q>& A_local) {
+  const Q k = max_abs(Mat3<Q>(A_local.topLeftCorner<3, 3>()));
+  const Q c0 = A_local(3, 3) < 0 ? Q(-A_local(3, 3)) : A_local(3, 3);
+  if (k == 0 || c0 == 0) return Q(1);
+  return c0 / k;
+}
+
+Vec3<Q> rounded_to_double(const Vec3<Q>& v) {
+  Vec3<Q> out;
+  for (int i = 0; i < 3; ++i) {
+    RoundingReport rep;
+    out(i) = to_rational(round_rational<double>(v(i), rep));
+  }
+  return out;
+}
+
+bool wants_local_frame(const Vec3<Q>& center, const Q& s2) {
+  const Q c = max_abs(center);
+  return c * c > Q(64 * 64) * s2;
+}
+
+long floor_log2(const Q& x) {
+  // 2^e <= x < 2^(e+1): compare bit lengths of numerator and denominator, then adjust.
+  const auto n = numerator(x), d = denominator(x);
+  long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));
+  Q p = e >= 0 ? Q(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e))
+               : Q(1) / Q(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(-e));
+  while (p > x) {
+    p /= 2;
+    --e;
+  }
+  while (p * 2 <= x) {
+    p *= 2;
+    ++e;
+  }
+  return e;
+}
+
+}  // namespace qverify

@@ -1,0 +1,84 @@
+#include <qverify/scene/files.hpp>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace qverify {
+
+namespace {
+
+std::string os_reason(int err) { return std::generic_category().message(err); }
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& reason) {
+  throw FileWriteError("cannot write " + path.string() + ": " + reason, path, reason);
+}
+
+/// Closes a descriptor once; the destructor covers the paths that throw.
+struct Descriptor {
+  int fd = -1;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+  int release_and_close() {
+    const int r = ::close(fd);
+    fd = -1;
+    return r;
+  }
+};
+
+}  // namespace
+
+void write_file(const std::filesystem::path& path, std::string_view contents) {
+  const std::string base = path.filename().string();
+  if (base.empty() || base == "." || base == "..") fail(path, "not a file name");
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+
+  // A fresh temporary next to the target (same file system, so the rename is atomic).
+  static std::atomic<unsigned long> counter{0};
+  std::filesystem::path tmp;
+  Descriptor d;
+  for (int attempt = 0; d.fd < 0; ++attempt) {
+    tmp = dir / ("." + base + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    d.fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (d.fd < 0 && (errno != EEXIST || attempt > 100)) fail(path, os_reason(errno));
+  }
+  auto give_up = [&](int err) {
+    if (d.fd >= 0) d.release_and_close();
+    ::unlink(tmp.c_str());
+    fail(path, os_reason(err));
+  };
+
+  const char* p = contents.data();
+  std::size_t left = contents.size();
+  while (left > 0) {
+    const ssize_t n = ::write(d.fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      give_up(errno);
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  // Errors the file system reports late (a full disk, a quota, NFS) surface at fsync or close.
+  if (::fsync(d.fd) != 0 && errno != EINVAL && errno != EROFS) give_up(errno);
+  if (d.release_and_close() != 0) give_up(errno);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) give_up(errno);
+}
+
+void create_output_directory(const std::filesystem::path& dir) {
+  if (dir.empty()) return;  // the current directory
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  std::string reason;
+  if (ec) reason = ec.message();
+  else if (!std::filesystem::is_directory(dir, ec)) reason = ec ? ec.message() : "exists and is not a directory";
+  if (!reason.empty())
+    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason);
+}
+
+}  // namespace qverify

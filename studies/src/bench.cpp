@@ -1,0 +1,1019 @@
+#include <qverify/core/batch.hpp>
+#include <qverify/core/mirror_division_free.hpp>
+#include <qverify/exact/interval.hpp>
+#include <qverify/exact/rounding.hpp>
+#include <qverify/exact/wide_int.hpp>
+#include <qverify/eval/accuracy.hpp>
+#include <qverify/studies/bench.hpp>
+#include <qverify/eval/eval.hpp>
+#include <qverify/verify/point_filter.hpp>
+
+#include <CGAL/Mpzf.h>
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+namespace qverify {
+
+using json = nlohmann::ordered_json;
+using Int = __int128;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ------------------------------------------------------------------------------ inputs
+
+/// The three kinds of inputs, each with double, interval and exact rows.
+enum class Kind { small_rational, double_valued, decimal17 };
+constexpr Kind kKinds[] = {Kind::small_rational, Kind::double_valued, Kind::decimal17};
+const char* kind_name(Kind k) {
+  switch (k) {
+    case Kind::small_rational: return "small-rational";
+    case Kind::double_valued: return "double-valued";
+    case Kind::decimal17: return "decimal-17";
+  }
+  return "";
+}
+
+/// Counter-based random numbers (splitmix64 of the index): value k of a stream
+/// is the same whatever thread draws it and in which order.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+std::uint64_t draw(std::uint64_t seed, std::uint64_t k) { return mix(mix(seed) ^ k); }
+
+/// Entry k of item i: A's ten entries are 0..9, the light's x, y, z are 10..12.
+std::uint64_t entry_index(Eigen::Index i, int k) { return static_cast<std::uint64_t>(i) * 16 + static_cast<std::uint64_t>(k); }
+
+constexpr std::uint64_t kSeedSmall = 1, kSeedDouble = 18, kSeedDecimal = 1817;
+
+/// A random small rational p/q (|p| <= 20, 1 <= q <= 9): entry k of item i.
+struct SmallRational {
+  std::int32_t p, q;
+};
+SmallRational small_rational(Eigen::Index i, int k) {
+  const std::uint64_t r = draw(kSeedSmall, entry_index(i, k));
+  return {static_cast<std::int32_t>(r % 41) - 20, static_cast<std::int32_t>((r >> 8) % 9) + 1};
+}
+
+/// Small rationals of n items as numerator and denominator arrays (14 columns: A's ten
+/// entries, the light's x, y, z and w = 1/1), for the exact rows.
+struct RationalInputs {
+  Eigen::Matrix<std::int32_t, Eigen::Dynamic, 14, Eigen::RowMajor> num, den;
+  RationalInputs(Eigen::Index n, int threads) : num(n, 14), den(n, 14) {
+    parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index i = b; i < e; ++i) {
+        for (int k = 0; k < 13; ++k) {
+          const SmallRational x = small_rational(i, k);
+          num(i, k) = x.p, den(i, k) = x.q;
+        }
+        num(i, 13) = den(i, 13) = 1;
+      }
+    });
+  }
+};
+
+/// A double with a full 53-bit mantissa (top bit set, 52 random bits), |x| in
+/// [2^e, 2^(e+1)) with e uniform in -30..30, random sign.
+double random_double(std::uint64_t seed, std::uint64_t k) {
+  const std::uint64_t r = draw(seed, 2 * k), s = draw(seed, 2 * k + 1);
+  const std::uint64_t m = (r >> 11) | (std::uint64_t(1) << 52);
+  const int e = static_cast<int>(s % 61) - 30;
+  const double x = std::ldexp(static_cast<double>(m), e - 52);
+  return (s >> 63) ? -x : x;
+}
+
+/// Decimal text with 17 significant digits: m 10^e, 10^16 <= |m| < 10^17,
+/// |x| in [10^k, 10^(k+1)) with k uniform in -9..8 (about 2^-30 .. 2^30).
+struct Decimal {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Decimal random_decimal(std::uint64_t seed, std::uint64_t k) {
+  const std::uint64_t r = draw(seed, 2 * k), s = draw(seed, 2 * k + 1);
+  const auto m = static_cast<std::int64_t>(10000000000000000ull + r % 90000000000000000ull);
+  const int k10 = static_cast<int>(s % 18) - 9;
+  return {(s >> 63) ? -m : m, k10 - 16};
+}
+/// The text of a decimal ("-12345678901234567e-20") into buf (48 bytes); returns its end.
+char* decimal_text(const Decimal& d, char* buf) {
+  char* p = std::to_chars(buf, buf + 24, d.m).ptr;  // at most 20 characters
+  *p++ = 'e';
+  return std::to_chars(p, buf + 40, d.e).ptr;
+}
+/// The double nearest to the decimal text (std::from_chars rounds correctly).
+double nearest_double(const Decimal& d) {
+  char buf[48];
+  const char* end = decimal_text(d, buf);
+  double x = 0;
+  std::from_chars(buf, end, x);
+  return x;
+}
+Rational pow10_rational(int e) {
+  boost::multiprecision::mpz_int p = 1;
+  for (int k = 0; k < std::abs(e); ++k) p *= 10;
+  return e >= 0 ? Rational(p) : Rational(1) / Rational(p);
+}
+Rational decimal_value(const Decimal& d) { return Rational(d.m) * pow10_rational(d.e); }
+
+/// Exact inputs of one item of a kind, as rationals (light (x, y, z, 1)).
+void exact_item(Kind kind, Eigen::Index i, Mat4<Rational>& A, Vec4<Rational>& L) {
+  auto value = [&](int k) {
+    if (kind == Kind::double_valued) return Rational(random_double(kSeedDouble, entry_index(i, k)));
+    return decimal_value(random_decimal(kSeedDecimal, entry_index(i, k)));
+  };
+  for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = value(k);
+  for (int k = 0; k < 3; ++k) L(k) = value(10 + k);
+  L(3) = 1;
+}
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Runs every job once per round, `rounds` rounds, always in the same order, and
+/// returns each job's times (job-major). Interleaving makes every row, and the
+/// bandwidth copy, sample the same moments of a shared machine: a ratio of two
+/// rows (interval against double) or of a row to the bandwidth then measures the
+/// code, not which minute each was timed in.
+std::vector<std::vector<double>> interleaved_times(int rounds, const std::vector<std::function<void()>>& jobs,
+                                                   const std::function<void(int)>& before_round) {
+  std::vector<std::vector<double>> t(jobs.size());
+  for (int r = 0; r < rounds; ++r) {
+    before_round(r);
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      const auto t0 = Clock::now();
+      jobs[j]();
+      t[j].push_back(seconds_since(t0));
+    }
+  }
+  return t;
+}
+
+double best_of(const std::vector<double>& t) { return *std::min_element(t.begin(), t.end()); }
+double median_of(std::vector<double> t) {
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+/// Stream copy of as many bytes as `bytes` (half read, half written) on `threads`
+/// threads: one sample of the machine's sustainable bandwidth. The copy writes with
+/// non-temporal stores, as the double batches do (a plain memcpy may read every
+/// destination line first and then understates what the machine moves).
+struct StreamCopy {
+  Eigen::VectorXd src, dst;
+  explicit StreamCopy(std::size_t bytes) {
+    const auto half = static_cast<Eigen::Index>(bytes / 2 / sizeof(double) / 2 * 2);
+    src = Eigen::VectorXd::Constant(half, 1.0);
+    dst = Eigen::VectorXd::Zero(half);
+  }
+  double bytes() const { return static_cast<double>(2 * src.size() * sizeof(double)); }
+  void operator()(int threads) {
+    parallel_for(src.size() / 2, threads, [&](Eigen::Index b, Eigen::Index e) {
+      const double* s = src.data();
+      double* d = dst.data();
+      for (Eigen::Index i = 2 * b; i < 2 * e; i += 2) {
+#if defined(__SSE2__)
+        _mm_stream_pd(d + i, _mm_load_pd(s + i));
+#else
+        d[i] = s[i], d[i + 1] = s[i + 1];
+#endif
+      }
+      store_fence();
+    });
+  }
+};
+
+/// Exact items: each item's denominators are cleared (a positive factor: the
+/// results are projective), then the generic formulas run on 128-bit integers,
+/// with no gcd and no division. The bit bound of the inputs proves there is no
+/// overflow; items beyond it would need GMP (counted per row, none in this benchmark).
+long lcm_of(const std::int32_t* d, int k) {
+  long l = 1;
+  for (int j = 0; j < k; ++j) l = std::lcm(l, static_cast<long>(d[j]));
+  return l;
+}
+
+int bits(Int x) {
+  if (x < 0) x = -x;
+  int b = 0;
+  while (x > 0) x >>= 1, ++b;
+  return b;
+}
+
+constexpr std::size_t kShadowBytes = (10 + 4) * 8 + (10 + 4 + 10) * 8;  ///< double A, L in; P, pi, R out
+constexpr std::size_t kReflectionBytes = (10 + 4) * 8 + (12 + 10) * 8;  ///< double A, plane in; M, B out
+
+/// The widest x86 vector extension this build was compiled for.
+const char* instruction_set() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__)
+  return "AVX2";
+#elif defined(__AVX__)
+  return "AVX";
+#elif defined(__SSE2__)
+  return "SSE2";
+#else
+  return "scalar";
+#endif
+}
+
+// ------------------------------------------------------- exact arithmetic for doubles
+
+/// Exact rows on double-valued and decimal-17 inputs: WideInt<10> (640-bit
+/// integers in place, exact/wide_int.hpp) after aligning each matrix's exponents.
+using W = WideInt<10>;
+constexpr int kWideBits = 64 * W::max_limbs;
+
+/// Bit bounds of the results from the bits of the integer inputs (bA for A,
+/// bL for the light or plane): |pi_i| < 2^(bA+bL+2), |L.pi| < 2^(bA+2bL+4),
+/// |P_ij| < 2^(2bA+2bL+5); the division-free mirror matrix < 2^(2bL+3) and
+/// (n.n)^2 B < 2^(bA+4bL+8) (mirror_division_free.hpp). Every intermediate is below
+/// its result's bound.
+bool shadow_fits(int bA, int bL) { return 2 * bA + 2 * bL + 5 <= kWideBits; }
+bool reflection_fits(int bA, int bL) { return bA + 4 * bL + 10 <= kWideBits; }
+
+template <int R, int C> int max_bits(const Eigen::Matrix<W, R, C>& m) {
+  int b = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) b = std::max(b, m(i).bits());
+  return b;
+}
+
+/// A double-valued item as integers: A = A_int 2^eA, L = L_int 2^eL (each
+/// matrix shifted to the smallest binary exponent of its entries). False when
+/// an entry does not fit (WideIntOverflow).
+bool wide_item(const double* a, const double* l, Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) {
+  eA = binary_exponent(a[0]);
+  for (int k = 1; k < 10; ++k) eA = std::min(eA, binary_exponent(a[k]));
+  eL = binary_exponent(l[0]);
+  for (int k = 1; k < 4; ++k) eL = std::min(eL, binary_exponent(l[k]));
+  try {
+    for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = wide_from_double<10>(a[k], eA);
+    for (int k = 0; k < 4; ++k) L(k) = wide_from_double<10>(l[k], eL);
+  } catch (const WideIntOverflow&) {
+    return false;
+  }
+  return true;
+}
+
+/// A decimal-17 item as integers: A = A_int 10^kA (each matrix scaled to the
+/// smallest decimal exponent of its entries). False when an entry does not fit.
+bool wide_item(const Decimal* a, const Decimal* l, Mat4<W>& A, Vec4<W>& L, int& kA, int& kL) {
+  kA = a[0].e, kL = l[0].e;
+  for (int k = 1; k < 10; ++k) kA = std::min(kA, a[k].e);
+  for (int k = 1; k < 4; ++k) kL = std::min(kL, l[k].e);
+  try {
+    for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = wide_from_decimal<10>(a[k].m, a[k].e - kA);
+    for (int k = 0; k < 4; ++k) L(k) = wide_from_decimal<10>(l[k].m, l[k].e - kL);
+  } catch (const WideIntOverflow&) {
+    return false;
+  }
+  return true;
+}
+
+/// Exact results of one item, kept in a per-thread ring (the rows time the
+/// computation and its stores, not memory for n results of varying size).
+struct WideShadowOut {
+  W P[10], pi[4], R[10];
+  int scale = 0;  ///< the results are these integers times base^scale
+};
+struct WideReflectionOut {
+  W M[12], B[10];
+  int scale = 0;
+};
+constexpr std::size_t kRing = 1024;
+constexpr Eigen::Index kCandidateItems = 4000;  ///< items for the exact arithmetic candidates
+
+void wide_shadow(const Mat4<W>& A, const Vec4<W>& L, WideShadowOut& o) {
+  const Vec4<W> p = polar_plane<W>(A, L);
+  const Mat4<W> P = tangent_cone_from_polar<W>(A, L, p);
+  const Mat4<W> R = terminator_quadric_from_polar<W>(L, p);
+  for (int k = 0; k < 10; ++k) o.P[k] = P(kSymRow[k], kSymCol[k]), o.R[k] = R(kSymRow[k], kSymCol[k]);
+  for (int k = 0; k < 4; ++k) o.pi[k] = p(k);
+}
+void wide_reflection(const Mat4<W>& A, const Vec4<W>& plane, WideReflectionOut& o) {
+  const Mat4<W> M = scaled_mirror_matrix<W>(plane);
+  const Mat4<W> B = mirror_image_division_free<W>(A, plane);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) o.M[4 * r + c] = M(r, c);
+  for (int k = 0; k < 10; ++k) o.B[k] = B(kSymRow[k], kSymCol[k]);
+}
+
+/// Items beyond the WideInt bound run on GMP rationals (counted; none in this benchmark).
+template <class S> void generic_shadow(const Mat4<S>& A, const Vec4<S>& L, Mat4<S>& P, Mat4<S>& R) {
+  const Vec4<S> p = polar_plane<S>(A, L);
+  P = tangent_cone_from_polar<S>(A, L, p);
+  R = terminator_quadric_from_polar<S>(L, p);
+}
+template <class S> void generic_reflection(const Mat4<S>& A, const Vec4<S>& plane, Mat4<S>& M, Mat4<S>& B) {
+  M = scaled_mirror_matrix<S>(plane);
+  B = mirror_image_division_free<S>(A, plane);
+}
+
+// ------------------------------------------------------------------------- threads
+
+/// Runs f(t, b, e) on `threads` threads over contiguous ranges of [0, n) of about
+/// equal weight (weights[i] per element).
+template <class F> void weighted_threads(const std::vector<std::size_t>& weights, int threads, F&& f) {
+  const std::size_t n = weights.size();
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<std::size_t>(n, 1))));
+  const std::size_t total = std::accumulate(weights.begin(), weights.end(), std::size_t(0));
+  std::vector<std::size_t> cut{0};
+  std::size_t acc = 0;
+  for (std::size_t i = 0; i < n && static_cast<int>(cut.size()) < threads; ++i) {
+    acc += weights[i];
+    if (acc * static_cast<std::size_t>(threads) >= total * cut.size()) cut.push_back(i + 1);
+  }
+  while (static_cast<int>(cut.size()) <= threads) cut.push_back(n);
+  cut.back() = n;
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t)
+    if (cut[t] < cut[t + 1]) pool.emplace_back([&f, t, &cut] { f(t, cut[t], cut[t + 1]); });
+  if (cut[0] < cut[1]) f(0, cut[0], cut[1]);
+  for (auto& th : pool) th.join();
+}
+
+// -------------------------------------------------------------------- verification
+
+constexpr int kVerifySamples = kDefaultSamples;  ///< exact points per item, as `verify`
+constexpr double kVerifyAccuracy = kDefaultAccuracy;
+
+Mat4<double> rounded(const Mat4<Rational>& m) {
+  Mat4<double> out;
+  RoundingReport rep;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = round_rational<double>(m(i), rep);
+  return out;
+}
+Vec4<double> rounded(const Vec4<Rational>& v) {
+  Vec4<double> out;
+  RoundingReport rep;
+  for (int i = 0; i < 4; ++i) out(i) = round_rational<double>(v(i), rep);
+  return out;
+}
+
+/// One verified shadow item: its exact terminator points (enclosed, and cleared
+/// for proof mode), the correctly rounded double results and the exact ones.
+struct VerifyShadow {
+  FilterPoints pts;    ///< terminator points: P, the polar plane and R
+  FilterPoints gen;    ///< points of the cone's generator lines: P
+  FilterPoints plane;  ///< rational points of the polar plane inside the object: R
+  Mat4<double> P, R;
+  Vec4<double> pi;
+  IntegerQuadric Pe, Re;
+  IntegerPlane pie;
+  std::size_t pairs() const { return 3 * pts.exact.size() + gen.exact.size() + plane.exact.size(); }
+  std::size_t points() const { return pts.exact.size() + gen.exact.size() + plane.exact.size(); }
+};
+struct VerifyReflection {
+  FilterPoints pts;
+  Mat4<double> B;
+  IntegerQuadric Be;
+};
+
+}  // namespace
+
+long bench_exact_items(long n) { return std::max(1000L, n / 10); }
+int bench_verify_items(long n) { return static_cast<int>(std::clamp(n / 50000, 8L, 200L)); }
+
+std::size_t bench_bytes_per_item() {
+  // double and interval inputs (A, L), outputs of both ops, and the copy's two halves
+  return (10 + 4) * 8 * 3 + ((10 + 4 + 10) + (12 + 10)) * 8 * 3 + kShadowBytes;
+}
+
+json processor_info() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, vendor, model_name, flags;
+  json family = nullptr, model = nullptr;
+  auto trim = [](std::string s) {
+    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (!vendor.empty()) break;  // the first processor's block
+      continue;
+    }
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string key = trim(line.substr(0, colon)), value = trim(line.substr(colon + 1));
+    if (key == "vendor_id") vendor = value;
+    else if (key == "model name") model_name = value;
+    else if (key == "cpu family") family = std::atoi(value.c_str());
+    else if (key == "model") model = std::atoi(value.c_str());
+    else if (key == "flags") flags = " " + value + " ";
+  }
+  json supports = json::array();
+  for (const auto& [flag, name] : {std::pair{"sse2", "SSE2"}, {"avx2", "AVX2"}, {"avx512f", "AVX-512"}, {"avx512ifma", "AVX-512 IFMA"}})
+    if (flags.find(std::string(" ") + flag + " ") != std::string::npos) supports.push_back(name);
+  return {{"vendor", vendor.empty() ? json(nullptr) : json(vendor)},
+          {"model_name", model_name.empty() ? json(nullptr) : json(model_name)},
+          {"family", family},
+          {"model", model},
+          {"instruction_set", instruction_set()},
+          {"lanes", DoublePack::size()},
+          {"supports", supports},
+          {"logical_cpus", std::thread::hardware_concurrency()},
+          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for"}};
+}
+
+json run_bench(const BenchOptions& opt) {
+  const Eigen::Index n = opt.n;
+  const int T = opt.threads;
+  const int rounds = opt.repeats;
+  json rows = json::array();
+  auto say = [&](const std::string& s) {
+    if (opt.progress) opt.progress(s);
+  };
+  auto per_item_ns = [](const std::vector<double>& times, double items) {
+    json a = json::array();
+    for (double t : times) a.push_back(1e9 * t / items);
+    return a;
+  };
+  auto add_row = [&](Kind kind, const char* op, const char* precision, const char* method, const std::vector<double>& times,
+                     std::size_t bytes, Eigen::Index items, json extra = json::object()) {
+    const double ips = static_cast<double>(items) / best_of(times);
+    json r{{"op", op},
+           {"precision", precision},
+           {"method", method},
+           {"inputs", kind_name(kind)},
+           {"n", items},
+           {"items_per_s", ips},
+           {"ns_per_item", 1e9 / ips},
+           {"ns_per_item_median", 1e9 * median_of(times) / static_cast<double>(items)},
+           {"ns_per_item_runs", per_item_ns(times, static_cast<double>(items))},
+           {"bytes_per_item", bytes},
+           {"roofline_fraction", nullptr}};  // once the bandwidth is final
+    for (auto& [k, v] : extra.items()) r[k] = v;
+    rows.push_back(r);
+  };
+  auto progress = [&](const std::string& what) {
+    return [&, what](int r) {
+      say("bench: " + what + ", round " + std::to_string(r + 1) + "/" + std::to_string(rounds));
+    };
+  };
+  // Certified intervals: Interval_nt<false> with the rounding mode set once per thread; the
+  // batch runs them as IntervalPack, W per instruction (exact/interval_pack.hpp).
+  using I = CGAL::Interval_nt<false>;
+  auto guard = [] { return CGAL::Protect_FPU_rounding<true>(); };
+
+  // The bandwidth: a stream copy of as many bytes as the double shadow row moves.
+  StreamCopy copy(static_cast<std::size_t>(n) * kShadowBytes);
+  std::vector<double> copy_times;
+  double generation_s = 0;
+  {  // ---- double and interval rows: every kind of input in every round, into the same buffers
+    SymBatch<double> A(n, 10);
+    Vec4Batch<double> L(n, 4);
+    SymBatch<I> AI(n, 10);
+    Vec4Batch<I> LI(n, 4);
+    SymBatch<double> P = SymBatch<double>::Zero(n, 10), R = SymBatch<double>::Zero(n, 10),
+                     B = SymBatch<double>::Zero(n, 10);
+    Vec4Batch<double> pi = Vec4Batch<double>::Zero(n, 4);
+    AffineBatch<double> M = AffineBatch<double>::Zero(n, 12);
+    SymBatch<I> PI(n, 10), RI(n, 10), BI(n, 10);
+    Vec4Batch<I> piI(n, 4);
+    AffineBatch<I> MI(n, 12);
+    PI.setZero(), RI.setZero(), BI.setZero(), piI.setZero(), MI.setZero();
+    // The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals), untimed.
+    auto fill = [&](Kind kind) {
+      const auto t0 = Clock::now();
+      if (kind == Kind::small_rational) {
+        // doubles: p/q rounded once; intervals: the enclosure of p/q. Lights (x, y, z, 1)
+        // with z != 0 (a zero z becomes 1), so that the mirror plane has a normal.
+        parallel_for(n, T, [&](Eigen::Index b, Eigen::Index e) {
+          for (Eigen::Index i = b; i < e; ++i) {
+            for (int k = 0; k < 13; ++k) {
+              const SmallRational x = small_rational(i, k);
+              const double v = static_cast<double>(x.p) / static_cast<double>(x.q);
+              if (k < 10) A(i, k) = v;
+              else L(i, k - 10) = v;
+            }
+            L(i, 3) = 1;
+            if (L(i, 2) == 0) L(i, 2) = 1;
+          }
+          CGAL::Protect_FPU_rounding<true> up;  // the intervals round outwards
+          for (Eigen::Index i = b; i < e; ++i) {
+            for (int k = 0; k < 13; ++k) {
+              const SmallRational x = small_rational(i, k);
+              const I v = I(static_cast<double>(x.p)) / I(static_cast<double>(x.q));
+              if (k < 10) AI(i, k) = v;
+              else LI(i, k - 10) = v;
+            }
+            LI(i, 3) = I(1);
+            if (small_rational(i, 12).p == 0) LI(i, 2) = I(1);
+          }
+        });
+      } else {
+        // double-valued: the doubles themselves (point intervals); decimal-17: the double
+        // nearest to the text, and an enclosure of the text's value (one ulp each side)
+        parallel_for(n, T, [&](Eigen::Index b, Eigen::Index e) {
+          for (Eigen::Index i = b; i < e; ++i)
+            for (int k = 0; k < 13; ++k) {
+              double x, lo, hi;
+              if (kind == Kind::double_valued) {
+                x = lo = hi = random_double(kSeedDouble, entry_index(i, k));
+              } else {
+                x = nearest_double(random_decimal(kSeedDecimal, entry_index(i, k)));
+                lo = std::nextafter(x, -HUGE_VAL), hi = std::nextafter(x, HUGE_VAL);
+              }
+              if (k < 10) A(i, k) = x, AI(i, k) = I(lo, hi);
+              else L(i, k - 10) = x, LI(i, k - 10) = I(lo, hi);
+            }
+          for (Eigen::Index i = b; i < e; ++i) L(i, 3) = 1, LI(i, 3) = I(1);
+        });
+      }
+      generation_s += seconds_since(t0);
+    };
+    // Each round: the copy, then for each kind its inputs (converted again, untimed) and the
+    // four double and interval direct rows, then the copy again.
+    std::vector<std::vector<double>> t(3 * 4);
+    const std::vector<std::function<void()>> direct_rows{
+        [&] { shadow_batch<double>(A, L, Method::direct, P, pi, R, T); },
+        [&] { reflection_batch<double>(A, L, Method::direct, M, B, T); },
+        [&] { shadow_batch<I>(AI, LI, Method::direct, PI, piI, RI, T, guard); },
+        [&] { reflection_batch<I>(AI, LI, Method::direct, MI, BI, T, false, guard); }};
+    auto timed_copy = [&] {
+      const auto t0 = Clock::now();
+      copy(T);
+      copy_times.push_back(seconds_since(t0));
+    };
+    for (int r = 0; r < rounds; ++r) {
+      say("bench: stream copy, double and interval direct rows of every kind of input, round " + std::to_string(r + 1) +
+          "/" + std::to_string(rounds));
+      timed_copy();
+      for (std::size_t k = 0; k < 3; ++k) {
+        fill(kKinds[k]);
+        for (std::size_t j = 0; j < 4; ++j) {
+          const auto t0 = Clock::now();
+          direct_rows[j]();
+          t[4 * k + j].push_back(seconds_since(t0));
+        }
+      }
+      timed_copy();
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      add_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n);
+      add_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n);
+      add_row(kKinds[k], "shadow", "interval", "direct", t[4 * k + 2], 2 * kShadowBytes, n);
+      add_row(kKinds[k], "reflection", "interval", "direct", t[4 * k + 3], 2 * kReflectionBytes, n);
+    }
+    // the paper route (one item at a time) against the direct one, on the same items
+    for (Kind kind : kKinds) {
+      fill(kind);
+      const auto tp = interleaved_times(rounds,
+                                        {[&] { shadow_batch<double>(A, L, Method::paper, P, pi, R, T); },
+                                         [&] { reflection_batch<double>(A, L, Method::paper, M, B, T); }},
+                                        progress(std::string(kind_name(kind)) + ": double paper rows"));
+      add_row(kind, "shadow", "double", "paper", tp[0], kShadowBytes, n);
+      add_row(kind, "reflection", "double", "paper", tp[1], kReflectionBytes, n);
+    }
+  }
+  {  // ---- exact, small rationals: denominators cleared per item, 128-bit integers, no gcd, no division
+    SymBatch<Int> P(n, 10), R(n, 10), B(n, 10);
+    Vec4Batch<Int> pi(n, 4);
+    AffineBatch<Int> M(n, 12);
+    P.setZero(), R.setZero(), B.setZero(), pi.setZero(), M.setZero();
+    // The same items as above, as numerators and denominators (the arrays exist only now:
+    // 112 bytes per item less at the memory peak of the double and interval rows).
+    const RationalInputs q(n, T);
+    std::atomic<long> beyond_bound{0};  // items beyond the 128-bit bound (GMP would be needed)
+    auto load = [&](Eigen::Index i, Mat4<Int>& a, Vec4<Int>& l) {
+      const long la = lcm_of(&q.den(i, 0), 10);
+      for (int k = 0; k < 10; ++k) {
+        const Int v = Int(q.num(i, k)) * (la / q.den(i, k));
+        a(kSymRow[k], kSymCol[k]) = a(kSymCol[k], kSymRow[k]) = v;
+      }
+      const long ll = lcm_of(&q.den(i, 10), 3);
+      for (int k = 0; k < 3; ++k) l(k) = Int(q.num(i, 10 + k)) * (ll / q.den(i, 10 + k));
+      l(3) = Int(ll);  // the point (x, y, z, 1) times its common denominator
+      if (l(2) == 0) l(2) = Int(ll);
+    };
+    auto shadow_exact = [&](Eigen::Index b, Eigen::Index e) {
+      Mat4<Int> a;
+      Vec4<Int> l;
+      for (Eigen::Index i = b; i < e; ++i) {
+        load(i, a, l);
+        // bit bound: |P| < 2^(3 bits(A) + 2 bits(L) + 5) must fit in 127 bits
+        if (3 * bits(max_abs(a)) + 2 * bits(max_abs(l)) + 5 > 126) {
+          ++beyond_bound;
+          continue;
+        }
+        const Vec4<Int> p = polar_plane<Int>(a, l);
+        scatter_sym(P, i, tangent_cone_from_polar<Int>(a, l, p));
+        pi.row(i) = p.transpose();
+        scatter_sym(R, i, terminator_quadric_from_polar<Int>(l, p));
+      }
+    };
+    auto reflection_exact = [&](Eigen::Index b, Eigen::Index e) {
+      Mat4<Int> a;
+      Vec4<Int> pl;
+      for (Eigen::Index i = b; i < e; ++i) {
+        load(i, a, pl);
+        if (bits(max_abs(a)) + 6 * bits(max_abs(pl)) + 8 > 126) {
+          ++beyond_bound;
+          continue;
+        }
+        const Mat4<Int> m = scaled_mirror_matrix<Int>(pl);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 4; ++c) M(i, 4 * r + c) = m(r, c);
+        scatter_sym(B, i, mirror_image_division_free<Int>(a, pl));
+      }
+    };
+    const auto t = interleaved_times(rounds, {[&] { parallel_for(n, T, shadow_exact); }, [&] { parallel_for(n, T, reflection_exact); }},
+                                     progress("small-rational: exact rows"));
+    const char* how = "128-bit integers after clearing each item's denominators, no gcd, no division (bit bound checked)";
+    add_row(Kind::small_rational, "shadow", "exact", "direct", t[0], (10 + 4) * 8 + (10 + 4 + 10) * 16, n, {{"arithmetic", how}});
+    add_row(Kind::small_rational, "reflection", "exact", "direct", t[1], (10 + 4) * 8 + (12 + 10) * 16, n,
+            {{"arithmetic", std::string(how) + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)"}});
+    if (beyond_bound > 0)
+      for (int k : {2, 1}) rows[rows.size() - k]["items_beyond_bit_bound"] = beyond_bound.load() / (2 * rounds);
+  }
+  // ---- exact, double-valued and decimal-17 inputs: WideInt<10> after aligning exponents
+  const Eigen::Index nx = std::min<Eigen::Index>(n, bench_exact_items(n));
+  json candidates = json::array();
+  for (Kind kind : {Kind::double_valued, Kind::decimal17}) {
+    const std::string K = kind_name(kind);
+    std::vector<double> da, dl;
+    std::vector<Decimal> ca, cl;
+    if (kind == Kind::double_valued) da.resize(static_cast<std::size_t>(nx) * 10), dl.resize(static_cast<std::size_t>(nx) * 4);
+    else ca.resize(static_cast<std::size_t>(nx) * 10), cl.resize(static_cast<std::size_t>(nx) * 4);
+    parallel_for(nx, T, [&](Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index i = b; i < e; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        for (int k = 0; k < 13; ++k) {
+          if (kind == Kind::double_valued) (k < 10 ? da[u * 10 + k] : dl[u * 4 + k - 10]) = random_double(kSeedDouble, entry_index(i, k));
+          else (k < 10 ? ca[u * 10 + k] : cl[u * 4 + k - 10]) = random_decimal(kSeedDecimal, entry_index(i, k));
+        }
+        if (kind == Kind::double_valued) dl[u * 4 + 3] = 1;
+        else cl[u * 4 + 3] = Decimal{1, 0};
+      }
+    });
+    std::atomic<long> beyond{0};
+    auto load = [&](Eigen::Index i, Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) {
+      const auto u = static_cast<std::size_t>(i);
+      return kind == Kind::double_valued ? wide_item(&da[u * 10], &dl[u * 4], A, L, eA, eL)
+                                         : wide_item(&ca[u * 10], &cl[u * 4], A, L, eA, eL);
+    };
+    auto fallback = [&](Eigen::Index i, bool shadow) {  // GMP rationals for an item beyond the bound
+      ++beyond;
+      Mat4<Rational> A, X, Y;
+      Vec4<Rational> L;
+      exact_item(kind, i, A, L);
+      if (shadow) generic_shadow<Rational>(A, L, X, Y);
+      else generic_reflection<Rational>(A, L, X, Y);
+    };
+    auto shadow_kernel = [&](Eigen::Index b, Eigen::Index e) {
+      std::vector<WideShadowOut> ring(kRing);
+      Mat4<W> A;
+      Vec4<W> L;
+      int eA, eL;
+      for (Eigen::Index i = b; i < e; ++i) {
+        if (!load(i, A, L, eA, eL) || !shadow_fits(max_bits(A), max_bits(L))) {
+          fallback(i, true);
+          continue;
+        }
+        WideShadowOut& o = ring[static_cast<std::size_t>(i) % kRing];
+        try {
+          wide_shadow(A, L, o);
+        } catch (const WideIntOverflow&) {
+          fallback(i, true);
+          continue;
+        }
+        o.scale = 2 * eA + 2 * eL;
+      }
+    };
+    auto reflection_kernel = [&](Eigen::Index b, Eigen::Index e) {
+      std::vector<WideReflectionOut> ring(kRing);
+      Mat4<W> A;
+      Vec4<W> L;
+      int eA, eL;
+      for (Eigen::Index i = b; i < e; ++i) {
+        if (!load(i, A, L, eA, eL) || !reflection_fits(max_bits(A), max_bits(L))) {
+          fallback(i, false);
+          continue;
+        }
+        WideReflectionOut& o = ring[static_cast<std::size_t>(i) % kRing];
+        try {
+          wide_reflection(A, L, o);
+        } catch (const WideIntOverflow&) {
+          fallback(i, false);
+          continue;
+        }
+        o.scale = eA + 4 * eL;
+      }
+    };
+    const auto t = interleaved_times(rounds, {[&] { parallel_for(nx, T, shadow_kernel); }, [&] { parallel_for(nx, T, reflection_kernel); }},
+                                     progress(K + ": exact rows"));
+    const std::string how =
+        kind == Kind::double_valued
+            ? "WideInt<10> (640-bit integers in place, exact/wide_int.hpp) after shifting each matrix's doubles to the "
+              "smallest binary exponent among its entries: the exact results times a power of two; no gcd, no division, "
+              "no allocation (bit bound checked, GMP rationals beyond it)"
+            : "WideInt<10> after scaling each matrix's decimal text m 10^e to the smallest decimal exponent among its "
+              "entries (integers times a power of ten): the exact results times a power of ten (bit bound checked, "
+              "GMP rationals beyond it)";
+    const std::size_t in_bytes = (10 + 4) * (kind == Kind::double_valued ? 8 : sizeof(Decimal));
+    add_row(kind, "shadow", "exact", "direct", t[0], in_bytes + sizeof(WideShadowOut), nx,
+            {{"arithmetic", how}, {"results", "kept in a ring of 1024 items per thread"}});
+    add_row(kind, "reflection", "exact", "direct", t[1], in_bytes + sizeof(WideReflectionOut), nx,
+            {{"arithmetic", how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)"},
+             {"results", "kept in a ring of 1024 items per thread"}});
+    if (beyond > 0)
+      for (int k : {2, 1}) rows[rows.size() - k]["items_beyond_bit_bound"] = beyond.load() / (2 * rounds);
+
+    if (kind == Kind::double_valued) {
+      // ---- the candidates for exact arithmetic on doubles, on the same items, one thread, all
+      // of them in every round (a shared machine: each round samples the same moments for all)
+      const Eigen::Index m = std::min<Eigen::Index>(nx, kCandidateItems);
+      say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
+      auto inputs_as = [&](auto tag) {
+        using S = decltype(tag);
+        std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>> in;
+        in.first.resize(static_cast<std::size_t>(m)), in.second.resize(static_cast<std::size_t>(m));
+        for (Eigen::Index i = 0; i < m; ++i)
+          for (int k = 0; k < 14; ++k) {
+            const auto u = static_cast<std::size_t>(i);
+            const double v = k < 10 ? da[u * 10 + k] : dl[u * 4 + k - 10];
+            if (k < 10) in.first[u](kSymRow[k], kSymCol[k]) = in.first[u](kSymCol[k], kSymRow[k]) = S(v);
+            else in.second[u](k - 10) = S(v);
+          }
+        return in;
+      };
+      const auto mpzf = inputs_as(CGAL::Mpzf());
+      const auto mpq = inputs_as(Rational());
+      auto generic_jobs = [m](const auto& inputs) {
+        using S = typename std::decay_t<decltype(inputs.first)>::value_type::Scalar;
+        const auto* in = &inputs;  // outlives the jobs
+        return std::vector<std::function<void()>>{
+            [in, m] {
+              Mat4<S> X, Y;
+              for (Eigen::Index i = 0; i < m; ++i) generic_shadow<S>(in->first[i], in->second[i], X, Y);
+            },
+            [in, m] {
+              Mat4<S> X, Y;
+              for (Eigen::Index i = 0; i < m; ++i) generic_reflection<S>(in->first[i], in->second[i], X, Y);
+            }};
+      };
+      std::vector<std::function<void()>> jobs{[&] { shadow_kernel(0, m); }, [&] { reflection_kernel(0, m); }};
+      for (auto& j : generic_jobs(mpzf)) jobs.push_back(j);
+      for (auto& j : generic_jobs(mpq)) jobs.push_back(j);
+      const auto tc = interleaved_times(rounds, jobs, [](int) {});
+      const char* names[] = {"WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
+      const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
+                             "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
+      for (int c = 0; c < 3; ++c)
+        candidates.push_back({{"arithmetic", names[c]},
+                              {"note", notes[c]},
+                              {"shadow_ns_per_item", 1e9 * best_of(tc[2 * c]) / static_cast<double>(m)},
+                              {"reflection_ns_per_item", 1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)}});
+    }
+  }
+  // ---- verification: the filtered point check and the exact proof, on double-valued items
+  json verification;
+  {
+    const int K = bench_verify_items(n);
+    say("bench: sampling " + std::to_string(kVerifySamples) + " exact points on " + std::to_string(K) +
+        " double-valued items (terminators and mirror images)");
+    std::vector<std::optional<VerifyShadow>> vs(static_cast<std::size_t>(K));
+    std::vector<std::optional<VerifyReflection>> vr(static_cast<std::size_t>(K));
+    const std::vector<std::size_t> ones(static_cast<std::size_t>(K), 1);
+    double sample_shadow_s = 0, sample_reflection_s = 0;
+    auto t0 = Clock::now();
+    weighted_threads(ones, T, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Mat4<Rational> A;
+        Vec4<Rational> L;
+        exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, L);
+        ItemPoints ip = terminator_points(A, L, kVerifySamples, item_seed(1, 1, i));
+        if (ip.points.empty()) continue;
+        const Vec4<Rational> pe = polar_plane<Rational>(A, L);
+        const Mat4<Rational> Pe = tangent_cone_from_polar<Rational>(A, L, pe), Re = terminator_quadric_from_polar<Rational>(L, pe);
+        vs[i].emplace(VerifyShadow{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy),
+                                   FilterPoints(std::move(ip.generators), ip.size, kVerifyAccuracy),
+                                   FilterPoints(std::move(ip.plane), ip.size, kVerifyAccuracy), rounded(Pe),
+                                   rounded(Re), rounded(pe), IntegerQuadric(Pe), IntegerQuadric(Re), IntegerPlane(pe)});
+      }
+    });
+    sample_shadow_s = seconds_since(t0);
+    t0 = Clock::now();
+    weighted_threads(ones, T, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Mat4<Rational> A;
+        Vec4<Rational> plane;
+        exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, plane);
+        ItemPoints ip = reflected_points(A, reference_mirror(plane), kVerifySamples, item_seed(1, 2, i));
+        if (ip.points.empty()) continue;
+        const Mat4<Rational> Be = mirror_image_of_plane<Rational>(A, plane);
+        vr[i].emplace(VerifyReflection{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy), rounded(Be),
+                                       IntegerQuadric(Be)});
+      }
+    });
+    sample_reflection_s = seconds_since(t0);
+    std::vector<VerifyShadow> S;
+    std::vector<VerifyReflection> Rf;
+    for (auto& x : vs)
+      if (x) S.push_back(std::move(*x));
+    for (auto& x : vr)
+      if (x) Rf.push_back(std::move(*x));
+    std::vector<std::size_t> ws, wr;
+    std::size_t shadow_points = 0, reflection_points = 0;
+    for (const auto& x : S) ws.push_back(x.pairs()), shadow_points += x.points();
+    for (const auto& x : Rf) wr.push_back(x.pts.exact.size()), reflection_points += x.pts.exact.size();
+    // passes over the points per run: about 4 10^6 filtered checks (the same checks repeated:
+    // a check keeps nothing from the previous pass); the exact proof, one pass
+    auto passes_for = [](std::size_t pairs) {
+      return pairs == 0 ? 1 : static_cast<int>(std::max<std::size_t>(1, (4000000 + pairs - 1) / pairs));
+    };
+    const int ps = passes_for(std::accumulate(ws.begin(), ws.end(), std::size_t(0))), pr = passes_for(reflection_points);
+    std::vector<FilterCounts> cs(static_cast<std::size_t>(T)), cr(cs), es(cs), er(cs);
+    auto run_counted = [&](std::vector<FilterCounts>& out, const std::vector<std::size_t>& w, auto&& body) {
+      std::fill(out.begin(), out.end(), FilterCounts{});
+      weighted_threads(w, T, [&](int t, std::size_t b, std::size_t e) { body(out[static_cast<std::size_t>(t)], b, e); });
+    };
+    const auto t = interleaved_times(
+        rounds,
+        {[&] {
+           run_counted(cs, ws, [&](FilterCounts& c, std::size_t b, std::size_t e) {
+             for (int p = 0; p < ps; ++p)
+               for (std::size_t i = b; i < e; ++i) {
+                 c += check_quadric_filtered(S[i].pts, S[i].P);
+                 c += check_plane_filtered(S[i].pts, S[i].pi);
+                 c += check_quadric_filtered(S[i].pts, S[i].R);
+                 c += check_quadric_filtered(S[i].gen, S[i].P);
+                 c += check_quadric_filtered(S[i].plane, S[i].R);
+               }
+           });
+         },
+         [&] {
+           run_counted(cr, wr, [&](FilterCounts& c, std::size_t b, std::size_t e) {
+             for (int p = 0; p < pr; ++p)
+               for (std::size_t i = b; i < e; ++i) c += check_quadric_filtered(Rf[i].pts, Rf[i].B);
+           });
+         },
+         [&] {
+           run_counted(es, ws, [&](FilterCounts& c, std::size_t b, std::size_t e) {
+             for (std::size_t i = b; i < e; ++i) {
+               c += S[i].pts.cleared.check_quadric(S[i].Pe);
+               c += S[i].pts.cleared.check_plane(S[i].pie);
+               c += S[i].pts.cleared.check_quadric(S[i].Re);
+               c += S[i].gen.cleared.check_quadric(S[i].Pe);
+               c += S[i].plane.cleared.check_quadric(S[i].Re);
+             }
+           });
+         },
+         [&] {
+           run_counted(er, wr, [&](FilterCounts& c, std::size_t b, std::size_t e) {
+             for (std::size_t i = b; i < e; ++i) c += Rf[i].pts.cleared.check_quadric(Rf[i].Be);
+           });
+         }},
+        progress("verify-shadow, verify-reflection: filtered and exact point checks"));
+    auto total = [](const std::vector<FilterCounts>& v) {
+      FilterCounts s;
+      for (const auto& c : v) s += c;
+      return s;
+    };
+    std::size_t proof_bytes_s = 0, proof_bytes_r = 0;
+    for (const auto& x : S) proof_bytes_s += x.pts.cleared.limb_bytes() + x.gen.cleared.limb_bytes() + x.plane.cleared.limb_bytes();
+    for (const auto& x : Rf) proof_bytes_r += x.pts.cleared.limb_bytes();
+    auto add_verify_row = [&](const char* op, const char* precision, const char* method, const std::vector<double>& times,
+                              const FilterCounts& c, std::size_t distinct, int passes, std::size_t bytes, std::size_t items) {
+      if (c.checked == 0) return;  // no item had a real point to sample
+      const double pps = static_cast<double>(c.checked) / best_of(times);
+      const double checks = static_cast<double>(c.checked);
+      rows.push_back({{"op", op},
+                      {"precision", precision},
+                      {"inputs", kind_name(Kind::double_valued)},
+                      {"points_per_s", pps},
+                      {"threads", T},
+                      {"exact_fallbacks", c.fallbacks},
+                      {"points", c.checked},
+                      {"exact_fallbacks_measured", c.measured},
+                      {"points_per_s_per_thread", pps / T},
+                      {"method", method},
+                      {"n", items},
+                      {"distinct_points", distinct},
+                      {"passes", passes},
+                      {"checks_failed", c.failed},
+                      {"items_per_s", pps},
+                      {"ns_per_item", 1e9 / pps},
+                      {"ns_per_item_median", 1e9 * median_of(times) / checks},
+                      {"ns_per_item_runs", per_item_ns(times, checks)},
+                      {"bytes_per_item", bytes},
+                      {"roofline_fraction", nullptr}});
+    };
+    const FilterCounts ts = total(cs), tr = total(cr), xs = total(es), xr = total(er);
+    add_verify_row("verify-shadow", "double", "filtered", t[0], ts, shadow_points, ps, sizeof(EnclosedPoint), S.size());
+    add_verify_row("verify-reflection", "double", "filtered", t[1], tr, reflection_points, pr, sizeof(EnclosedPoint), Rf.size());
+    add_verify_row("verify-shadow", "exact", "exact", t[2], xs, shadow_points, 1,
+                   shadow_points ? proof_bytes_s / shadow_points : 0, S.size());
+    add_verify_row("verify-reflection", "exact", "exact", t[3], xr, reflection_points, 1,
+                   reflection_points ? proof_bytes_r / reflection_points : 0, Rf.size());
+    verification = {
+        {"inputs", kind_name(Kind::double_valued)},
+        {"items_drawn", K},
+        {"shadow_items", S.size()},
+        {"reflection_items", Rf.size()},
+        {"samples_per_item", kVerifySamples},
+        {"accuracy", kVerifyAccuracy},
+        {"sampling_s", {{"shadow", sample_shadow_s}, {"reflection", sample_reflection_s}}},
+        {"sampling_note",
+         "sampling the exact points (terminator points A ∩ {(A L).x = 0}, points of A reflected exactly, in Q(sqrt d), "
+         "accuracy.hpp) and preparing them (enclosures, denominators cleared) is not part of the timed checks; "
+         "sampling_s is its wall time on the same threads"},
+        {"candidates",
+         "precision double: the exact results correctly rounded to double (P, polar plane, R; B), checked by the "
+         "filter (point_filter.hpp: certified interval evaluation of the verifier's distance rule against T * object "
+         "size; the pairs it cannot decide, exact_fallbacks, are decided on exact integers with MPFR enclosures and, "
+         "within about 1e-15 of the boundary, by the verifier's 80-digit measure: exact_fallbacks_measured); "
+         "precision exact: the exact results "
+         "(rationals), proof mode (x^T Q x == 0 exactly, on GMP integers)"},
+        {"points_note",
+         "points counts the (point, result) pairs checked per run, the sets `verify` measures (accuracy.hpp): P, the "
+         "polar plane and R at each terminator point, P at points of the cone's generator lines, R at rational points of "
+         "the polar plane (verify-shadow); B at each reflected point (verify-reflection); passes: the filtered rows check "
+         "every pair that many times per run (about 4 10^6 checks), the exact rows once"}};
+  }
+  // The bandwidth limit: the best copy of all rounds (a shared machine's noise only adds
+  // time, to the copy as to the rows, so best against best).
+  const double bandwidth = copy.bytes() / best_of(copy_times);
+  // roofline fractions; cost ratios against double/direct of the same op and inputs (the
+  // verification rows: against their double, filtered row)
+  for (auto& r : rows) {
+    r["roofline_fraction"] = r["items_per_s"].get<double>() * r["bytes_per_item"].get<double>() / bandwidth;
+    for (const auto& d : rows)
+      if (d["op"] == r["op"] && d["inputs"] == r["inputs"] && d["precision"] == "double" &&
+          (d["method"] == "direct" || d["method"] == "filtered"))
+        r["cost_vs_double_direct"] = d["items_per_s"].get<double>() / r["items_per_s"].get<double>();
+  }
+  // rows by op group (batch, then verification), inputs, precision, method, op
+  auto rank = [](const json& r) {
+    const std::string p = r["precision"], m = r["method"], in = r["inputs"], op = r["op"];
+    const bool verify = op.rfind("verify", 0) == 0;
+    return std::make_tuple(verify, in == "small-rational" ? 0 : in == "double-valued" ? 1 : 2,
+                           p == "double" ? 0 : p == "interval" ? 1 : 2, m == "paper" ? 1 : 0,
+                           op == "shadow" || op == "verify-shadow" ? 0 : 1);
+  };
+  std::stable_sort(rows.begin(), rows.end(), [&](const json& x, const json& y) { return rank(x) < rank(y); });
+  const std::string R = std::to_string(rounds);
+  return {{"format", "qverify-bench/1"},
+          {"threads", T},
+          {"n", n},
+          {"processor", processor_info()},
+          {"memory_bandwidth_gbps", bandwidth / 1e9},
+          {"memory_bandwidth_gbps_runs", [&] {
+             json a = json::array();
+             for (double t : copy_times) a.push_back(copy.bytes() / t / 1e9);
+             return a;
+           }()},
+          {"bandwidth_method", "parallel stream copy (non-temporal stores, like the double batches) of as many bytes "
+                               "as the double shadow row moves (read + write), run at the start and at the end of each of the " + R +
+                               " rounds, around the rows; the best copy"},
+          {"inputs",
+           {{"small-rational", "random rationals p/q, |p| <= 20, 1 <= q <= 9 (doubles: rounded once; intervals: the "
+                               "enclosure of p/q; exact: as p and q): quadrics A, and lights (x, y, z, 1) with z != 0 "
+                               "that are also the mirror planes x X + y Y + z Z + 1 = 0"},
+            {"double-valued", "random doubles with full 53-bit mantissas, |x| in [2^e, 2^(e+1)) with e uniform in "
+                              "-30..30 for every entry independently, random signs (A's ten entries; the light's x, y, "
+                              "z, w = 1); intervals: the points; exact: the doubles' values"},
+            {"decimal-17", "decimal text with 17 significant digits, |x| in [10^k, 10^(k+1)) with k uniform in -9..8 "
+                           "(about 2^-30..2^30), random signs; doubles: the nearest double (std::from_chars); "
+                           "intervals: that double +- one ulp (an enclosure of the text's value); exact: the text's "
+                           "value m 10^e"},
+            {"generation_s", generation_s}}},
+          {"timing", "best of " + R + " rounds; each round runs the copy, then for each kind of input (converted into "
+                     "the same buffers, untimed) the four double and interval direct rows once, and the copy again (so that "
+                     "rows and bandwidth sample the same moments of a shared machine, whose noise only adds time); then the "
+                     "paper rows of each kind, best of " + R + " rounds; then the exact rows of each kind, best of " + R +
+                     " runs (small-rational: all n items; double-valued and decimal-17: the first " + std::to_string(nx) +
+                     " items, the row's n); then the verification rows, best of " + R + " rounds. Outputs pre-allocated; "
+                     "ns_per_item_runs lists every run, ns_per_item_median is the median"},
+          {"simd", {{"lanes", DoublePack::size()},
+                    {"instruction_set", instruction_set()},
+                    {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
+          {"exact_arithmetic",
+           {{"inputs", kind_name(Kind::double_valued)},
+            {"items", std::min<Eigen::Index>(nx, kCandidateItems)},
+            {"threads", 1},
+            {"note", "the candidates for exact results from doubles, timed on the same items by the same generic "
+                     "formulas (the direct shadow; the division-free mirror matrix and rank-one image), all of them in each of " + R +
+                     " rounds, best of the rounds, one thread"},
+            {"candidates", candidates}}},
+          {"verification", verification},
+          {"rows", rows}};
+}
+
+}  // namespace qverify
