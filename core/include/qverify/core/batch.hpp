@@ -159,7 +159,8 @@ template <class S, class Enable = void> struct BatchLanes : ScalarLanes<S> {};
 /// Doubles, W rows at a time. Rows of 4, 10 and 12 doubles start 16-byte
 /// aligned in Eigen's storage, so entries (k, k+1) of a row are one aligned
 /// pair: W pairs are transposed into two packs (to/from_lane_pairs) and the
-/// results are streamed back (non-temporal: they are not read again soon).
+/// results are streamed back (non-temporal: they are not read again soon), one
+/// row after the other.
 template <> struct BatchLanes<double> : ScalarLanes<double> {
   using Pack = DoublePack;
   static constexpr int width = static_cast<int>(DoublePack::size());
@@ -183,11 +184,16 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
 #if defined(__SSE2__)
     if constexpr (N % 2 == 0) {
       if (aligned_rows(row0, stride)) {
-        for (int k = 0; k < N; k += 2) {
-          __m128d out[width];
-          to_lane_pairs(v[k], v[k + 1], out);
-          for (int j = 0; j < width; ++j) _mm_stream_pd(row0 + j * stride + k, out[j]);
-        }
+        // Transposed whole first, then streamed row by row: each row's stores are consecutive,
+        // so at most two lines of each output batch are partly written at a time. Streamed
+        // entry pair by entry pair across the rows instead, all the block's lines fill at once
+        // (8 rows of 10 doubles: 10 lines with AVX-512), more than the write-combining buffers
+        // hold: on AMD Zen 4 the AVX-512 build then took 2-3x the AVX2 one's time (README,
+        // "bench"). The values stored are the same either way.
+        __m128d out[N / 2][width];
+        for (int k = 0; k < N; k += 2) to_lane_pairs(v[k], v[k + 1], out[k / 2]);
+        for (int j = 0; j < width; ++j)
+          for (int k = 0; k < N; k += 2) _mm_stream_pd(row0 + j * stride + k, out[k / 2][j]);
         return;
       }
     }
