@@ -1,6 +1,7 @@
 #include <qverify/eval/accuracy.hpp>
 
 #include <limits>
+#include <string>
 
 namespace qverify {
 
@@ -204,6 +205,65 @@ Mat4<Q> reference_mirror(const Vec4<Q>& plane) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) M(i, j) -= 2 * plane(i) * plane(j) / nn;
   return M;
+}
+
+
+ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target) {
+  ItemAccuracy acc;
+  if (!has_points) {
+    acc.reason = "no real point to measure the result on";
+  } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
+    acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
+    acc.inaccurate = true;
+  } else {
+    acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
+    acc.inaccurate = *acc.bound > target;
+  }
+  return acc;
+}
+
+ItemAccuracy non_finite_accuracy() {
+  ItemAccuracy acc;
+  acc.reason = "non-finite result";
+  acc.inaccurate = true;
+  return acc;
+}
+
+ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
+    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {}
+
+ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
+                                     const Mat4<Q>& R) {
+  Measure g = shadow_error(pts_, origin, P, polar, R).geometric;
+  if (in_gray_zone(g, opt_.target)) {  // near the target: measured again on more points
+    if (!dense_) dense_ = terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_));
+    const Measure h = shadow_error(*dense_, origin, P, polar, R).geometric;
+    if (g < h) g = h;
+  }
+  return item_accuracy(g, !pts_.points.empty(), opt_.target);
+}
+
+ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
+    : A_(A), M_(reference_mirror(plane)), opt_(opt), k_(k),
+      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))) {}
+
+ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
+  Measure g = reflection_error(pts_, origin, B).geometric;
+  if (in_gray_zone(g, opt_.target)) {
+    if (!dense_) dense_ = reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_));
+    const Measure h = reflection_error(*dense_, origin, B).geometric;
+    if (g < h) g = h;
+  }
+  return item_accuracy(g, !pts_.points.empty(), opt_.target);
+}
+
+std::string error_bound_rule(const AccuracyOptions& accuracy) {
+  return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
+      "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
+      "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
+      "points of verify --seed " + std::to_string(accuracy.seed) + "; P also on its generator lines, R also on the "
+      "polar plane; near the target again on " + std::to_string(kRefineFactor) + " times as many), times " +
+      std::to_string(kBoundMargin) + " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
 }
 
 }  // namespace qverify

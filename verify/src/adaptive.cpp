@@ -201,10 +201,7 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol, const Ac
                               "midpoints, else the MPFI midpoints rounded to double, else the exact result rounded "
                               "to double; relative_error_bound is the certified bound"}};
   doc["accuracy"] = accuracy.target;
-  doc["error_bound_rule"] = "the geometric error of the item as written (largest first-order distance of " +
-                            std::to_string(accuracy.samples) + " exact points from it, P also on its generator lines "
-                            "and R on the polar plane, divided by the object size), times " +
-                            std::to_string(kBoundMargin) + "; inaccurate when it exceeds the accuracy target";
+  doc["error_bound_rule"] = error_bound_rule(accuracy);
   const TypedScene<Q> exs = typed_scene<Q>(sc);
   json shadows = json::array();
   std::map<std::string, int> count;
@@ -223,10 +220,8 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol, const Ac
                      {"R", dd.result.R, ii.R, [&] { return MpfiMatrix(mpfi().shadows[k].result.R); },
                       [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
                     tol, v)];
-    const ItemPoints pts = terminator_points(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy.samples,
-                                             item_seed(accuracy.seed, 1, k));
-    const ShadowError e = shadow_error(pts, std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2]));
-    accuracy_of(j, item_accuracy(e.geometric, !pts.points.empty(), accuracy.target));
+    ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy, k);
+    accuracy_of(j, meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2])));
     shadows.push_back(j);
   }
   json reflections = json::array();
@@ -242,10 +237,8 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol, const Ac
                      {"B", dd.result.B, ii.result.B, [&] { return MpfiMatrix(mpfi().reflections[k].result.B); },
                       [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
                     tol, v)];
-    const ItemPoints pts = reflected_points(exs.A[dd.pair.quadric], reference_mirror(exs.planes[dd.pair.other]),
-                                            accuracy.samples, item_seed(accuracy.seed, 2, k));
-    accuracy_of(j, item_accuracy(reflection_error(pts, std::nullopt, exact4(v[1])).geometric, !pts.points.empty(),
-                                 accuracy.target));
+    ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy, k);
+    accuracy_of(j, meter(std::nullopt, exact4(v[1])));
     reflections.push_back(j);
   }
   doc["shadows"] = shadows;

@@ -20,6 +20,8 @@
 #include <qverify/eval/frames.hpp>
 
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -109,5 +111,77 @@ Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 /// It is exact on the sampled points and doubled as the margin for the points
 /// between them (kBoundMargin).
 inline constexpr int kBoundMargin = 2;
+
+
+/// What eval says of an item's accuracy (cli.md, "Accuracy"): a bound of its
+/// geometric error (accuracy.hpp) and whether that may exceed the target.
+struct ItemAccuracy {
+  std::optional<double> bound;  ///< error_bound; nullopt with a reason where none can be given
+  std::string reason;
+  bool inaccurate = false;
+};
+
+/// Options of the accuracy assessment (cli.md "Accuracy"; below).
+struct AccuracyOptions {
+  double target = kDefaultAccuracy;
+  int samples = kDefaultSamples;
+  std::uint64_t seed = 1;
+};
+
+/// error_bound of an item from its geometric error measured on the sampled
+/// points (times the margin kBoundMargin), and `inaccurate` when it may exceed
+/// the target; no bound (with the reason) when there is nothing to measure on.
+ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target);
+
+/// Items whose error measured on the sample points is within a factor 100 below
+/// the target (where a sample's underestimate could hide an error beyond it)
+/// are measured again on kRefineFactor times as many other points.
+inline constexpr int kRefineFactor = 8;
+inline bool in_gray_zone(const Measure& geometric, double target) {
+  return geometric * kBoundMargin <= target && geometric * 100 > target;
+}
+
+/// The rule of error_bound and `inaccurate` in words, for the documents.
+std::string error_bound_rule(const AccuracyOptions& accuracy);
+
+/// The accuracy of a result that has non-finite entries: no bound, inaccurate.
+ItemAccuracy non_finite_accuracy();
+
+/// eval's error_bound and `inaccurate` of one shadow item (index k): its
+/// results (P, polar plane, R in the frame with `origin`) measured on the
+/// item's seeded sample points (shadow_error), and, in the gray zone, again on
+/// kRefineFactor times as many other points; the larger measure counts. The
+/// points are sampled once per meter and kept, so a result measured again
+/// (after escalation) is measured on the same points. Used by eval's accuracy
+/// assessment and by its adaptive mode alike.
+class ShadowMeter {
+ public:
+  ShadowMeter(const Mat4<Rational>& A, const Vec4<Rational>& L, const AccuracyOptions& opt, std::size_t k);
+  ItemAccuracy operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& P,
+                          const Vec4<Rational>& polar, const Mat4<Rational>& R);
+
+ private:
+  Mat4<Rational> A_;
+  Vec4<Rational> L_;
+  AccuracyOptions opt_;
+  std::size_t k_;
+  ItemPoints pts_;
+  std::optional<ItemPoints> dense_;
+};
+
+/// The same for one reflection item: B measured on the points of A reflected
+/// by the exact mirror of `plane` (reflection_error).
+class ReflectionMeter {
+ public:
+  ReflectionMeter(const Mat4<Rational>& A, const Vec4<Rational>& plane, const AccuracyOptions& opt, std::size_t k);
+  ItemAccuracy operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& B);
+
+ private:
+  Mat4<Rational> A_, M_;
+  AccuracyOptions opt_;
+  std::size_t k_;
+  ItemPoints pts_;
+  std::optional<ItemPoints> dense_;
+};
 
 }  // namespace qverify

@@ -133,14 +133,6 @@ template <class S> struct ReflectionItem {
   const char* escalated = nullptr;
 };
 
-/// What eval says of an item's accuracy (cli.md, "Accuracy"): a bound of its
-/// geometric error (accuracy.hpp) and whether that may exceed the target.
-struct ItemAccuracy {
-  std::optional<double> bound;  ///< error_bound; nullopt with a reason where none can be given
-  std::string reason;
-  bool inaccurate = false;
-};
-
 template <class S> struct Evaluation {
   TypedScene<S> scene;  ///< world frame, each input rounded once (range checks)
   std::vector<ItemAccuracy> shadow_accuracy, reflection_accuracy;  ///< filled by assess_accuracy
@@ -309,38 +301,6 @@ template <class S> void decide_statuses(const TypedScene<Rational>& ex, Method m
   }
 }
 
-/// Options of the accuracy assessment (cli.md "Accuracy"; accuracy.hpp).
-struct AccuracyOptions {
-  double target = kDefaultAccuracy;
-  int samples = kDefaultSamples;
-  std::uint64_t seed = 1;
-};
-
-/// error_bound of an item from its geometric error measured on the sampled
-/// points (times the margin kBoundMargin), and `inaccurate` when it may exceed
-/// the target; no bound (with the reason) when there is nothing to measure on.
-inline ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target) {
-  ItemAccuracy acc;
-  if (!has_points) {
-    acc.reason = "no real point to measure the result on";
-  } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
-    acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
-    acc.inaccurate = true;
-  } else {
-    acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
-    acc.inaccurate = *acc.bound > target;
-  }
-  return acc;
-}
-
-/// Items whose error measured on the sample points is within a factor 100 below
-/// the target (where a sample's underestimate could hide an error beyond it)
-/// are measured again on kRefineFactor times as many other points.
-inline constexpr int kRefineFactor = 8;
-inline bool in_gray_zone(const Measure& geometric, double target) {
-  return geometric * kBoundMargin <= target && geometric * 100 > target;
-}
-
 /// error_bound and `inaccurate` of every floating item: the geometric error
 /// measured exactly on the seeded sample points (the points `verify` uses by
 /// default; near the target, on kRefineFactor times more), times kBoundMargin. On the default path (builtin floating types,
@@ -356,71 +316,35 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     for (auto& a : ev.reflection_accuracy) a.bound = 0;
     return;
   } else {
-    auto judge = [&](ItemAccuracy& acc, const Measure& geometric, bool has_points) {
-      acc = item_accuracy(geometric, has_points, opt.target);
-    };
     for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
-      const ItemPoints pts = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
-                                               opt.samples, item_seed(opt.seed, 1, k));
-      std::optional<ItemPoints> dense;
-      auto measure = [&](const ShadowItem<S>& it, ItemAccuracy& acc) {
+      ShadowMeter meter(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other], opt, k);
+      auto measure = [&](const ShadowItem<S>& it) {
         const ShadowResult<S>& r = it.result;
-        if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R)) {
-          acc = {};
-          acc.reason = "non-finite result";
-          acc.inaccurate = true;
-          return;
-        }
-        const Mat4<Rational> P = exact_matrix(r.P), R = exact_matrix(r.R);
-        const Vec4<Rational> pi = exact_matrix(r.polar_plane);
-        Measure g = shadow_error(pts, it.origin, P, pi, R).geometric;
-        if (in_gray_zone(g, opt.target)) {  // near the target: measured again on more points
-          if (!dense)
-            dense = terminator_points(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other],
-                                      opt.samples * kRefineFactor, item_seed(opt.seed + 1, 1, k));
-          const Measure h = shadow_error(*dense, it.origin, P, pi, R).geometric;
-          if (g < h) g = h;
-        }
-        judge(acc, g, !pts.points.empty());
+        if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R)) return non_finite_accuracy();
+        return meter(it.origin, exact_matrix(r.P), exact_matrix(r.polar_plane), exact_matrix(r.R));
       };
-      measure(ev.shadows[k], ev.shadow_accuracy[k]);
+      ev.shadow_accuracy[k] = measure(ev.shadows[k]);
       if constexpr (std::is_floating_point_v<S>) {
         const PreparedShadow<S>& ps = ev.prepared_shadows[k];
         if (ev.shadow_accuracy[k].inaccurate && ps.exact && method == Method::direct && !ev.shadows[k].escalated) {
           ev.shadows[k] = escalated_shadow<S>(ps);
-          measure(ev.shadows[k], ev.shadow_accuracy[k]);
+          ev.shadow_accuracy[k] = measure(ev.shadows[k]);
         }
       }
     }
     for (std::size_t k = 0; k < ev.reflections.size(); ++k) {
       const Pair& p = ev.reflections[k].pair;
-      const ItemPoints pts = reflected_points(ex.A[p.quadric], reference_mirror(ex.planes[p.other]), opt.samples,
-                                              item_seed(opt.seed, 2, k));
-      std::optional<ItemPoints> dense;
-      auto measure = [&](const ReflectionItem<S>& it, ItemAccuracy& acc) {
-        if (!all_finite(it.M) || !all_finite(it.result.B)) {
-          acc = {};
-          acc.reason = "non-finite result";
-          acc.inaccurate = true;
-          return;
-        }
-        const Mat4<Rational> B = exact_matrix(it.result.B);
-        Measure g = reflection_error(pts, it.origin, B).geometric;
-        if (in_gray_zone(g, opt.target)) {
-          if (!dense)
-            dense = reflected_points(ex.A[p.quadric], reference_mirror(ex.planes[p.other]), opt.samples * kRefineFactor,
-                                     item_seed(opt.seed + 1, 2, k));
-          const Measure h = reflection_error(*dense, it.origin, B).geometric;
-          if (g < h) g = h;
-        }
-        judge(acc, g, !pts.points.empty());
+      ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt, k);
+      auto measure = [&](const ReflectionItem<S>& it) {
+        if (!all_finite(it.M) || !all_finite(it.result.B)) return non_finite_accuracy();
+        return meter(it.origin, exact_matrix(it.result.B));
       };
-      measure(ev.reflections[k], ev.reflection_accuracy[k]);
+      ev.reflection_accuracy[k] = measure(ev.reflections[k]);
       if constexpr (std::is_floating_point_v<S>) {
         const PreparedReflection<S>& pr = ev.prepared_reflections[k];
         if (ev.reflection_accuracy[k].inaccurate && pr.exact && !ev.reflections[k].escalated) {
           ev.reflections[k] = escalated_reflection<S>(pr);
-          measure(ev.reflections[k], ev.reflection_accuracy[k]);
+          ev.reflection_accuracy[k] = measure(ev.reflections[k]);
         }
       }
     }
@@ -532,13 +456,7 @@ nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Met
     doc["certified"] = "every entry is an enclosure {lo, hi} of the exact result of the same formula; statuses "
                        "decided in exact arithmetic";
   doc["accuracy"] = accuracy.target;
-  doc["error_bound_rule"] =
-      "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
-      "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
-      "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
-      "points of verify --seed " + std::to_string(accuracy.seed) + "; P also on its generator lines, R also on the "
-      "polar plane; near the target again on " + std::to_string(kRefineFactor) + " times as many), times " +
-      std::to_string(kBoundMargin) + " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
+  doc["error_bound_rule"] = error_bound_rule(accuracy);
   doc["shadows"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < ev.shadows.size(); ++k)
     doc["shadows"].push_back(shadow_json(sc, ev.shadows[k], &ev.shadow_accuracy[k]));
