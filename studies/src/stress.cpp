@@ -239,6 +239,322 @@ json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 const char* const kCandidateColor = "#e377c2";
 
+/// First-order condition estimate of the naive double computation (world frame) of the family's item:
+/// | |P| computed from |A|, |L| | / |P| (|B| from |M|^T |A| |M| for a reflection).
+Measure condition_estimate(const StressFamily& fam, const Evaluation<Q>& ref, const Mat4<Q>& Mw) {
+  const Mat4<Q>& A = ref.scene.A[0];
+  if (!fam.reflection) {
+    const Mat4<Q> absA = A.cwiseAbs();
+    const Vec4<Q> absL = ref.scene.L[0].cwiseAbs();
+    const Vec4<Q> aAL = absA * absL;
+    const Mat4<Q> Pabs = absL.dot(aAL) * absA + aAL * aAL.transpose();
+    const Q nP = max_abs(ref.shadows[0].result.P);
+    return nP != 0 ? to_measure(Q(max_abs(Pabs) / nP)) : Measure(1);
+  }
+  const Mat4<Q> aM = Mw.cwiseAbs();
+  const Q nB = max_abs(ref.reflections[0].result.B);
+  return nB != 0 ? to_measure(Q(max_abs(Mat4<Q>(aM.transpose() * A.cwiseAbs() * aM)) / nB)) : Measure(1);
+}
+
+/// The candidate's totals over every family (the document's "candidate" section).
+struct CandidateTotals {
+  json reproducers = json::array();
+  std::vector<double> call_seconds;
+  int failed_calls = 0, beyond_calls = 0;
+};
+
+/// One family's sweep: every parameter value run in every precision (and by the candidate), measured against
+/// exact on the same points; then the family's summary (slopes, breakdowns, the flag's self-check) and figure.
+class FamilySweep {
+ public:
+  FamilySweep(const StressFamily& fam, const StressOptions& opt, const std::vector<RunSpec>& specs,
+              const std::filesystem::path& failures_dir, CandidateTotals& totals)
+      : fam_(fam), opt_(opt), specs_(specs), cand_(opt.candidate ? &*opt.candidate : nullptr),
+        failures_dir_(failures_dir), totals_(totals), geo_(specs.size() + (cand_ ? 1 : 0)), mat_(geo_.size()),
+        flags_(specs.size()) {}
+
+  /// The family's point K (parameter value fam.values[K]).
+  void point(std::size_t K) {
+    const double v = fam_.values[K];
+    const std::string text = fam_.scene(v);
+    const Scene sc = parse_scene(text, fam_.name + ".json");
+    const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
+    const Mat4<Q>& A = ref.scene.A[0];
+    // exact sample points (world) of the item, and the object's size
+    Mat4<Q> Mw = Mat4<Q>::Identity();
+    if (fam_.reflection) Mw = ref.reflections[0].M;
+    const ItemPoints pts = fam_.reflection ? reflected_points(A, Mw, opt_.samples, 11)
+                                           : terminator_points(A, ref.scene.L[0], opt_.samples, 11);
+    const Measure kappa = condition_estimate(fam_, ref, Mw);
+    const double pred = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
+    json runs = json::array();
+    std::optional<Vec3<Q>> robust_origin;  // the frame of the default double run
+    for (std::size_t r = 0; r < specs_.size(); ++r) runs.push_back(own_run(r, v, sc, pts, ref, robust_origin));
+    if (cand_) runs.push_back(candidate_run(K, v, text, sc, pts, ref));
+    const double floor_err = rounded_floor(ref, pts, robust_origin);
+    const double target = std::max(1e-9, 10 * floor_err);
+    params_.push_back(v);
+    predicted_.push_back(pred);
+    floors_.push_back(floor_err);
+    const double robust = geo_[kDefaultRun].back();
+    const bool meets = robust <= target;
+    all_meet_ = all_meet_ && meets;
+    points_.push_back({{"param", v},
+                       {"exact_status", fam_.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status()},
+                       {"points", pts.points.size()},
+                       {"kappa", kappa.convert_to<double>()},
+                       {"predicted_double_error", pred},
+                       {"rounded_exact_error", num(floor_err)},
+                       {"target", target},
+                       {"default_meets_target", meets},
+                       {"runs", runs}});
+  }
+
+  /// The family's entry of the document, after every point.
+  json summary() {
+    totals_.failed_calls += fam_failed_;
+    totals_.beyond_calls += fam_beyond_;
+    json slopes;
+    slopes["predicted_double_error (eps * kappa)"] = slope(params_, predicted_);
+    for (std::size_t r = 0; r < specs_.size(); ++r) {
+      slopes[specs_[r].label] = {{"matrix_error", slope(params_, mat_[r])}, {"geometric_error", slope(params_, geo_[r])}};
+      json at = nullptr;
+      for (std::size_t i = 0; i < params_.size(); ++i)
+        if (!(geo_[r][i] <= 1e-9)) {
+          at = params_[i];
+          break;
+        }
+      breakdown_[specs_[r].label] = at;
+    }
+    if (cand_) {
+      const std::size_t c = specs_.size();
+      slopes[cand_->name] = {{"matrix_error", slope(params_, mat_[c])}, {"geometric_error", slope(params_, geo_[c])}};
+      for (std::size_t i = 0; i < params_.size(); ++i)
+        if (cand_bad_[i]) {
+          cand_at_ = params_[i];
+          break;
+        }
+      breakdown_[cand_->name] = cand_at_;
+    }
+    json famj{{"name", fam_.name},     {"description", fam_.description}, {"parameter", fam_.parameter},
+              {"item", fam_.reflection ? "reflection B" : "shadow P"},
+              {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
+                                   "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
+              {"default_meets_target", all_meet_},
+              {"flag_check",
+               {{"rule", "every run whose item geometric error (P, polar plane and R, or B) measured on these exact "
+                         "points (seed 11) exceeds the accuracy target 1e-9 carries the flag inaccurate (from eval's "
+                         "error bound on other points); flagged_below lists flagged runs measured below 1e-11 here "
+                         "(information: a sample bounds the true error only from below)"},
+                {"ok", missed_.empty()}, {"missed", missed_}, {"flagged_below", flagged_below_}}},
+              {"points", points_}, {"slopes", slopes},
+              {"breakdown", breakdown_}};
+    if (cand_)
+      famj["candidate"] = {{"name", cand_->name},
+                           {"breakdown", cand_at_},
+                           {"breakdown_reason", cand_first_reason_},
+                           {"failed_calls", fam_failed_},
+                           {"beyond_accuracy", fam_beyond_},
+                           {"reproducers", fam_failed_ + fam_beyond_}};
+    return famj;
+  }
+
+  /// The family's figure (after summary()): geometric error against the parameter for every run.
+  Plot plot() const {
+    Plot plot;
+    plot.title = fam_.name + ": geometric error of " + (fam_.reflection ? "B" : "P") + " relative to the object size";
+    plot.x_label = fam_.parameter;
+    plot.y_label = "max distance of exact points / object size";
+    for (std::size_t r = 0; r < specs_.size(); ++r) {
+      PlotSeries s{specs_[r].label, kColors[r], {}, true, true, r == kNaiveRun, {}};
+      for (std::size_t i = 0; i < params_.size(); ++i) s.points.emplace_back(params_[i], geo_[r][i]);
+      plot.series.push_back(s);
+    }
+    if (cand_) {
+      PlotSeries s{cand_->name + " (candidate)", kCandidateColor, {}, true, true, false, {}};
+      for (std::size_t i = 0; i < params_.size(); ++i) s.points.emplace_back(params_[i], geo_[specs_.size()][i]);
+      plot.series.push_back(s);
+      // failed calls have no error: marked above every measured value
+      double top = 1;
+      for (const auto& g : geo_)
+        for (double y : g)
+          if (std::isfinite(y)) top = std::max(top, y);
+      PlotSeries failed{cand_->name + " failed (candidate-failed)", kCandidateColor, {}, false, true, false, {}};
+      for (std::size_t i = 0; i < params_.size(); ++i)
+        if (cand_failed_[i] || !std::isfinite(geo_[specs_.size()][i])) {
+          failed.points.emplace_back(params_[i], top * 10);
+          failed.labels.push_back(cand_failed_[i] ? "failed" : "non-finite");
+        }
+      if (!failed.points.empty()) plot.series.push_back(failed);
+    }
+    PlotSeries flagged{"flagged inaccurate by eval", "#d62728", {}, false, true, false, {}};
+    for (std::size_t r = 0; r < specs_.size(); ++r)
+      for (std::size_t i = 0; i < params_.size(); ++i)
+        if (flags_[r][i] && std::isfinite(geo_[r][i])) flagged.points.emplace_back(params_[i], geo_[r][i]);
+    if (!flagged.points.empty()) plot.series.push_back(flagged);
+    PlotSeries floor_series{"exact, correctly rounded to double (floor)", "#000000", {}, true, true, true, {}};
+    for (std::size_t i = 0; i < params_.size(); ++i) floor_series.points.emplace_back(params_[i], floors_[i]);
+    plot.series.push_back(floor_series);
+    PlotSeries pred_series{"eps_double * kappa (first-order estimate)", "#7f7f7f", {}, true, false, true, {}};
+    for (std::size_t i = 0; i < params_.size(); ++i) pred_series.points.emplace_back(params_[i], predicted_[i]);
+    plot.series.push_back(pred_series);
+    const json& naive_at = breakdown_[specs_[kNaiveRun].label];
+    if (!naive_at.is_null()) plot.x_marks.emplace_back(naive_at.get<double>(), "naive double > 1e-9");
+    if (!cand_at_.is_null()) {
+      const double x = cand_at_.get<double>();
+      auto same = std::find_if(plot.x_marks.begin(), plot.x_marks.end(), [&](const auto& m) { return m.first == x; });
+      if (same != plot.x_marks.end()) same->second += "; " + cand_->name + " breaks";  // one label per line
+      else plot.x_marks.emplace_back(x, cand_->name + " breaks");
+    }
+    plot.height = 520;
+    plot.width = 900;
+    return plot;
+  }
+
+ private:
+  /// qverify's own run r at the point: computed as eval computes it, measured, and its flag self-checked.
+  json own_run(std::size_t r, double v, const Scene& sc, const ItemPoints& pts, const Evaluation<Q>& ref,
+               std::optional<Vec3<Q>>& robust_origin) {
+    const RunSpec& spec = specs_[r];
+    json run{{"run", spec.label}, {"source", "qverify"}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
+    RunMeasure m;
+    bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
+    std::string status;
+    try {
+      const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
+      status = fam_.reflection ? rs.reflections[0].status : rs.shadows[0].status;
+      const auto& acc = fam_.reflection ? rs.reflections[0].accuracy : rs.shadows[0].accuracy;
+      if (acc) {  // also for a non-finite result, which eval flags
+        returned = true;
+        flagged = acc->inaccurate;
+        run["error_bound"] = acc->bound ? json(*acc->bound) : json(nullptr);
+      }
+      m = measure_run(fam_, rs, pts, ref);
+      if (m.present) {
+        run["frame"] = m.origin ? "local" : "world";
+        if (r == kDefaultRun) robust_origin = m.origin;
+      }
+    } catch (const InputError& e) {
+      status = std::string("refused: ") + e.problem;
+    }
+    run["status"] = status;
+    run["matrix_error"] = num(m.matrix);
+    run["geometric_error"] = num(m.geometric);
+    run["item_geometric_error"] = num(m.item_geometric);
+    run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
+    // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
+    // below: an error above the target here proves the flag missing; a flag where these points show less
+    // than target / 100 proves nothing (the error may sit between them) and is listed as information.
+    const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(m.item_geometric)}};
+    if (returned && !(m.item_geometric <= kDefaultAccuracy) && !flagged) missed_.push_back(at);
+    if (m.item_geometric < kDefaultAccuracy / 100 && flagged) flagged_below_.push_back(at);
+    geo_[r].push_back(m.geometric);
+    flags_[r].push_back(flagged);
+    mat_[r].push_back(m.matrix);
+    return run;
+  }
+
+  /// The candidate at point K, on the very scene text, measured by the same code as qverify's runs; a failed
+  /// call or a result beyond the accuracy target leaves a reproducer.
+  json candidate_run(std::size_t K, double v, const std::string& text, const Scene& sc, const ItemPoints& pts,
+                     const Evaluation<Q>& ref) {
+    const CandidateCall call = call_candidate(*cand_, sc, text, fam_.name + "-" + std::to_string(K));
+    json run{{"run", cand_->name}, {"source", "candidate"}};
+    RunMeasure m;
+    if (call.ok) {
+      run["precision"] = call.results.precision.name();
+      run["method"] = method_name(call.results.method);
+      m = measure_run(fam_, call.results, pts, ref);
+      run["frame"] = m.origin ? "local" : "world";
+      const std::string& claimed = fam_.reflection ? call.results.reflections[0].status : call.results.shadows[0].status;
+      run["status"] = claimed.empty() ? std::string("unstated") : claimed;
+    } else {
+      run["precision"] = nullptr;
+      run["method"] = nullptr;
+      run["status"] = "candidate-failed";
+      run["error"] = call.error;
+    }
+    run["seconds"] = call.seconds;
+    run["matrix_error"] = num(m.matrix);
+    run["geometric_error"] = num(m.geometric);
+    run["item_geometric_error"] = num(m.item_geometric);
+    run["flags"] = json::array();
+    const bool beyond = call.ok && !(m.item_geometric <= opt_.accuracy);
+    run["beyond_accuracy"] = beyond;
+    totals_.call_seconds.push_back(call.seconds);
+    if (!call.ok || beyond) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.3g", m.item_geometric);
+      char tbuf[32];
+      std::snprintf(tbuf, sizeof tbuf, "%.3g", opt_.accuracy);
+      const std::string reason =
+          !call.ok ? "candidate-failed: " + call.error
+                   : std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
+                         " of the object size exceeds the accuracy target " + tbuf;
+      json rep = write_candidate_reproducer(failures_dir_, cand_->name, fam_.name, K, v, text, call, reason);
+      run["reproducer"] = rep["scene"];
+      rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
+      rep["item_geometric_error"] = num(m.item_geometric);
+      totals_.reproducers.push_back(rep);
+      if (cand_first_reason_.is_null()) cand_first_reason_ = reason;
+      (call.ok ? fam_beyond_ : fam_failed_) += 1;
+    }
+    cand_failed_.push_back(!call.ok);
+    cand_bad_.push_back(!call.ok || beyond);
+    geo_[specs_.size()].push_back(m.geometric);
+    mat_[specs_.size()].push_back(m.matrix);
+    return run;
+  }
+
+  /// The floor: the exact result in the default run's frame, correctly rounded to double (with the same exact
+  /// power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
+  double rounded_floor(const Evaluation<Q>& ref, const ItemPoints& pts, const std::optional<Vec3<Q>>& robust_origin) const {
+    const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
+    const Mat4<Q> exact_local = fam_.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
+                                                : quadric_to_local(ref.shadows[0].result.P, o);
+    const Mat4<double> rounded = rounded_scaled<double>(exact_local);
+    return all_finite(rounded) ? geometric_error(pts, robust_origin, exact_matrix(rounded)) : INFINITY;
+  }
+
+  const StressFamily& fam_;
+  const StressOptions& opt_;
+  const std::vector<RunSpec>& specs_;
+  const Candidate* cand_;
+  std::filesystem::path failures_dir_;
+  CandidateTotals& totals_;
+  json points_ = json::array();
+  std::vector<std::vector<double>> geo_, mat_;  ///< per run (the candidate's last), per point
+  std::vector<std::vector<bool>> flags_;        ///< per own run, per point: flagged inaccurate by eval
+  std::vector<bool> cand_failed_, cand_bad_;    ///< per point: the call failed; failed or beyond the accuracy target
+  json cand_first_reason_ = nullptr, cand_at_ = nullptr, breakdown_;
+  int fam_failed_ = 0, fam_beyond_ = 0;
+  json missed_ = json::array(), flagged_below_ = json::array();
+  std::vector<double> params_, predicted_, floors_;
+  bool all_meet_ = true;
+};
+
+/// The document's "candidate" section.
+json candidate_section(const Candidate& cand, const StressOptions& opt, const CandidateTotals& t) {
+  std::vector<double> sorted = t.call_seconds;
+  std::sort(sorted.begin(), sorted.end());
+  return {{"name", cand.name},
+          {"source", "candidate"},
+          {"command", cand.description},
+          {"timeout_seconds", cand.timeout_seconds > 0 ? json(cand.timeout_seconds) : json(nullptr)},
+          {"accuracy", opt.accuracy},
+          {"rule", "the candidate is given each point's scene (the file of its reproducer) and must return a "
+                   "qverify-eval/1 document with the family's item; its results are measured like every run (matrix and "
+                   "geometric error against exact on the same points); a point is a reproducer when the call failed "
+                   "(status candidate-failed, with error) or the item's geometric error over all its results (P, polar "
+                   "plane and R, or B) exceeds accuracy; breakdown is the first such parameter value"},
+          {"calls", t.call_seconds.size()},
+          {"failed_calls", t.failed_calls},
+          {"beyond_accuracy", t.beyond_calls},
+          {"median_seconds_per_call", sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2])},
+          {"failures_dir", t.reproducers.empty() ? json(nullptr) : json("failures")},
+          {"reproducers", t.reproducers}};
+}
+
 }  // namespace
 
 const std::vector<StressFamily>& stress_families() {
@@ -249,269 +565,19 @@ const std::vector<StressFamily>& stress_families() {
 StressReport run_stress(const StressOptions& opt) {
   create_output_directory(opt.out_dir);  // before the sweeps: a bad --out fails at once
   const auto specs = run_specs();
-  const Candidate* cand = opt.candidate ? &*opt.candidate : nullptr;
-  const std::filesystem::path dir(opt.out_dir);
-  const std::filesystem::path failures_dir = dir / "failures";
-  if (cand) remove_candidate_reproducers(failures_dir, cand->name);
-  const std::size_t n_runs = specs.size() + (cand ? 1 : 0);  // the candidate's run comes last
+  const std::filesystem::path failures_dir = std::filesystem::path(opt.out_dir) / "failures";
+  if (opt.candidate) remove_candidate_reproducers(failures_dir, opt.candidate->name);
+  CandidateTotals totals;
   json families = json::array();
-  json reproducers = json::array();
-  std::vector<double> call_seconds;
-  int failed_calls = 0, beyond_calls = 0;
   std::vector<std::pair<std::string, Plot>> plots;
   for (const StressFamily& fam : stress_families()) {
     if (!opt.families.empty() && std::find(opt.families.begin(), opt.families.end(), fam.name) == opt.families.end())
       continue;
     if (opt.progress) opt.progress("stress: " + fam.name);
-    json points = json::array();
-    std::vector<std::vector<double>> geo(n_runs), mat(n_runs);
-    std::vector<std::vector<bool>> flags(specs.size());
-    std::vector<bool> cand_failed, cand_bad;  // per point: the call failed; failed or beyond the accuracy target
-    json cand_first_reason = nullptr;
-    int fam_failed = 0, fam_beyond = 0;
-    json missed = json::array(), flagged_below = json::array();
-    std::vector<double> params, predicted, floors;
-    bool all_meet = true;
-    const std::size_t first = opt.worst_only ? fam.values.size() - 1 : 0;
-    for (std::size_t K = first; K < fam.values.size(); ++K) {
-      const double v = fam.values[K];
-      const std::string text = fam.scene(v);
-      const Scene sc = parse_scene(text, fam.name + ".json");
-      const Evaluation<Q> ref = evaluate<Q>(sc, Method::direct);
-      const Mat4<Q>& A = ref.scene.A[0];
-      // exact sample points (world) of the item, and the object's size
-      Mat4<Q> Mw = Mat4<Q>::Identity();
-      if (fam.reflection) Mw = ref.reflections[0].M;
-      const ItemPoints pts = fam.reflection ? reflected_points(A, Mw, opt.samples, 11)
-                                            : terminator_points(A, ref.scene.L[0], opt.samples, 11);
-      // first-order condition estimate of the naive double computation (world frame)
-      Measure kappa = 1;
-      if (!fam.reflection) {
-        const Mat4<Q> absA = A.cwiseAbs();
-        const Vec4<Q> absL = ref.scene.L[0].cwiseAbs();
-        const Vec4<Q> aAL = absA * absL;
-        const Mat4<Q> Pabs = absL.dot(aAL) * absA + aAL * aAL.transpose();
-        const Q nP = max_abs(ref.shadows[0].result.P);
-        if (nP != 0) kappa = to_measure(Q(max_abs(Pabs) / nP));
-      } else {
-        const Mat4<Q> aM = Mw.cwiseAbs();
-        const Q nB = max_abs(ref.reflections[0].result.B);
-        if (nB != 0) kappa = to_measure(Q(max_abs(Mat4<Q>(aM.transpose() * A.cwiseAbs() * aM)) / nB));
-      }
-      const double pred = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
-      json runs = json::array();
-      std::optional<Vec3<Q>> robust_origin;  // the frame of the default double run
-      for (std::size_t r = 0; r < specs.size(); ++r) {
-        const RunSpec& spec = specs[r];
-        json run{{"run", spec.label}, {"source", "qverify"}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
-        RunMeasure m;
-        bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
-        std::string status;
-        try {
-          const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
-          status = fam.reflection ? rs.reflections[0].status : rs.shadows[0].status;
-          const auto& acc = fam.reflection ? rs.reflections[0].accuracy : rs.shadows[0].accuracy;
-          if (acc) {  // also for a non-finite result, which eval flags
-            returned = true;
-            flagged = acc->inaccurate;
-            run["error_bound"] = acc->bound ? json(*acc->bound) : json(nullptr);
-          }
-          m = measure_run(fam, rs, pts, ref);
-          if (m.present) {
-            run["frame"] = m.origin ? "local" : "world";
-            if (r == kDefaultRun) robust_origin = m.origin;
-          }
-        } catch (const InputError& e) {
-          status = std::string("refused: ") + e.problem;
-        }
-        run["status"] = status;
-        run["matrix_error"] = num(m.matrix);
-        run["geometric_error"] = num(m.geometric);
-        run["item_geometric_error"] = num(m.item_geometric);
-        run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
-        // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
-        // below: an error above the target here proves the flag missing; a flag where these points show less
-        // than target / 100 proves nothing (the error may sit between them) and is listed as information.
-        const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(m.item_geometric)}};
-        if (returned && !(m.item_geometric <= kDefaultAccuracy) && !flagged) missed.push_back(at);
-        if (m.item_geometric < kDefaultAccuracy / 100 && flagged) flagged_below.push_back(at);
-        runs.push_back(run);
-        geo[r].push_back(m.geometric);
-        flags[r].push_back(flagged);
-        mat[r].push_back(m.matrix);
-      }
-      if (cand) {
-        // The candidate, on the very scene text, measured by the same code as the runs above.
-        const CandidateCall call = call_candidate(*cand, sc, text, fam.name + "-" + std::to_string(K));
-        json run{{"run", cand->name}, {"source", "candidate"}};
-        RunMeasure m;
-        if (call.ok) {
-          run["precision"] = call.results.precision.name();
-          run["method"] = method_name(call.results.method);
-          m = measure_run(fam, call.results, pts, ref);
-          run["frame"] = m.origin ? "local" : "world";
-          const std::string& claimed = fam.reflection ? call.results.reflections[0].status : call.results.shadows[0].status;
-          run["status"] = claimed.empty() ? std::string("unstated") : claimed;
-        } else {
-          run["precision"] = nullptr;
-          run["method"] = nullptr;
-          run["status"] = "candidate-failed";
-          run["error"] = call.error;
-        }
-        run["seconds"] = call.seconds;
-        run["matrix_error"] = num(m.matrix);
-        run["geometric_error"] = num(m.geometric);
-        run["item_geometric_error"] = num(m.item_geometric);
-        run["flags"] = json::array();
-        const bool beyond = call.ok && !(m.item_geometric <= opt.accuracy);
-        run["beyond_accuracy"] = beyond;
-        call_seconds.push_back(call.seconds);
-        if (!call.ok || beyond) {
-          char buf[64];
-          std::snprintf(buf, sizeof buf, "%.3g", m.item_geometric);
-          char tbuf[32];
-          std::snprintf(tbuf, sizeof tbuf, "%.3g", opt.accuracy);
-          const std::string reason =
-              !call.ok ? "candidate-failed: " + call.error
-                       : std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
-                             " of the object size exceeds the accuracy target " + tbuf;
-          json rep = write_candidate_reproducer(failures_dir, cand->name, fam.name, K, v, text, call, reason);
-          run["reproducer"] = rep["scene"];
-          rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
-          rep["item_geometric_error"] = num(m.item_geometric);
-          reproducers.push_back(rep);
-          if (cand_first_reason.is_null()) cand_first_reason = reason;
-          (call.ok ? fam_beyond : fam_failed) += 1;
-        }
-        cand_failed.push_back(!call.ok);
-        cand_bad.push_back(!call.ok || beyond);
-        runs.push_back(run);
-        geo[specs.size()].push_back(m.geometric);
-        mat[specs.size()].push_back(m.matrix);
-      }
-      // The floor: the exact result in the default run's frame, correctly rounded to double (with the same
-      // exact power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
-      double floor_err = INFINITY;
-      {
-        const Vec3<Q> o = robust_origin ? *robust_origin : Vec3<Q>::Zero();
-        const Mat4<Q> exact_local = fam.reflection ? quadric_to_local(ref.reflections[0].result.B, o)
-                                                   : quadric_to_local(ref.shadows[0].result.P, o);
-        const Mat4<double> rounded = rounded_scaled<double>(exact_local);
-        if (all_finite(rounded)) floor_err = geometric_error(pts, robust_origin, exact_matrix(rounded));
-      }
-      const double target = std::max(1e-9, 10 * floor_err);
-      params.push_back(v);
-      predicted.push_back(pred);
-      floors.push_back(floor_err);
-      const double robust = geo[kDefaultRun].back();
-      const bool meets = robust <= target;
-      all_meet = all_meet && meets;
-      points.push_back({{"param", v},
-                        {"exact_status", fam.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status()},
-                        {"points", pts.points.size()},
-                        {"kappa", kappa.convert_to<double>()},
-                        {"predicted_double_error", pred},
-                        {"rounded_exact_error", num(floor_err)},
-                        {"target", target},
-                        {"default_meets_target", meets},
-                        {"runs", runs}});
-    }
-    failed_calls += fam_failed;
-    beyond_calls += fam_beyond;
-    // slopes and breakdown
-    json slopes, breakdown;
-    slopes["predicted_double_error (eps * kappa)"] = slope(params, predicted);
-    for (std::size_t r = 0; r < specs.size(); ++r) {
-      slopes[specs[r].label] = {{"matrix_error", slope(params, mat[r])}, {"geometric_error", slope(params, geo[r])}};
-      json at = nullptr;
-      for (std::size_t i = 0; i < params.size(); ++i)
-        if (!(geo[r][i] <= 1e-9)) {
-          at = params[i];
-          break;
-        }
-      breakdown[specs[r].label] = at;
-    }
-    json cand_at = nullptr;
-    if (cand) {
-      const std::size_t c = specs.size();
-      slopes[cand->name] = {{"matrix_error", slope(params, mat[c])}, {"geometric_error", slope(params, geo[c])}};
-      for (std::size_t i = 0; i < params.size(); ++i)
-        if (cand_bad[i]) {
-          cand_at = params[i];
-          break;
-        }
-      breakdown[cand->name] = cand_at;
-    }
-    json famj{{"name", fam.name},     {"description", fam.description}, {"parameter", fam.parameter},
-              {"item", fam.reflection ? "reflection B" : "shadow P"},
-              {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
-                                   "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
-              {"default_meets_target", all_meet},
-              {"flag_check",
-               {{"rule", "every run whose item geometric error (P, polar plane and R, or B) measured on these exact "
-                         "points (seed 11) exceeds the accuracy target 1e-9 carries the flag inaccurate (from eval's "
-                         "error bound on other points); flagged_below lists flagged runs measured below 1e-11 here "
-                         "(information: a sample bounds the true error only from below)"},
-                {"ok", missed.empty()}, {"missed", missed}, {"flagged_below", flagged_below}}},
-              {"points", points}, {"slopes", slopes},
-              {"breakdown", breakdown}};
-    if (cand)
-      famj["candidate"] = {{"name", cand->name},
-                           {"breakdown", cand_at},
-                           {"breakdown_reason", cand_first_reason},
-                           {"failed_calls", fam_failed},
-                           {"beyond_accuracy", fam_beyond},
-                           {"reproducers", fam_failed + fam_beyond}};
-    families.push_back(famj);
-
-    Plot plot;
-    plot.title = fam.name + ": geometric error of " + (fam.reflection ? "B" : "P") + " relative to the object size";
-    plot.x_label = fam.parameter;
-    plot.y_label = "max distance of exact points / object size";
-    for (std::size_t r = 0; r < specs.size(); ++r) {
-      PlotSeries s{specs[r].label, kColors[r], {}, true, true, r == kNaiveRun, {}};
-      for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[r][i]);
-      plot.series.push_back(s);
-    }
-    if (cand) {
-      PlotSeries s{cand->name + " (candidate)", kCandidateColor, {}, true, true, false, {}};
-      for (std::size_t i = 0; i < params.size(); ++i) s.points.emplace_back(params[i], geo[specs.size()][i]);
-      plot.series.push_back(s);
-      // failed calls have no error: marked above every measured value
-      double top = 1;
-      for (const auto& g : geo)
-        for (double y : g)
-          if (std::isfinite(y)) top = std::max(top, y);
-      PlotSeries failed{cand->name + " failed (candidate-failed)", kCandidateColor, {}, false, true, false, {}};
-      for (std::size_t i = 0; i < params.size(); ++i)
-        if (cand_failed[i] || !std::isfinite(geo[specs.size()][i])) {
-          failed.points.emplace_back(params[i], top * 10);
-          failed.labels.push_back(cand_failed[i] ? "failed" : "non-finite");
-        }
-      if (!failed.points.empty()) plot.series.push_back(failed);
-    }
-    PlotSeries flagged{"flagged inaccurate by eval", "#d62728", {}, false, true, false, {}};
-    for (std::size_t r = 0; r < specs.size(); ++r)
-      for (std::size_t i = 0; i < params.size(); ++i)
-        if (flags[r][i] && std::isfinite(geo[r][i])) flagged.points.emplace_back(params[i], geo[r][i]);
-    if (!flagged.points.empty()) plot.series.push_back(flagged);
-    PlotSeries floor_series{"exact, correctly rounded to double (floor)", "#000000", {}, true, true, true, {}};
-    for (std::size_t i = 0; i < params.size(); ++i) floor_series.points.emplace_back(params[i], floors[i]);
-    plot.series.push_back(floor_series);
-    PlotSeries pred_series{"eps_double * kappa (first-order estimate)", "#7f7f7f", {}, true, false, true, {}};
-    for (std::size_t i = 0; i < params.size(); ++i) pred_series.points.emplace_back(params[i], predicted[i]);
-    plot.series.push_back(pred_series);
-    if (!breakdown[specs[kNaiveRun].label].is_null())
-      plot.x_marks.emplace_back(breakdown[specs[kNaiveRun].label].get<double>(), "naive double > 1e-9");
-    if (!cand_at.is_null()) {
-      const double x = cand_at.get<double>();
-      auto same = std::find_if(plot.x_marks.begin(), plot.x_marks.end(), [&](const auto& m) { return m.first == x; });
-      if (same != plot.x_marks.end()) same->second += "; " + cand->name + " breaks";  // one label per line
-      else plot.x_marks.emplace_back(x, cand->name + " breaks");
-    }
-    plot.height = 520;
-    plot.width = 900;
-    plots.emplace_back(fam.name, std::move(plot));
+    FamilySweep sweep(fam, opt, specs, failures_dir, totals);
+    for (std::size_t K = opt.worst_only ? fam.values.size() - 1 : 0; K < fam.values.size(); ++K) sweep.point(K);
+    families.push_back(sweep.summary());
+    plots.emplace_back(fam.name, sweep.plot());
   }
   json doc{{"format", "qverify-stress/1"},
            {"reference", "exact"},
@@ -519,27 +585,7 @@ StressReport run_stress(const StressOptions& opt) {
                                "sampled in Q(sqrt d)) of the first-order distance |x^T Q x| / |grad|, in the result's own "
                                "frame, divided by the object's size"},
            {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"}};
-  if (cand) {
-    std::vector<double> sorted = call_seconds;
-    std::sort(sorted.begin(), sorted.end());
-    doc["candidate"] = {
-        {"name", cand->name},
-        {"source", "candidate"},
-        {"command", cand->description},
-        {"timeout_seconds", cand->timeout_seconds > 0 ? json(cand->timeout_seconds) : json(nullptr)},
-        {"accuracy", opt.accuracy},
-        {"rule", "the candidate is given each point's scene (the file of its reproducer) and must return a "
-                 "qverify-eval/1 document with the family's item; its results are measured like every run (matrix and "
-                 "geometric error against exact on the same points); a point is a reproducer when the call failed "
-                 "(status candidate-failed, with error) or the item's geometric error over all its results (P, polar "
-                 "plane and R, or B) exceeds accuracy; breakdown is the first such parameter value"},
-        {"calls", call_seconds.size()},
-        {"failed_calls", failed_calls},
-        {"beyond_accuracy", beyond_calls},
-        {"median_seconds_per_call", sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2])},
-        {"failures_dir", reproducers.empty() ? json(nullptr) : json("failures")},
-        {"reproducers", reproducers}};
-  }
+  if (opt.candidate) doc["candidate"] = candidate_section(*opt.candidate, opt, totals);
   doc["families"] = families;
   return {std::move(doc), std::move(plots)};
 }
