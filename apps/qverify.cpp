@@ -415,144 +415,153 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
   return pass ? kOk : 1;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"qverify: shadow volumes and mirror images of quadrics (Hashimoto & Suenaga), computed and verified"};
-  app.require_subcommand(1);
-  app.set_help_all_flag("--help-all", "Help for every command");
-
+/// Every option of every command, as parsed (one place: the commands share --json, --accuracy, the
+/// scene and the candidate options).
+struct Options {
   std::string scene_file, precision_text = "double", method_text = "direct", frame_text;
   bool as_json = false;
+  double accuracy = kDefaultAccuracy;
+  double tolerance = 0;                   // eval --tolerance (adaptive mode)
+  int samples = kDefaultSamples;          // verify
+  std::uint64_t seed = 1;                 // verify
+  std::string candidate;                  // verify --candidate
+  std::string out_dir;                    // audit, stress
+  double batch_ms = 20;                   // audit
+  std::string candidate_cmd, candidate_name = "candidate";  // audit and stress --candidate-cmd
+  double candidate_timeout = 60;
+  std::vector<std::string> families;      // stress
+  bool list_families = false;
+  int stress_samples = 8;
+  BenchOptions bench;
+  bool strict = false;                    // paper
+  RenderArgs render;
+};
 
+/// The subcommands, and the options that say whether a candidate program was given.
+struct Commands {
+  CLI::App *eval, *verify, *audit, *stress, *bench, *paper, *render;
+  CLI::Option *audit_candidate, *stress_candidate;
+};
+
+/// Declares every command and its options on `app`, bound to `o`.
+Commands declare_commands(CLI::App& app, Options& o) {
+  Commands c{};
   auto add_common = [&](CLI::App* sub) {
-    sub->add_option("SCENE", scene_file, "Scene file (qverify-scene/1)")->required();
-    sub->add_option("--precision", precision_text,
+    sub->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required();
+    sub->add_option("--precision", o.precision_text,
                     "float | double | long-double | float128 | mpfr:BITS | interval | exact")
         ->capture_default_str();
-    sub->add_option("--method", method_text, "direct (projective formulas) | paper (equations (2)-(6))")
+    sub->add_option("--method", o.method_text, "direct (projective formulas) | paper (equations (2)-(6))")
         ->capture_default_str();
-    sub->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
-    sub->add_option("--frame", frame_text,
+    sub->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
+    sub->add_option("--frame", o.frame_text,
                     "local (default for floating precisions, method direct: per-object origin) | world");
   };
-
-  CLI::App* eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
-  add_common(eval);
-  double accuracy = kDefaultAccuracy;
   auto add_accuracy = [&](CLI::App* sub) {
-    sub->add_option("--accuracy", accuracy,
+    sub->add_option("--accuracy", o.accuracy,
                     "Accuracy target T: largest geometric error (distance of exact points from the result, relative "
                     "to the object's size) that passes; items whose error bound exceeds it are flagged inaccurate")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
   };
-  add_accuracy(eval);
-  double tolerance = 0;
-  eval->add_option("--tolerance", tolerance,
-                   "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
-                   "this relative tolerance (double output; per-item 'certified' says by which stage)")
-      ->check(CLI::Range(0.0, 1.0));
-
-  CLI::App* verify = app.add_subcommand("verify",
-                                        "Check results on exact sample points: terminator points on A, P and R, "
-                                        "reflected points on B (a proof in exact arithmetic)");
-  add_common(verify);
-  int samples = 64;
-  std::uint64_t seed = 1;
-  std::string candidate;
-  verify->add_option("--samples", samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
-  verify->add_option("--seed", seed, "Seed of the deterministic sampler")->capture_default_str();
-  add_accuracy(verify);
-  verify->add_option("--candidate", candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
-
-  CLI::App* audit = app.add_subcommand("audit", "Precision audit of one scene: error against run time over the whole "
-                                                "precision ladder, both methods; writes report.json, report.html, "
-                                                "error-vs-time.svg");
-  audit->add_option("SCENE", scene_file, "Scene file (qverify-scene/1)")->required();
-  std::string out_dir;
-  double batch_ms = 20;
-  audit->add_option("--out", out_dir, "Output directory")->required();
-  audit->add_option("--batch-ms", batch_ms, "Minimum duration of one timed batch (7 batches, median)")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 10000.0));
-  audit->add_flag("--json", as_json, "Also print report.json on stdout");
-
   // Another program audited beside qverify's precisions (audit and stress --candidate-cmd).
-  std::string candidate_cmd, candidate_name = "candidate";
-  double candidate_timeout = 60;
   auto add_candidate = [&](CLI::App* sub) {
     CLI::Option* cmd = sub->add_option(
-        "--candidate-cmd", candidate_cmd,
+        "--candidate-cmd", o.candidate_cmd,
         "Also run this program on every scene: run through /bin/sh -c with {scene} and {out} replaced by file paths; "
         "it reads the scene and writes a qverify-eval/1 document to {out}");
-    sub->add_option("--candidate-name", candidate_name, "Label of the candidate (its runs, its reproducers' file names)")
+    sub->add_option("--candidate-name", o.candidate_name, "Label of the candidate (its runs, its reproducers' file names)")
         ->capture_default_str()
         ->needs(cmd);
-    sub->add_option("--candidate-timeout", candidate_timeout, "Seconds each call may take (then its process group is killed)")
+    sub->add_option("--candidate-timeout", o.candidate_timeout, "Seconds each call may take (then its process group is killed)")
         ->capture_default_str()
         ->needs(cmd);
-    sub->add_option("--accuracy", accuracy,
+    sub->add_option("--accuracy", o.accuracy,
                     "The candidate's accuracy target T: a point where its geometric error exceeds T (relative to the "
                     "object's size), or its call failed, is written as a reproducer into DIR/failures/")
         ->capture_default_str()
         ->needs(cmd);
     return cmd;
   };
-  CLI::Option* audit_candidate = add_candidate(audit);
 
-  CLI::App* stress = app.add_subcommand("stress", "Stability sweeps of stiff and extreme cases (families: --list); "
-                                                  "writes report.json, report.html and one SVG per family");
-  std::vector<std::string> families;
-  bool list_families = false;
-  int stress_samples = 8;
-  stress->add_option("--family", families, "A family to sweep (repeatable; default: all)");
-  stress->add_flag("--list", list_families, "List the families and exit");
-  stress->add_option("--out", out_dir, "Output directory");
-  stress->add_option("--samples", stress_samples, "Exact points per item for the geometric error")
+  c.eval = app.add_subcommand("eval", "Compute every requested shadow volume (P, polar plane, R) and mirror image (M, B)");
+  add_common(c.eval);
+  add_accuracy(c.eval);
+  c.eval->add_option("--tolerance", o.tolerance,
+                     "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
+                     "this relative tolerance (double output; per-item 'certified' says by which stage)")
+      ->check(CLI::Range(0.0, 1.0));
+
+  c.verify = app.add_subcommand("verify",
+                                "Check results on exact sample points: terminator points on A, P and R, "
+                                "reflected points on B (a proof in exact arithmetic)");
+  add_common(c.verify);
+  c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
+  c.verify->add_option("--seed", o.seed, "Seed of the deterministic sampler")->capture_default_str();
+  add_accuracy(c.verify);
+  c.verify->add_option("--candidate", o.candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
+
+  c.audit = app.add_subcommand("audit", "Precision audit of one scene: error against run time over the whole "
+                                        "precision ladder, both methods; writes report.json, report.html, "
+                                        "error-vs-time.svg");
+  c.audit->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required();
+  c.audit->add_option("--out", o.out_dir, "Output directory")->required();
+  c.audit->add_option("--batch-ms", o.batch_ms, "Minimum duration of one timed batch (7 batches, median)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 10000.0));
+  c.audit->add_flag("--json", o.as_json, "Also print report.json on stdout");
+  c.audit_candidate = add_candidate(c.audit);
+
+  c.stress = app.add_subcommand("stress", "Stability sweeps of stiff and extreme cases (families: --list); "
+                                          "writes report.json, report.html and one SVG per family");
+  c.stress->add_option("--family", o.families, "A family to sweep (repeatable; default: all)");
+  c.stress->add_flag("--list", o.list_families, "List the families and exit");
+  c.stress->add_option("--out", o.out_dir, "Output directory");
+  c.stress->add_option("--samples", o.stress_samples, "Exact points per item for the geometric error")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  stress->add_flag("--json", as_json, "Also print report.json on stdout");
-  CLI::Option* stress_candidate = add_candidate(stress);
+  c.stress->add_flag("--json", o.as_json, "Also print report.json on stdout");
+  c.stress_candidate = add_candidate(c.stress);
 
-  CLI::App* bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
-                                                "per item and roofline fraction per op, precision, method and kind of "
-                                                "inputs; the filtered verifier's point checks per second; the processor");
-  BenchOptions bench_opt;
-  bench->add_option("--n", bench_opt.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
-  bench->add_option("--threads", bench_opt.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
-  bench->add_option("--repeats", bench_opt.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(CLI::Range(1, 50));
-  bench->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
+  c.bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
+                                        "per item and roofline fraction per op, precision, method and kind of "
+                                        "inputs; the filtered verifier's point checks per second; the processor");
+  c.bench->add_option("--n", o.bench.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
+  c.bench->add_option("--threads", o.bench.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
+  c.bench->add_option("--repeats", o.bench.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(CLI::Range(1, 50));
+  c.bench->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
 
-  CLI::App* paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
-  bool strict = false;
-  paper->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
-  paper->add_flag("--strict", strict, "Exit 1 when a printed formula fails its definition (errata found)");
+  c.paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");
+  c.paper->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
+  c.paper->add_flag("--strict", o.strict, "Exit 1 when a printed formula fails its definition (errata found)");
 
-  CLI::App* render_cmd = app.add_subcommand("render", "Ray-cast the scene's camera view: shadows and mirror content from the "
-                                                    "transforms (P, polar plane, B) or by classic shadow/reflection rays");
-  RenderArgs rargs;
-  render_cmd->add_option("SCENE", scene_file, "Scene file (qverify-scene/1) with a camera")->required();
-  render_cmd->add_option("--out", rargs.out, "PNG image to write (with --compare: the transforms image)");
-  render_cmd->add_option("--method", rargs.method, "transforms | raytrace")->capture_default_str()->check(
+  RenderArgs& r = o.render;
+  c.render = app.add_subcommand("render", "Ray-cast the scene's camera view: shadows and mirror content from the "
+                                          "transforms (P, polar plane, B) or by classic shadow/reflection rays");
+  c.render->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1) with a camera")->required();
+  c.render->add_option("--out", r.out, "PNG image to write (with --compare: the transforms image)");
+  c.render->add_option("--method", r.method, "transforms | raytrace")->capture_default_str()->check(
       CLI::IsMember({"transforms", "raytrace"}));
-  render_cmd->add_option("--ids", rargs.ids, "PNG of the ID buffer (one colour per surface, mirror and shadow set)");
-  render_cmd->add_flag("--compare", rargs.compare, "Render by both methods, compare the ID buffers, certify disagreeing pixels");
-  render_cmd->add_option("--diff", rargs.diff, "With --compare: PNG with the disagreeing pixels in red");
-  render_cmd->add_option("--box", rargs.box, "Half side of the clipping cube around look_at (default: |eye - look_at|_inf / 2)");
-  render_cmd->add_option("--frame", rargs.frame, "camera (origin at look_at, moved exactly before rounding) | world")
+  c.render->add_option("--ids", r.ids, "PNG of the ID buffer (one colour per surface, mirror and shadow set)");
+  c.render->add_flag("--compare", r.compare, "Render by both methods, compare the ID buffers, certify disagreeing pixels");
+  c.render->add_option("--diff", r.diff, "With --compare: PNG with the disagreeing pixels in red");
+  c.render->add_option("--box", r.box, "Half side of the clipping cube around look_at (default: |eye - look_at|_inf / 2)");
+  c.render->add_option("--frame", r.frame, "camera (origin at look_at, moved exactly before rounding) | world")
       ->capture_default_str()->check(CLI::IsMember({"camera", "world"}));
-  render_cmd->add_option("--threads", rargs.threads, "Threads (0: all)")->capture_default_str()->check(CLI::Range(0, 256));
-  render_cmd->add_option("--repeat", rargs.repeat, "With --compare: renders per method, the fastest is timed")
+  c.render->add_option("--threads", r.threads, "Threads (0: all)")->capture_default_str()->check(CLI::Range(0, 256));
+  c.render->add_option("--repeat", r.repeat, "With --compare: renders per method, the fastest is timed")
       ->capture_default_str()->check(CLI::Range(1, 100));
-  render_cmd->add_option("--max-checked", rargs.max_checked, "With --compare: disagreeing pixels to certify at most")
+  c.render->add_option("--max-checked", r.max_checked, "With --compare: disagreeing pixels to certify at most")
       ->capture_default_str()->check(CLI::Range(0L, 100000000L));
-  render_cmd->add_option("--min-agreement", rargs.min_agreement, "With --compare: exit 1 below this agreement fraction")
+  c.render->add_option("--min-agreement", r.min_agreement, "With --compare: exit 1 below this agreement fraction")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  render_cmd->add_flag("--json", as_json, "Print exactly one JSON document on stdout");
+  c.render->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
+  return c;
+}
 
-  // The first word that is not an option names the command: an unknown one is named back, with the
-  // list (CLI11 alone would say "A subcommand is required").
+/// The first word that is not an option names the command: an unknown one is named back, with the list
+/// (CLI11 alone would say "A subcommand is required"). Returns the exit status, or nullopt to go on.
+std::optional<int> refuse_unknown_command(const CLI::App& app, int argc, char** argv) {
   std::string commands;
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
@@ -573,126 +582,141 @@ int main(int argc, char** argv) {
     std::cerr << "qverify: a command is required (commands: " << commands << ")\n(run 'qverify --help' for usage)\n";
     return kUsage;
   }
+  return std::nullopt;
+}
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "qverify: " << e.what() << "\n(run 'qverify --help' for usage)\n";
-    return kUsage;
+/// Checks of values that span options (CLI11 checks each option alone), before any work.
+void check_options(const Options& o, const Commands& c) {
+  if ((c.eval->parsed() || c.verify->parsed() || c.audit->parsed() || c.stress->parsed()) &&
+      !(std::isfinite(o.accuracy) && o.accuracy > 0))
+    throw UsageError("--accuracy: expected a positive finite number");
+  // --candidate-cmd of audit and stress
+  if ((c.audit->parsed() && c.audit_candidate->count() > 0) ||
+      (c.stress->parsed() && c.stress_candidate->count() > 0 && !o.list_families)) {
+    if (const std::string p = candidate_command_problem(o.candidate_cmd); !p.empty()) throw UsageError("--candidate-cmd: " + p);
+    if (const std::string p = candidate_name_problem(o.candidate_name); !p.empty())
+      throw UsageError("--candidate-name \"" + o.candidate_name + "\": " + p);
+    if (!(std::isfinite(o.candidate_timeout) && o.candidate_timeout > 0 && o.candidate_timeout <= 1e6))
+      throw UsageError("--candidate-timeout: expected a positive number of seconds (at most 1e6)");
   }
+}
 
+int run_eval(const Options& o) {
+  const Precision prec = precision_of(o.precision_text);
+  const Method method = method_of(o.method_text);
+  const Scene sc = load_scene(o.scene_file);
+  if (o.tolerance > 0 && prec.kind != Precision::Kind::f64)
+    throw UsageError("--tolerance: the adaptive mode produces double results; drop --precision");
+  if (o.tolerance > 0 && o.tolerance < std::ldexp(1.0, -53))
+    throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
+                     "result rounded to double is that far); use --precision exact");
+  const json doc = o.tolerance > 0 ? adaptive_eval_document(sc, method, o.tolerance, AccuracyOptions{o.accuracy})
+                                   : eval_document(sc, prec, method, frame_of(o.frame_text), AccuracyOptions{o.accuracy});
+  if (o.as_json) std::cout << doc.dump(2) << "\n";
+  else print_eval(doc);
+  return kOk;
+}
+
+int run_verify(const Options& o) {
+  const Precision prec = precision_of(o.precision_text);
+  const Method method = method_of(o.method_text);
+  const Scene sc = load_scene(o.scene_file);
+  const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text),
+                                                              AccuracyOptions{o.accuracy, o.samples, o.seed})
+                                           : candidate_results(sc, o.candidate, prec);
+  const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{o.samples, o.seed, o.accuracy});
+  if (o.as_json) std::cout << v.document.dump(2) << "\n";
+  else print_verify(v.document);
+  return v.failed > 0 ? 1 : kOk;
+}
+
+/// The candidate program of audit and stress, after its --out directory exists (a bad --out fails
+/// before the candidate's work directory is made).
+Candidate candidate_of(const Options& o) {
+  create_output_directory(o.out_dir);
+  return process_candidate(o.candidate_name, o.candidate_cmd, o.candidate_timeout);
+}
+
+int run_audit_command(const Options& o, bool with_candidate) {
+  const Scene sc = load_scene(o.scene_file);
+  AuditOptions opt;
+  opt.out_dir = o.out_dir;
+  opt.batch_seconds = o.batch_ms / 1000;
+  opt.progress = progress_after_two_seconds();
+  if (with_candidate) {
+    opt.candidate = candidate_of(o);
+    opt.accuracy = o.accuracy;
+  }
+  const AuditReport report = run_audit(sc, opt);
+  write_audit_report(o.out_dir, report);
+  if (o.as_json) std::cout << report.document.dump(2) << "\n";
+  else print_audit(report.document, o.out_dir);
+  return kOk;
+}
+
+int run_stress_command(const Options& o, bool with_candidate) {
+  if (o.list_families) {
+    json list = json::array();
+    for (const auto& f : stress_families()) {
+      if (!o.as_json) fmt::print("{:<20} {}\n", f.name, f.description);
+      list.push_back({{"name", f.name}, {"parameter", f.parameter}, {"description", f.description}});
+    }
+    if (o.as_json) std::cout << json{{"families", list}}.dump(2) << "\n";
+    return kOk;
+  }
+  if (o.out_dir.empty()) throw UsageError("stress: --out DIR is required (or --list)");
+  for (const auto& f : o.families)
+    if (std::none_of(stress_families().begin(), stress_families().end(), [&](const auto& g) { return g.name == f; }))
+      throw UsageError("stress: unknown family \"" + f + "\" (see qverify stress --list)");
+  StressOptions opt;
+  opt.out_dir = o.out_dir;
+  opt.families = o.families;
+  opt.samples = o.stress_samples;
+  opt.progress = progress_after_two_seconds();
+  if (with_candidate) {
+    opt.candidate = candidate_of(o);
+    opt.accuracy = o.accuracy;
+  }
+  const StressReport report = run_stress(opt);
+  write_stress_report(o.out_dir, report);
+  if (o.as_json) std::cout << report.document.dump(2) << "\n";
+  else print_stress(report.document, o.out_dir);
+  return kOk;
+}
+
+int run_bench_command(const Options& o) {
+  BenchOptions opt = o.bench;
+  const double need = static_cast<double>(bench_bytes_per_item()) * static_cast<double>(opt.n);
+  if (const std::size_t have = available_memory(); have > 0 && need > 0.95 * static_cast<double>(have))
+    throw UsageError(fmt::format("bench: --n {} needs about {:.1f} GB of memory ({} bytes per item), and {:.1f} GB "
+                                 "are available; use a smaller --n",
+                                 opt.n, need / 1e9, bench_bytes_per_item(), static_cast<double>(have) / 1e9));
+  opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  const json doc = run_bench(opt);
+  if (o.as_json) std::cout << doc.dump(2) << "\n";
+  else print_bench(doc);
+  return kOk;
+}
+
+int run_paper(const Options& o) {
+  const auto entries = audit_paper();
+  if (o.as_json) std::cout << audit_json(entries).dump(2) << "\n";
+  else print_paper(entries);
+  const bool errata = std::any_of(entries.begin(), entries.end(), [](const AuditEntry& e) { return e.verdict == "fails"; });
+  return o.strict && errata ? 1 : kOk;
+}
+
+/// Runs the parsed command; every refused input is exit 2 with its message, anything else exit 3.
+int run_command(const Options& o, const Commands& c) {
   try {
-    if ((eval->parsed() || verify->parsed() || audit->parsed() || stress->parsed()) &&
-        !(std::isfinite(accuracy) && accuracy > 0))
-      throw UsageError("--accuracy: expected a positive finite number");
-    // --candidate-cmd of audit and stress: checked before any work
-    if ((audit->parsed() && audit_candidate->count() > 0) || (stress->parsed() && stress_candidate->count() > 0 && !list_families)) {
-      if (const std::string p = candidate_command_problem(candidate_cmd); !p.empty()) throw UsageError("--candidate-cmd: " + p);
-      if (const std::string p = candidate_name_problem(candidate_name); !p.empty())
-        throw UsageError("--candidate-name \"" + candidate_name + "\": " + p);
-      if (!(std::isfinite(candidate_timeout) && candidate_timeout > 0 && candidate_timeout <= 1e6))
-        throw UsageError("--candidate-timeout: expected a positive number of seconds (at most 1e6)");
-    }
-    if (eval->parsed()) {
-      const Precision prec = precision_of(precision_text);
-      const Method method = method_of(method_text);
-      const Scene sc = load_scene(scene_file);
-      if (tolerance > 0 && prec.kind != Precision::Kind::f64)
-        throw UsageError("--tolerance: the adaptive mode produces double results; drop --precision");
-      if (tolerance > 0 && tolerance < std::ldexp(1.0, -53))
-        throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
-                         "result rounded to double is that far); use --precision exact");
-      const json doc = tolerance > 0 ? adaptive_eval_document(sc, method, tolerance, AccuracyOptions{accuracy})
-                                     : eval_document(sc, prec, method, frame_of(frame_text), AccuracyOptions{accuracy});
-      if (as_json) std::cout << doc.dump(2) << "\n";
-      else print_eval(doc);
-      return kOk;
-    }
-    if (verify->parsed()) {
-      const Precision prec = precision_of(precision_text);
-      const Method method = method_of(method_text);
-      const Scene sc = load_scene(scene_file);
-      const ResultSet rs = candidate.empty()
-                               ? computed_results(sc, prec, method, frame_of(frame_text), AccuracyOptions{accuracy, samples, seed})
-                               : candidate_results(sc, candidate, prec);
-      const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
-      if (as_json) std::cout << v.document.dump(2) << "\n";
-      else print_verify(v.document);
-      return v.failed > 0 ? 1 : kOk;
-    }
-    if (audit->parsed()) {
-      const Scene sc = load_scene(scene_file);
-      AuditOptions opt;
-      opt.out_dir = out_dir;
-      opt.batch_seconds = batch_ms / 1000;
-      opt.progress = progress_after_two_seconds();
-      if (audit_candidate->count() > 0) {
-        create_output_directory(out_dir);  // a bad --out fails before the candidate's work directory is made
-        opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
-        opt.accuracy = accuracy;
-      }
-      const AuditReport report = run_audit(sc, opt);
-      write_audit_report(out_dir, report);
-      const json& doc = report.document;
-      if (as_json) std::cout << doc.dump(2) << "\n";
-      else print_audit(doc, out_dir);
-      return kOk;
-    }
-    if (stress->parsed()) {
-      if (list_families) {
-        json list = json::array();
-        for (const auto& f : stress_families()) {
-          if (!as_json) fmt::print("{:<20} {}\n", f.name, f.description);
-          list.push_back({{"name", f.name}, {"parameter", f.parameter}, {"description", f.description}});
-        }
-        if (as_json) std::cout << json{{"families", list}}.dump(2) << "\n";
-        return kOk;
-      }
-      if (out_dir.empty()) throw UsageError("stress: --out DIR is required (or --list)");
-      for (const auto& f : families)
-        if (std::none_of(stress_families().begin(), stress_families().end(), [&](const auto& g) { return g.name == f; }))
-          throw UsageError("stress: unknown family \"" + f + "\" (see qverify stress --list)");
-      StressOptions opt;
-      opt.out_dir = out_dir;
-      opt.families = families;
-      opt.samples = stress_samples;
-      opt.progress = progress_after_two_seconds();
-      if (stress_candidate->count() > 0) {
-        create_output_directory(out_dir);  // a bad --out fails before the candidate's work directory is made
-        opt.candidate = process_candidate(candidate_name, candidate_cmd, candidate_timeout);
-        opt.accuracy = accuracy;
-      }
-      const StressReport report = run_stress(opt);
-      write_stress_report(out_dir, report);
-      const json& doc = report.document;
-      if (as_json) std::cout << doc.dump(2) << "\n";
-      else print_stress(doc, out_dir);
-      return kOk;
-    }
-    if (bench->parsed()) {
-      const double need = static_cast<double>(bench_bytes_per_item()) * static_cast<double>(bench_opt.n);
-      if (const std::size_t have = available_memory(); have > 0 && need > 0.95 * static_cast<double>(have))
-        throw UsageError(fmt::format("bench: --n {} needs about {:.1f} GB of memory ({} bytes per item), and {:.1f} GB "
-                                     "are available; use a smaller --n",
-                                     bench_opt.n, need / 1e9, bench_bytes_per_item(), static_cast<double>(have) / 1e9));
-      bench_opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
-      const json doc = run_bench(bench_opt);
-      if (as_json) std::cout << doc.dump(2) << "\n";
-      else print_bench(doc);
-      return kOk;
-    }
-    if (render_cmd->parsed()) return run_render(load_scene(scene_file), rargs, as_json);
-    if (paper->parsed()) {
-      const auto entries = audit_paper();
-      if (as_json) std::cout << audit_json(entries).dump(2) << "\n";
-      else print_paper(entries);
-      const bool errata = std::any_of(entries.begin(), entries.end(), [](const AuditEntry& e) { return e.verdict == "fails"; });
-      return strict && errata ? 1 : kOk;
-    }
+    check_options(o, c);
+    if (c.eval->parsed()) return run_eval(o);
+    if (c.verify->parsed()) return run_verify(o);
+    if (c.audit->parsed()) return run_audit_command(o, c.audit_candidate->count() > 0);
+    if (c.stress->parsed()) return run_stress_command(o, c.stress_candidate->count() > 0);
+    if (c.bench->parsed()) return run_bench_command(o);
+    if (c.render->parsed()) return run_render(load_scene(o.scene_file), o.render, o.as_json);
+    if (c.paper->parsed()) return run_paper(o);
   } catch (const UsageError& e) {
     std::cerr << "qverify: " << e.what() << "\n";
     return kUsage;
@@ -707,4 +731,26 @@ int main(int argc, char** argv) {
     return kInternal;
   }
   return kInternal;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"qverify: shadow volumes and mirror images of quadrics (Hashimoto & Suenaga), computed and verified"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Help for every command");
+  Options options;
+  const Commands commands = declare_commands(app, options);
+  if (const auto refused = refuse_unknown_command(app, argc, argv)) return *refused;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "qverify: " << e.what() << "\n(run 'qverify --help' for usage)\n";
+    return kUsage;
+  }
+  return run_command(options, commands);
 }
