@@ -229,18 +229,32 @@ ItemAccuracy non_finite_accuracy() {
   return acc;
 }
 
+namespace {
+
+/// The meters' rule: the error on the item's points; in the gray zone also on the denser points (sampled once,
+/// on first need, and kept); the larger counts.
+template <class Error, class Dense>
+ItemAccuracy refined_accuracy(const ItemPoints& pts, std::optional<ItemPoints>& dense, const AccuracyOptions& opt,
+                              Error error, Dense sample_dense) {
+  Measure g = error(pts);
+  if (in_gray_zone(g, opt.target)) {  // near the target: measured again on more points
+    if (!dense) dense = sample_dense();
+    const Measure h = error(*dense);
+    if (g < h) g = h;
+  }
+  return item_accuracy(g, !pts.points.empty(), opt.target);
+}
+
+}  // namespace
+
 ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
     : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {}
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
-  Measure g = shadow_error(pts_, origin, P, polar, R).geometric;
-  if (in_gray_zone(g, opt_.target)) {  // near the target: measured again on more points
-    if (!dense_) dense_ = terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_));
-    const Measure h = shadow_error(*dense_, origin, P, polar, R).geometric;
-    if (g < h) g = h;
-  }
-  return item_accuracy(g, !pts_.points.empty(), opt_.target);
+  return refined_accuracy(
+      pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; },
+      [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); });
 }
 
 ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
@@ -248,13 +262,9 @@ ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const A
       pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))) {}
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
-  Measure g = reflection_error(pts_, origin, B).geometric;
-  if (in_gray_zone(g, opt_.target)) {
-    if (!dense_) dense_ = reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_));
-    const Measure h = reflection_error(*dense_, origin, B).geometric;
-    if (g < h) g = h;
-  }
-  return item_accuracy(g, !pts_.points.empty(), opt_.target);
+  return refined_accuracy(
+      pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
+      [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
 }
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
