@@ -48,11 +48,17 @@ template <class S> Mat4<S> mirror_matrix(const Vec4<S>& plane) {
 /// As a projective map it is the reflection itself; B from it carries the
 /// positive factor (n.n)^2.
 template <class S> Mat4<S> scaled_mirror_matrix(const Vec4<S>& plane) {
+  // Entry by entry: for a wide integer type every Eigen temporary (nn I, 2 n n^T) costs
+  // multiplications by zero and copies (the exact reflection rows of qverify bench).
   const Vec3<S> n = plane.template head<3>();
-  const S nn = n.squaredNorm();
-  Mat4<S> M = Mat4<S>::Zero();
-  M.template topLeftCorner<3, 3>() = nn * Mat3<S>::Identity() - S(2) * (n * n.transpose());
-  M.template topRightCorner<3, 1>() = -(S(2) * plane(3)) * n;
+  const Vec3<S> n2(n(0) + n(0), n(1) + n(1), n(2) + n(2));  // 2 n, without a product
+  const S nn = ordered_dot<S, 3>(n, n);
+  Mat4<S> M;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) M(i, j) = i == j ? S(nn - n2(i) * n(j)) : S(-(n2(i) * n(j)));
+    M(i, 3) = -(n2(i) * plane(3));
+    M(3, i) = S(0);
+  }
   M(3, 3) = nn;
   return M;
 }
