@@ -192,6 +192,14 @@ void conjugate_norm(const BigInt& a, const BigInt& b, const BigInt& d, Scratch& 
   mpz_abs(z(s.conj), z(s.conj));
 }
 
+/// [sdlo, sdhi] = sqrt(d) rounded outwards (the radicand of the points of Q(sqrt d)), for enclose_root.
+void enclose_sqrt(const BigInt& d, Scratch& s) {
+  mpfr_set_z(s.sdlo, z(d), MPFR_RNDD);
+  mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
+  mpfr_set_z(s.sdhi, z(d), MPFR_RNDU);
+  mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
+}
+
 void enclose_root(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, const BigInt& d, bool root, Scratch& s) {
   if (root && mpz_sgn(z(a)) * mpz_sgn(z(b)) < 0) conjugate_norm(a, b, d, s);
   enclose_abs(lo, hi, a, b, root, s);
@@ -346,10 +354,7 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
     }
     mpz_addmul(z(s.f0), z(s.b), z(x.kb));
     mpz_mul(z(s.f1), z(s.c), z(x.m));
-    mpfr_set_z(s.sdlo, z(x.d), MPFR_RNDD);
-    mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
-    mpfr_set_z(s.sdhi, z(x.d), MPFR_RNDU);
-    mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
+    enclose_sqrt(x.d, s);
   }
   // |f| in [lo0, hi0] (times (Dp Dv)^2), |w| in [lo1, hi1], |g|^2 in [lo2, hi2] (times (Dp Dv)^2)
   enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
@@ -385,10 +390,7 @@ FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, 
   if (root) {
     dot4(z(s.b), p.pi.data(), x.V);
     mpz_mul(z(s.f1), z(s.b), z(x.Dp));
-    mpfr_set_z(s.sdlo, z(x.d), MPFR_RNDD);
-    mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
-    mpfr_set_z(s.sdhi, z(x.d), MPFR_RNDU);
-    mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
+    enclose_sqrt(x.d, s);
   }
   enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
   enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
