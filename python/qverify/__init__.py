@@ -19,6 +19,9 @@ Functions:
                                   checks any program's mirror image
     eval_scene(scene, ...)        the qverify-eval/1 document of a scene
     verify_scene(scene, ...)      the qverify-verify/1 document of a scene
+    stress(fn, families=[...], out=DIR)
+                                  audits your function on the stress sweeps
+    stress_families()             the families of stress
 
 Bad input raises qverify.InputError (a ValueError) whose `path` names the
 offending value: "A[1][3]", "L", "precision", or a scene's JSON path.
@@ -35,7 +38,9 @@ Example:
 
 import json as _json
 import math as _math
+import numbers as _numbers
 import os as _os
+import tempfile as _tempfile
 from fractions import Fraction as _Fraction
 
 from ._qverify import (  # noqa: F401
@@ -47,11 +52,13 @@ from ._qverify import (  # noqa: F401
     ReflectionResult,
     ShadowResult,
     _eval_scene,
+    _stress,
     _verify_scene,
     check_reflection,
     check_shadow,
     reflection,
     shadow,
+    stress_families,
 )
 
 __version__ = "0.1.0"
@@ -63,6 +70,8 @@ __all__ = [
     "check_reflection",
     "eval_scene",
     "verify_scene",
+    "stress",
+    "stress_families",
     "InputError",
     "ShadowResult",
     "ReflectionResult",
@@ -202,3 +211,126 @@ def verify_scene(scene, candidate=None, precision="double", method="direct", *, 
     else:
         cpath, ctext, cname = _document_args(candidate, "candidate")
     return _verify_scene(path, text, name, cpath, ctext, cname, precision, method, frame, samples, seed, accuracy)
+
+
+def _argument_error(path, problem):
+    return InputError("%s: %s" % (path, problem), path, "", problem)
+
+
+def stress(fn=None, *, shadow=None, reflection=None, families=None, out=None, name="candidate", samples=None,
+           accuracy=None):
+    """Audits your own function on the stress sweeps of `qverify stress`: no files, no process.
+
+    Every point of each family (one parameter pushed over many decades
+    towards a breaking point: an object 1e12 from the origin, a light 1e-15
+    from the surface, ...) is computed by qverify in several precisions and
+    by your function, and each result is measured against exact: the
+    geometric error (the largest first-order distance of exact sample points
+    from the returned quadric, relative to the object's size). This is
+    `qverify stress --candidate-cmd` with a Python function as the candidate.
+
+    Your function is called once per point with float64 numpy arrays: the
+    scene's exact inputs, each entry correctly rounded to double,
+
+    * shadow families: fn(A, L) with A the quadric's 4x4 matrix and L the
+      light, (x, y, z, 1) for a point light or (-d, 0) for a parallel light
+      along d; it returns P, the shadow cone (L^T A L) A - (A L)(A L)^T up to
+      a positive factor, as a 4x4 array-like, or a dict
+      {"P": ..., "polar_plane": ... (A L), "R": ...} (polar_plane and R
+      optional: left out, they are not measured);
+    * reflection families: fn(A, plane) with plane = (a, b, c, d) of the
+      mirror a x + b y + c z + d = 0; it returns B = M^T A M up to a positive
+      factor, or a dict {"B": ..., "M": ...} (M optional).
+
+    Returned values are taken exactly (floats, ints, Fractions ...) and
+    rounded to double. An exception raised by the function (any Exception),
+    a missing or malformed result or a NaN / inf entry is that point's
+    failed call: status "candidate-failed" with "error" (e.g. "shadow (obj,
+    light): ZeroDivisionError: float division by zero"), and the sweep goes
+    on. KeyboardInterrupt stops it. There is no time-out: a function that
+    never returns hangs the sweep. The sweep runs without the GIL; it is
+    taken back for each call of the function.
+
+    Args:
+        fn: the function for the families named in `families` (required
+            with fn): called as fn(A, L) on shadow families and fn(A, plane)
+            on reflection families.
+        shadow: a shadow function fn(A, L) (instead of fn).
+        reflection: a reflection function fn(A, plane) (instead of fn); with
+            shadow= and reflection= both, the families of both kinds run.
+        families: a family name or a list of them (stress_families() lists
+            them with their kind); None: every family of the kinds given.
+        out: None, or a directory (created when missing) where report.json
+            (the returned document), report.html (self-contained, with the
+            plots), one FAMILY.svg per family and, for every point where the
+            function failed or its error exceeds `accuracy`, a reproducer
+            failures/NAME-FAMILY-K.json (the point's scene) with
+            NAME-FAMILY-K.log (the reason; a raised exception's traceback)
+            are written. With None nothing is kept (the document's
+            reproducer paths then name files that were not kept).
+        name: the candidate's name in the report (letters, digits, '.', '_',
+            '-'; default "candidate").
+        samples: exact sample points per item (default 8).
+        accuracy: the accuracy target of the function's geometric error
+            (default 1e-9): a point beyond it is a reproducer.
+
+    Returns:
+        dict: the qverify-stress/1 document. families[i]["points"][k]["runs"]
+        holds qverify's runs and, last, the function's run ("source":
+        "candidate": status, error, item_geometric_error, beyond_accuracy,
+        seconds, reproducer); families[i]["candidate"] its breakdown (the
+        first parameter where it failed or exceeded the target) and counts;
+        ["candidate"] the totals (calls, failed_calls, beyond_accuracy,
+        reproducers).
+
+    Raises:
+        qverify.InputError: a bad argument, nothing run: fn not callable
+            (path "fn", "shadow" or "reflection"), an unknown family or one
+            of a kind without a function ("families[1]"), a bad name,
+            samples or accuracy.
+        OSError: `out` cannot be created or written (`filename` is the
+            path); raised before the sweep when the directory cannot be made.
+
+    Example:
+        >>> def naive_shadow(A, L):  # world coordinates, plain doubles
+        ...     AL = A @ L
+        ...     return (L @ AL) * A - np.outer(AL, AL)
+        >>> doc = qverify.stress(naive_shadow, families=["far-from-origin"], out="out/naive")
+        >>> doc["families"][0]["candidate"]["breakdown"]  # the first offset where it breaks
+        100000000.0
+    """
+    for arg, value in (("fn", fn), ("shadow", shadow), ("reflection", reflection)):
+        if value is not None and not callable(value):
+            raise _argument_error(arg, "expected a callable, found %s" % type(value).__name__)
+    if fn is not None:
+        if shadow is not None or reflection is not None:
+            raise _argument_error("fn", "give fn, or shadow= and reflection=, not both")
+        if families is None:
+            raise _argument_error("families", "name the families to run fn on (qverify.stress_families() lists them), "
+                                              "or pass it as shadow= or reflection= to run every family of that kind")
+        shadow = reflection = fn
+    if shadow is None and reflection is None:
+        raise _argument_error("fn", "no function to audit: give fn, shadow= or reflection=")
+    if families is not None:
+        if isinstance(families, str):
+            families = [families]
+        try:
+            families = list(families)
+        except TypeError:
+            raise _argument_error("families", "expected a family name or a list of them, found %s"
+                                  % type(families).__name__) from None
+        for i, f in enumerate(families):
+            if not isinstance(f, str):
+                raise _argument_error("families[%d]" % i, "expected a family name (str), found %s" % type(f).__name__)
+    if not isinstance(name, str):
+        raise _argument_error("name", "expected a str, found %s" % type(name).__name__)
+    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, _numbers.Integral)):
+        raise _argument_error("samples", "expected an int, found %s" % type(samples).__name__)
+    if accuracy is not None and (isinstance(accuracy, bool) or not isinstance(accuracy, _numbers.Real)):
+        raise _argument_error("accuracy", "expected a number, found %s" % type(accuracy).__name__)
+    if out is None:
+        with _tempfile.TemporaryDirectory(prefix="qverify-stress-") as tmp:
+            return _stress(shadow, reflection, families, tmp, False, name, samples, accuracy)
+    if not isinstance(out, (str, bytes, _os.PathLike)):
+        raise _argument_error("out", "expected a directory path or None, found %s" % type(out).__name__)
+    return _stress(shadow, reflection, families, _os.fsdecode(out), True, name, samples, accuracy)

@@ -66,6 +66,7 @@ std::unique_lock<std::mutex> mpfr_lock(bool needed) {
 }
 
 void bind_checks(py::module_& m);  // check_bindings.cpp
+void bind_stress(py::module_& m);  // stress_bindings.cpp
 
 }  // namespace qverify::py_glue
 
@@ -425,5 +426,6 @@ Raises:
   m.attr("DEFAULT_SAMPLES") = kDefaultSamples;
   m.attr("PRECISIONS") = py::make_tuple("float", "double", "long-double", "float128", "mpfr:BITS", "interval", "exact");
   bind_checks(m);
+  bind_stress(m);
   for (const char* cls : {"ShadowResult", "ReflectionResult", "CheckReport"}) m.attr(cls).attr("__module__") = "qverify";
 }
