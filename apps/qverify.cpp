@@ -11,6 +11,7 @@
 #include <qverify/studies/paper_audit.hpp>
 #include <qverify/studies/stress.hpp>
 #include <qverify/report/report.hpp>
+#include <qverify/report/verify_document.hpp>
 #include <qverify/render/render.hpp>
 
 #include <CLI/CLI.hpp>
@@ -624,9 +625,10 @@ int run_verify(const Options& o) {
   const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text),
                                                               AccuracyOptions{o.accuracy, o.samples, o.seed})
                                            : candidate_results(sc, o.candidate, prec);
-  const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{o.samples, o.seed, o.accuracy});
-  if (o.as_json) std::cout << v.document.dump(2) << "\n";
-  else print_verify(v.document);
+  const VerifyReport v = verify_results(sc, rs, VerifyOptions{o.samples, o.seed, o.accuracy});
+  const json doc = verify_document(sc, v);
+  if (o.as_json) std::cout << doc.dump(2) << "\n";
+  else print_verify(doc);
   return v.failed > 0 ? 1 : kOk;
 }
 

@@ -2,6 +2,7 @@
 #include <qverify/report/report.hpp>
 #include <qverify/studies/audit.hpp>
 #include <qverify/studies/stress.hpp>
+#include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <catch2/catch.hpp>
@@ -71,18 +72,19 @@ TEST_CASE("far objects get a local origin that the verifier and candidates under
   REQUIRE(rs.shadows[0].origin);
   CHECK(*rs.shadows[0].origin == Vec3<Rational>(Rational(2000000000001, 2), -3, 2));
   REQUIRE(rs.reflections[0].origin);  // the image, 3e12 further
-  const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{8, 1});
+  const VerifyReport v = verify_results(sc, rs, VerifyOptions{8, 1});
   CHECK(v.failed == 0);
-  for (const auto& c : v.document["checks"]) {
+  const auto v_doc = verify_document(sc, v);
+  for (const auto& c : v_doc["checks"]) {
     CHECK(c["status"] == "pass");
     for (const char* k : {"on_P", "on_R", "on_B"})
       if (c.contains(k)) CHECK(c[k]["max_distance"].get<double>() < 1e-9);
   }
   // the world-frame result of the same scene is geometrically useless
   const ResultSet world = computed_results(sc, dbl, Method::direct, Frame::world);
-  const VerifyOutcome w = verify_results(sc, world, VerifyOptions{8, 1});
-  CHECK(w.document["checks"][0]["on_P"]["max_distance"].get<double>() > 1e3);
-  CHECK(w.document["checks"][0]["status"] == "fail");  // and a verdict says so
+  const VerifyReport w = verify_results(sc, world, VerifyOptions{8, 1});
+  CHECK(verify_document(sc, w)["checks"][0]["on_P"]["max_distance"].get<double>() > 1e3);
+  CHECK(verify_document(sc, w)["checks"][0]["status"] == "fail");  // and a verdict says so
 }
 
 // ------------------------------------------------------------------ candidates (issue 19)

@@ -5,6 +5,7 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/scene/json_tree.hpp>
+#include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <catch2/catch.hpp>
@@ -208,9 +209,10 @@ std::vector<double> measured_errors(const Scene& sc, const ResultSet& rs) {
   VerifyOptions opt;
   opt.samples = 128;
   opt.seed = 99;
-  const VerifyOutcome v = verify_results(sc, rs, opt);
+  const VerifyReport v = verify_results(sc, rs, opt);
   std::vector<double> out;
-  for (const auto& c : v.document["checks"]) {
+  const auto v_doc = verify_document(sc, v);
+  for (const auto& c : v_doc["checks"]) {
     if (c["status"] == "skipped") out.push_back(-1);
     else out.push_back(c["geometric_error"].is_null() ? INFINITY : c["geometric_error"].get<double>());
   }
@@ -285,7 +287,7 @@ TEST_CASE("eval --tolerance: every item has an error_bound, and its flag agrees 
     const Scene sc = parse_scene(text, "scene.json");
     const auto doc = adaptive_eval_document(sc, Method::direct, 1e-12);
     const ResultSet rs = candidate_results_text(sc, doc.dump(), "adaptive.json", *parse_precision("double"));
-    const auto checks = verify_results(sc, rs, VerifyOptions{}).document["checks"];
+    const auto checks = verify_document(sc, verify_results(sc, rs, VerifyOptions{}))["checks"];
     std::size_t k = 0;
     for (const char* kind : {"shadows", "reflections"})
       for (const auto& item : doc[kind]) {
@@ -311,8 +313,8 @@ TEST_CASE("qverify's own eval document, read back as a candidate, passes: far or
   const auto doc = eval_document(sc, *parse_precision("double"), Method::direct, std::nullopt, AccuracyOptions{});
   REQUIRE(doc["reflections"][0].contains("origin"));
   const ResultSet rs = candidate_results_text(sc, doc.dump(), "eval.json", *parse_precision("double"));
-  const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{});
-  INFO(v.document.dump(1));
+  const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+  INFO(verify_document(sc, v).dump(1));
   CHECK(v.failed == 0);
   CHECK(v.passed == 2);
 }
@@ -356,7 +358,7 @@ TEST_CASE("verify: the correctly rounded result passes, one entry off by 1e-7 fa
       P(i, j) += d;
       P(j, i) += d;
       INFO("shadow " << k);
-      CHECK(verify_results(sc, bad, VerifyOptions{}).document["checks"][k]["status"] == "fail");
+      CHECK(verify_document(sc, verify_results(sc, bad, VerifyOptions{}))["checks"][k]["status"] == "fail");
     }
   }
 }
@@ -396,9 +398,10 @@ TEST_CASE("verify: a far-away candidate computed naively in world coordinates fa
       {"center": [37000000.25, 1.5, -2], "radius": 0.001}}], "lights": [{"id": "lamp", "position": [37000000.5, 2, 3]}],
       "mirrors": [{"id": "m", "plane": [1, 0, 0, -37000010]}]})",
                                "far.json");
-  const VerifyOutcome naive = verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct, Frame::world), {});
+  const VerifyReport naive = verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct, Frame::world), {});
   CHECK(naive.failed == 2);
-  for (const auto& c : naive.document["checks"]) {
+  const auto naive_doc = verify_document(sc, naive);
+  for (const auto& c : naive_doc["checks"]) {
     CHECK(c["consistent_with_precision"].get<bool>());  // as good as world-frame doubles can be ...
     CHECK(c["geometric_error"].get<double>() > 1);      // ... and still wrong by more than the object's size
   }
@@ -421,8 +424,9 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
     const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
     REQUIRE(rs.shadows[0].origin);
     CHECK(*rs.shadows[0].origin == Vec3<Q>(Q(60000001, 2), -2, 1));  // the centre, not its mirror image
-    const VerifyOutcome v = verify_results(sc, rs, VerifyOptions{});
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
     CHECK(v.failed == 0);
-    for (const auto& c : v.document["checks"]) CHECK(c["geometric_error"].get<double>() < 1e-12);
+    const auto v_doc = verify_document(sc, v);
+    for (const auto& c : v_doc["checks"]) CHECK(c["geometric_error"].get<double>() < 1e-12);
   }
 }

@@ -17,16 +17,17 @@ int main(int argc, char** argv) {
     const qverify::ResultSet results =
         qverify::computed_results(scene, *qverify::parse_precision("double"), qverify::Method::direct);
     qverify::VerifyOptions options;  // 64 exact points per item, seed 1, accuracy target 1e-9
-    const qverify::VerifyOutcome outcome = qverify::verify_results(scene, results, options);
+    const qverify::VerifyReport report = qverify::verify_results(scene, results, options);
 
-    for (const auto& check : outcome.document["checks"]) {
-      const std::string with = check.contains("light") ? check["light"].get<std::string>() : check["mirror"].get<std::string>();
-      std::cout << check["kind"].get<std::string>() << " " << check["quadric"].get<std::string>() << " / " << with
-                << ": " << check["status"].get<std::string>() << "\n";
+    for (const qverify::VerifyCheck& check : report.checks) {
+      std::cout << check.kind << " " << check.quadric << " / " << check.other << ": " << check.status();
+      if (!check.report) std::cout << " (" << check.missing << ")";
+      else if (!check.passed()) std::cout << "\n" << check.report->summary();  // which point, how far, relative to what
+      std::cout << "\n";
     }
-    std::cout << scene.name << ": " << outcome.passed << " passed, " << outcome.failed << " failed, " << outcome.skipped
+    std::cout << scene.name << ": " << report.passed << " passed, " << report.failed << " failed, " << report.skipped
               << " skipped\n";
-    return outcome.failed > 0 ? 1 : 0;
+    return report.failed > 0 ? 1 : 0;
   } catch (const qverify::InputError& e) {  // the message names the file, the JSON path and the problem
     std::cerr << "library_verify: " << e.what() << "\n";
     return 2;

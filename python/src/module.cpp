@@ -8,6 +8,7 @@
 #include <qverify/verify/check.hpp>
 #include <qverify/eval/eval.hpp>
 #include <qverify/verify/verifier.hpp>
+#include <qverify/report/verify_document.hpp>
 
 #include <pybind11/stl.h>
 
@@ -261,7 +262,7 @@ py::object verify_scene_py(const py::object& path, const py::object& text, const
   if (!cand_text.is_none()) ctext = cand_text.cast<std::string>();
   else if (!cand_path.is_none())
     cpath = py::str(py::module_::import("os").attr("fspath")(cand_path)).cast<std::string>();
-  VerifyOutcome v;
+  VerifyReport v;
   {
     py::gil_scoped_release nogil;
     auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr);
@@ -270,7 +271,7 @@ py::object verify_scene_py(const py::object& path, const py::object& text, const
                                  : computed_results(sc, prec, method, frame, AccuracyOptions{accuracy, samples, seed});
     v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
   }
-  return json_to_python(v.document);
+  return json_to_python(verify_document(sc, v));
 }
 
 std::string repr_value(const py::object& o) { return py::repr(o).cast<std::string>(); }

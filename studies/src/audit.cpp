@@ -138,13 +138,13 @@ AuditReport run_audit(const Scene& sc, const AuditOptions& opt) {
     r["run"] = cand.name;
     if (call.ok) {
       e = item_errors(call.results, ref);
-      const VerifyOutcome v = verify_results(sc, call.results, VerifyOptions{opt.samples, 1, opt.accuracy});
+      const VerifyReport v = verify_results(sc, call.results, VerifyOptions{opt.samples, 1, opt.accuracy});
       checks_failed = v.failed;
-      for (std::size_t i = 0; i < n_items && i < v.document["checks"].size(); ++i) {
-        const json& g = v.document["checks"][i];
-        if (g.contains("geometric_error") && !g["geometric_error"].is_null())
-          candidate_geo[i] = g["geometric_error"].get<double>();
-        else if (g["status"] == "skipped")
+      for (std::size_t i = 0; i < n_items && i < v.checks.size(); ++i) {
+        const VerifyCheck& g = v.checks[i];
+        if (g.report && !g.report->skipped && std::isfinite(g.report->geometric_error))
+          candidate_geo[i] = g.report->geometric_error;
+        else if (g.skipped())
           candidate_geo[i] = NAN;  // nothing to measure on (no real terminator point)
       }
       r["status"] = v.failed > 0 ? "fail" : "pass";

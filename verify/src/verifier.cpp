@@ -13,52 +13,10 @@ namespace qverify {
 namespace {
 
 using Q = Rational;
-using json = nlohmann::ordered_json;
-
-double to_d(const Measure& m) { return m.convert_to<double>(); }
-
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-json check_header(const char* kind, const std::string& quadric, const char* other_key, const std::string& other) {
-  json j;
-  j["kind"] = kind;
-  j["quadric"] = quadric;
-  j[other_key] = other;
-  return j;
-}
-
-json metric_json(const QuadricCheck& c) {
-  const Metric& m = c.metric;
-  json j{{"max_residual", to_d(m.residual)}, {"max_distance", m.singular ? json(nullptr) : json(to_d(m.distance))}};
-  j["geometric_error"] = number_or_null(c.geometric_error);
-  if (m.singular) j["note"] = "a point lies off the result where its gradient vanishes: no first-order distance";
-  return j;
-}
-
-/// The check's verdict and its fields in the verify document (written here only).
-void check_json(json& c, const CheckReport& r, const std::vector<const char*>& quadrics) {
-  c["points"] = r.points;
-  c["tolerance"] = r.accuracy;
-  c["accuracy"] = r.accuracy;
-  c["object_size"] = r.object_size;
-  c["geometric_error"] = number_or_null(r.geometric_error);
-  for (const char* name : quadrics)
-    if (const QuadricCheck* q = r.find(name)) c[name] = metric_json(*q);
-}
-
-void problems_json(json& c, const CheckReport& r) {
-  if (!r.problems.empty()) {
-    std::string text;
-    for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
-    c["reason"] = text;
-  }
-  c["status"] = r.passed ? "pass" : "fail";
-}
 
 }  // namespace
 
-VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt) {
-  const bool exact = rs.precision.kind == Precision::Kind::exact;
+VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt) {
   const Measure eps = machine_epsilon(rs.precision);
   // The exact scene: every reference is computed by the checks, in the result's own frame.
   const TypedScene<Q> exact_scene = typed_scene<Q>(sc);
@@ -68,51 +26,29 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
   copt.accuracy = opt.accuracy;
   copt.method = rs.method;
 
-  VerifyOutcome out;
-  json& doc = out.document;
-  doc["format"] = "qverify-verify/1";
-  doc["scene"] = sc.name;
-  doc["precision"] = rs.precision.name();
-  doc["method"] = method_name(rs.method);
-  doc["samples"] = opt.samples;
-  doc["seed"] = opt.seed;
-  doc["source"] = rs.source;
-  doc["accuracy"] = exact ? 0.0 : opt.accuracy;
-  doc["tolerance_rule"] =
-      exact ? "exact: every residual must be exactly zero (a proof)"
-            : "pass: the geometric error of every checked result (largest first-order distance |x^T Q x| / |grad| of "
-              "exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
-              "largest distance of the points from A's centre) is at most the accuracy target; P also on exact points "
-              "of its generator lines, R also on points of the polar plane, signs and M against references computed "
-              "here from A, L and the mirror. consistent_with_precision (information only): every relative residual "
-              "|x^T Q x| / (|Q|_F |x|^2) within 64 eps kappa, kappa the rounding amplification of the formulas";
-  json checks = json::array();
-  // Counts a report; a skipped one (nothing to sample) is written here and needs nothing more.
-  auto skipped = [&](json& c, const CheckReport& r) {
-    c["exact_status"] = r.exact_status;
-    (r.skipped ? out.skipped : r.passed ? out.passed : out.failed)++;
-    if (!r.skipped) return false;
-    c["status"] = "skipped";
-    c["reason"] = r.problems.front();
-    checks.push_back(c);
-    return true;
+  VerifyReport out;
+  out.precision = rs.precision;
+  out.method = rs.method;
+  out.source = rs.source;
+  out.options = opt;
+  out.notes = rs.notes;
+  auto add = [&](VerifyCheck c) {
+    (c.skipped() ? out.skipped : c.passed() ? out.passed : out.failed)++;
+    out.checks.push_back(std::move(c));
   };
-  auto missing = [&](json& c, const std::string& problem) {
-    c["reason"] = problem.empty() ? "missing" : problem;
-    c["status"] = "fail";
-    ++out.failed;
-    checks.push_back(c);
-  };
-
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
     const Pair& pr = sc.shadows[k];
-    json c = check_header("shadow", sc.quadrics[pr.quadric].id, "light", sc.lights[pr.other].id);
+    VerifyCheck c;
+    c.kind = "shadow";
+    c.quadric = sc.quadrics[pr.quadric].id;
+    c.other = sc.lights[pr.other].id;
     const ShadowMatrices& got = rs.shadows[k];
     const Mat4<Q>& Aw = exact_scene.A[pr.quadric];
     const Vec4<Q>& Lw = exact_scene.L[pr.other];
     if (!got.present) {
-      c["exact_status"] = exact_shadow_word(Aw, Lw, rs.method);
-      missing(c, got.problem);
+      c.exact_status = exact_shadow_word(Aw, Lw, rs.method);
+      c.missing = got.problem.empty() ? "missing" : got.problem;
+      add(std::move(c));
       continue;
     }
     ExactShadowCandidate cand;
@@ -122,32 +58,26 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     cand.origin = got.origin;
     cand.status = got.status;
     cand.A = got.A ? *got.A : quadric_to_local(rs.A[pr.quadric], got.origin ? *got.origin : Vec3<Q>::Zero());
-    const CheckReport r = check_shadow_exact(Aw, Lw, cand, copt, eps, k);
-    if (skipped(c, r)) continue;
-    check_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane"});
-    c["R_on_second_plane"] = number_or_null(r.second_plane_error.value_or(0));
-    if (exact) c["proved_exactly"] = r.proved_exactly;
-    c["consistent_with_precision"] = r.consistent_with_precision;
-    c["rounding_tolerance"] = r.rounding_tolerance;
-    c["kappa"] = r.kappa;
-    c["item_status"] = r.item_status;
-    if (got.accuracy && got.accuracy->inaccurate) c["flags"] = json::array({"inaccurate"});
-    if (got.origin) c["origin"] = origin_json(*got.origin);
-    for (const std::string& n : r.notes) c["note"] = n;
-    problems_json(c, r);
-    checks.push_back(c);
+    c.report = check_shadow_exact(Aw, Lw, cand, copt, eps, k);
+    c.exact_status = c.report->exact_status;
+    c.inaccurate = got.accuracy && got.accuracy->inaccurate;
+    c.origin = got.origin;
+    add(std::move(c));
   }
-
   for (std::size_t k = 0; k < sc.reflections.size(); ++k) {
     const Pair& pr = sc.reflections[k];
-    json c = check_header("reflection", sc.quadrics[pr.quadric].id, "mirror", sc.mirrors[pr.other].id);
+    VerifyCheck c;
+    c.kind = "reflection";
+    c.quadric = sc.quadrics[pr.quadric].id;
+    c.other = sc.mirrors[pr.other].id;
     const ReflectionMatrices& got = rs.reflections[k];
     const Mat4<Q>& Aw = exact_scene.A[pr.quadric];
     const Vec4<Q>& plane = exact_scene.planes[pr.other];
     const std::optional<Vec3<Q>> center = natural_center(sc.quadrics[pr.quadric], Aw);
     if (!got.present) {
-      c["exact_status"] = exact_reflection_word(Aw);
-      missing(c, got.problem);
+      c.exact_status = exact_reflection_word(Aw);
+      c.missing = got.problem.empty() ? "missing" : got.problem;
+      add(std::move(c));
       continue;
     }
     ExactReflectionCandidate cand;
@@ -155,26 +85,12 @@ VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyO
     cand.B = got.B;
     cand.origin = got.origin;
     cand.status = got.status;
-    const CheckReport r = check_reflection_exact(Aw, plane, cand, copt, eps, k, center);
-    if (skipped(c, r)) continue;
-    check_json(c, r, {"on_B"});
-    if (exact) c["proved_exactly"] = r.proved_exactly;
-    c["consistent_with_precision"] = r.consistent_with_precision;
-    c["rounding_tolerance"] = r.rounding_tolerance;
-    c["M_error"] = r.M_error.value_or(0);
-    if (got.origin) c["origin"] = origin_json(*got.origin);
-    c["kappa"] = r.kappa;
-    c["item_status"] = r.item_status;
-    if (got.accuracy && got.accuracy->inaccurate) c["flags"] = json::array({"inaccurate"});
-    problems_json(c, r);
-    checks.push_back(c);
+    c.report = check_reflection_exact(Aw, plane, cand, copt, eps, k, center);
+    c.exact_status = c.report->exact_status;
+    c.inaccurate = got.accuracy && got.accuracy->inaccurate;
+    c.origin = got.origin;
+    add(std::move(c));
   }
-  doc["checks"] = checks;
-  doc["passed"] = out.passed;
-  doc["failed"] = out.failed;
-  doc["skipped"] = out.skipped;
-  doc["left_out"] = skipped_json(sc);
-  if (!rs.notes.empty()) doc["notes"] = rs.notes;
   return out;
 }
 

@@ -11,6 +11,7 @@
 /// then measured, to 80 digits. In exact arithmetic a zero is a proof.
 
 #include <qverify/eval/results.hpp>
+#include <qverify/verify/check.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -32,11 +33,40 @@ struct VerifyOptions {
   double accuracy = kDefaultAccuracy;  ///< the accuracy target T (relative to the object size)
 };
 
-/// The `qverify-verify/1` document and how many checks failed.
-struct VerifyOutcome {
-  nlohmann::ordered_json document;
-  int passed = 0, failed = 0, skipped = 0;
+/// The verdict on one requested item (a shadow or a reflection of the scene).
+struct VerifyCheck {
+  std::string kind;       ///< "shadow" or "reflection"
+  std::string quadric;    ///< the quadric's id
+  std::string other;      ///< the light's id (shadow) or the mirror's (reflection)
+  std::string exact_status;  ///< the status word of the exact inputs
+  /// The check of the item's results; nullopt when the results are missing or unusable.
+  std::optional<CheckReport> report;
+  std::string missing;    ///< why there is no report ("missing", "non-finite entries ...")
+  bool inaccurate = false;  ///< the results carried eval's flag `inaccurate`
+  std::optional<Vec3<Rational>> origin;  ///< the results' frame (local coordinates x - origin)
+
+  bool skipped() const { return report && report->skipped; }
+  bool passed() const { return report && !report->skipped && report->passed; }
+  /// "pass", "fail" or "skipped" (nothing to sample: neither pass nor fail).
+  const char* status() const { return skipped() ? "skipped" : passed() ? "pass" : "fail"; }
 };
-VerifyOutcome verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt);
+
+/// What `verify` found: one check per requested item, in the scene's order
+/// (shadows, then reflections), and the counts. report/verify_document.hpp
+/// writes it as the `qverify-verify/1` document.
+struct VerifyReport {
+  Precision precision;  ///< of the results judged
+  Method method = Method::direct;
+  std::string source;   ///< "computed" or the candidate's file
+  VerifyOptions options;
+  std::vector<VerifyCheck> checks;
+  int passed = 0, failed = 0, skipped = 0;
+  std::vector<std::string> notes;  ///< the results' notes (e.g. from a candidate's reader)
+};
+
+/// Checks every requested item's results on exact sample points against
+/// references computed here from the exact scene (check_shadow_exact,
+/// check_reflection_exact; check.hpp).
+VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt);
 
 }  // namespace qverify

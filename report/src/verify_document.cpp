@@ -1,0 +1,120 @@
+#include <qverify/report/verify_document.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace qverify {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+double to_d(const Measure& m) { return m.convert_to<double>(); }
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json metric_json(const QuadricCheck& c) {
+  const Metric& m = c.metric;
+  json j{{"max_residual", to_d(m.residual)}, {"max_distance", m.singular ? json(nullptr) : json(to_d(m.distance))}};
+  j["geometric_error"] = number_or_null(c.geometric_error);
+  if (m.singular) j["note"] = "a point lies off the result where its gradient vanishes: no first-order distance";
+  return j;
+}
+
+/// The check's measures: points, target, object size, geometric error, one entry per quadric checked.
+void measures_json(json& c, const CheckReport& r, const std::vector<const char*>& quadrics) {
+  c["points"] = r.points;
+  c["tolerance"] = r.accuracy;
+  c["accuracy"] = r.accuracy;
+  c["object_size"] = r.object_size;
+  c["geometric_error"] = number_or_null(r.geometric_error);
+  for (const char* name : quadrics)
+    if (const QuadricCheck* q = r.find(name)) c[name] = metric_json(*q);
+}
+
+void verdict_json(json& c, const CheckReport& r) {
+  if (!r.problems.empty()) {
+    std::string text;
+    for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
+    c["reason"] = text;
+  }
+  c["status"] = r.passed ? "pass" : "fail";
+}
+
+json check_json(const VerifyCheck& v, bool exact) {
+  const bool shadow = v.kind == "shadow";
+  json c;
+  c["kind"] = v.kind;
+  c["quadric"] = v.quadric;
+  c[shadow ? "light" : "mirror"] = v.other;
+  c["exact_status"] = v.exact_status;
+  if (!v.report) {
+    c["reason"] = v.missing;
+    c["status"] = "fail";
+    return c;
+  }
+  const CheckReport& r = *v.report;
+  if (r.skipped) {  // nothing to sample
+    c["status"] = "skipped";
+    c["reason"] = r.problems.front();
+    return c;
+  }
+  if (shadow) {
+    measures_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane"});
+    c["R_on_second_plane"] = number_or_null(r.second_plane_error.value_or(0));
+    if (exact) c["proved_exactly"] = r.proved_exactly;
+    c["consistent_with_precision"] = r.consistent_with_precision;
+    c["rounding_tolerance"] = r.rounding_tolerance;
+    c["kappa"] = r.kappa;
+    c["item_status"] = r.item_status;
+    if (v.inaccurate) c["flags"] = json::array({"inaccurate"});
+    if (v.origin) c["origin"] = origin_json(*v.origin);
+    for (const std::string& n : r.notes) c["note"] = n;
+  } else {
+    measures_json(c, r, {"on_B"});
+    if (exact) c["proved_exactly"] = r.proved_exactly;
+    c["consistent_with_precision"] = r.consistent_with_precision;
+    c["rounding_tolerance"] = r.rounding_tolerance;
+    c["M_error"] = r.M_error.value_or(0);
+    if (v.origin) c["origin"] = origin_json(*v.origin);
+    c["kappa"] = r.kappa;
+    c["item_status"] = r.item_status;
+    if (v.inaccurate) c["flags"] = json::array({"inaccurate"});
+  }
+  verdict_json(c, r);
+  return c;
+}
+
+}  // namespace
+
+json verify_document(const Scene& sc, const VerifyReport& report) {
+  const bool exact = report.precision.kind == Precision::Kind::exact;
+  json doc;
+  doc["format"] = "qverify-verify/1";
+  doc["scene"] = sc.name;
+  doc["precision"] = report.precision.name();
+  doc["method"] = method_name(report.method);
+  doc["samples"] = report.options.samples;
+  doc["seed"] = report.options.seed;
+  doc["source"] = report.source;
+  doc["accuracy"] = exact ? 0.0 : report.options.accuracy;
+  doc["tolerance_rule"] =
+      exact ? "exact: every residual must be exactly zero (a proof)"
+            : "pass: the geometric error of every checked result (largest first-order distance |x^T Q x| / |grad| of "
+              "exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
+              "largest distance of the points from A's centre) is at most the accuracy target; P also on exact points "
+              "of its generator lines, R also on points of the polar plane, signs and M against references computed "
+              "here from A, L and the mirror. consistent_with_precision (information only): every relative residual "
+              "|x^T Q x| / (|Q|_F |x|^2) within 64 eps kappa, kappa the rounding amplification of the formulas";
+  json checks = json::array();
+  for (const VerifyCheck& v : report.checks) checks.push_back(check_json(v, exact));
+  doc["checks"] = checks;
+  doc["passed"] = report.passed;
+  doc["failed"] = report.failed;
+  doc["skipped"] = report.skipped;
+  doc["left_out"] = skipped_json(sc);
+  if (!report.notes.empty()) doc["notes"] = report.notes;
+  return doc;
+}
+
+}  // namespace qverify
