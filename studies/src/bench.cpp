@@ -431,227 +431,297 @@ json processor_info() {
           {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for"}};
 }
 
-json run_bench(const BenchOptions& opt) {
-  const Eigen::Index n = opt.n;
-  const int T = opt.threads;
-  const int rounds = opt.repeats;
-  json rows = json::array();
-  auto say = [&](const std::string& s) {
-    if (opt.progress) opt.progress(s);
-  };
-  auto per_item_ns = [](const std::vector<double>& times, double items) {
-    json a = json::array();
-    for (double t : times) a.push_back(1e9 * t / items);
-    return a;
-  };
-  auto add_row = [&](Kind kind, const char* op, const char* precision, const char* method, const std::vector<double>& times,
-                     std::size_t bytes, Eigen::Index items, json extra = json::object()) {
-    const double ips = static_cast<double>(items) / best_of(times);
-    json r{{"op", op},
-           {"precision", precision},
-           {"method", method},
-           {"inputs", kind_name(kind)},
-           {"n", items},
-           {"items_per_s", ips},
-           {"ns_per_item", 1e9 / ips},
-           {"ns_per_item_median", 1e9 * median_of(times) / static_cast<double>(items)},
-           {"ns_per_item_runs", per_item_ns(times, static_cast<double>(items))},
-           {"bytes_per_item", bytes},
-           {"roofline_fraction", nullptr}};  // once the bandwidth is final
-    for (auto& [k, v] : extra.items()) r[k] = v;
-    rows.push_back(r);
-  };
-  auto progress = [&](const std::string& what) {
-    return [&, what](int r) {
-      say("bench: " + what + ", round " + std::to_string(r + 1) + "/" + std::to_string(rounds));
-    };
-  };
-  // Certified intervals: Interval_nt<false> with the rounding mode set once per thread; the
-  // batch runs them as IntervalPack, W per instruction (exact/interval_pack.hpp).
-  using I = CGAL::Interval_nt<false>;
-  auto guard = [] { return CGAL::Protect_FPU_rounding<true>(); };
+namespace {
 
-  // The bandwidth: a stream copy of as many bytes as the double shadow row moves.
-  StreamCopy copy(static_cast<std::size_t>(n) * kShadowBytes);
-  std::vector<double> copy_times;
-  double generation_s = 0;
-  {  // ---- double and interval rows: every kind of input in every round, into the same buffers
-    SymBatch<double> A(n, 10);
-    Vec4Batch<double> L(n, 4);
-    SymBatch<I> AI(n, 10);
-    Vec4Batch<I> LI(n, 4);
-    SymBatch<double> P = SymBatch<double>::Zero(n, 10), R = SymBatch<double>::Zero(n, 10),
-                     B = SymBatch<double>::Zero(n, 10);
-    Vec4Batch<double> pi = Vec4Batch<double>::Zero(n, 4);
-    AffineBatch<double> M = AffineBatch<double>::Zero(n, 12);
-    SymBatch<I> PI(n, 10), RI(n, 10), BI(n, 10);
-    Vec4Batch<I> piI(n, 4);
-    AffineBatch<I> MI(n, 12);
+// ------------------------------------------------------------------------------ rows
+
+/// Each run's time per item, in ns (a row's ns_per_item_runs).
+std::vector<double> per_item_ns(const std::vector<double>& times, double items) {
+  std::vector<double> out;
+  for (double t : times) out.push_back(1e9 * t / items);
+  return out;
+}
+
+/// What a verification row counted beside its times: the (point, result) pairs checked and how they were decided.
+struct VerifyRowFacts {
+  FilterCounts counts;          ///< over all threads, in one run
+  int threads = 0;
+  std::size_t distinct_points = 0;
+  int passes = 0;               ///< checks of every pair per run
+};
+
+/// One row of the document as typed values: an op, precision, method and kind of inputs with its times and
+/// the bytes it moves per item. The roofline fraction and the cost against double are computed from these
+/// once every row and the bandwidth are known (finish_rows), and the row's JSON is written once (to_json).
+struct BenchRow {
+  std::string op, precision, method, inputs;
+  long n = 0;  ///< items per run (verification rows: items with points)
+  double items_per_s = 0, ns_per_item = 0, ns_per_item_median = 0;
+  std::vector<double> ns_per_item_runs;
+  std::size_t bytes_per_item = 0;
+  std::string arithmetic, results;             ///< exact rows: how they compute, where the results go
+  std::optional<long> items_beyond_bit_bound;  ///< exact rows: items that needed GMP rationals, when any
+  std::optional<VerifyRowFacts> verify;        ///< set for a verification row
+  double roofline_fraction = 0;
+  std::optional<double> cost_vs_double_direct;
+
+  /// The row's JSON, fields in the document's order (the verification rows' order is their own).
+  json to_json() const {
+    json r;
+    if (verify) {
+      const double pps = items_per_s;
+      r = {{"op", op},
+           {"precision", precision},
+           {"inputs", inputs},
+           {"points_per_s", pps},
+           {"threads", verify->threads},
+           {"exact_fallbacks", verify->counts.fallbacks},
+           {"points", verify->counts.checked},
+           {"exact_fallbacks_measured", verify->counts.measured},
+           {"points_per_s_per_thread", pps / verify->threads},
+           {"method", method},
+           {"n", n},
+           {"distinct_points", verify->distinct_points},
+           {"passes", verify->passes},
+           {"checks_failed", verify->counts.failed}};
+    } else {
+      r = {{"op", op}, {"precision", precision}, {"method", method}, {"inputs", inputs}, {"n", n}};
+    }
+    r["items_per_s"] = items_per_s;
+    r["ns_per_item"] = ns_per_item;
+    r["ns_per_item_median"] = ns_per_item_median;
+    r["ns_per_item_runs"] = ns_per_item_runs;
+    r["bytes_per_item"] = bytes_per_item;
+    r["roofline_fraction"] = roofline_fraction;
+    if (!arithmetic.empty()) r["arithmetic"] = arithmetic;
+    if (!results.empty()) r["results"] = results;
+    if (items_beyond_bit_bound) r["items_beyond_bit_bound"] = *items_beyond_bit_bound;
+    if (cost_vs_double_direct) r["cost_vs_double_direct"] = *cost_vs_double_direct;
+    return r;
+  }
+};
+
+/// A batch row: `items` items per run, `times` the runs (best of them: items_per_s).
+BenchRow batch_row(Kind kind, const char* op, const char* precision, const char* method, const std::vector<double>& times,
+                   std::size_t bytes, Eigen::Index items) {
+  BenchRow r;
+  r.op = op, r.precision = precision, r.method = method, r.inputs = kind_name(kind);
+  r.n = items;
+  r.items_per_s = static_cast<double>(items) / best_of(times);
+  r.ns_per_item = 1e9 / r.items_per_s;
+  r.ns_per_item_median = 1e9 * median_of(times) / static_cast<double>(items);
+  r.ns_per_item_runs = per_item_ns(times, static_cast<double>(items));
+  r.bytes_per_item = bytes;
+  return r;
+}
+
+/// A verification row on double-valued items: a point check counts as an item (items_per_s = points per s).
+BenchRow verify_row(const char* op, const char* precision, const char* method, const std::vector<double>& times,
+                    const FilterCounts& c, int threads, std::size_t distinct, int passes, std::size_t bytes,
+                    std::size_t items) {
+  const double checks = static_cast<double>(c.checked);
+  BenchRow r;
+  r.op = op, r.precision = precision, r.method = method, r.inputs = kind_name(Kind::double_valued);
+  r.n = static_cast<long>(items);
+  r.items_per_s = checks / best_of(times);
+  r.ns_per_item = 1e9 / r.items_per_s;
+  r.ns_per_item_median = 1e9 * median_of(times) / checks;
+  r.ns_per_item_runs = per_item_ns(times, checks);
+  r.bytes_per_item = bytes;
+  r.verify = VerifyRowFacts{c, threads, distinct, passes};
+  return r;
+}
+
+/// Roofline fractions (items/s x bytes/item against the bandwidth), cost ratios against double/direct of the
+/// same op and inputs (the verification rows: against their double, filtered row), then the rows in the
+/// document's order: op group (batch, then verification), inputs, precision, method, op.
+void finish_rows(std::vector<BenchRow>& rows, double bandwidth) {
+  for (auto& r : rows) {
+    r.roofline_fraction = r.items_per_s * static_cast<double>(r.bytes_per_item) / bandwidth;
+    for (const auto& d : rows)
+      if (d.op == r.op && d.inputs == r.inputs && d.precision == "double" && (d.method == "direct" || d.method == "filtered"))
+        r.cost_vs_double_direct = d.items_per_s / r.items_per_s;
+  }
+  auto rank = [](const BenchRow& r) {
+    const std::string &p = r.precision, &m = r.method, &in = r.inputs, &op = r.op;
+    const bool verify = op.rfind("verify", 0) == 0;
+    return std::make_tuple(verify, in == "small-rational" ? 0 : in == "double-valued" ? 1 : 2,
+                           p == "double" ? 0 : p == "interval" ? 1 : 2, m == "paper" ? 1 : 0,
+                           op == "shadow" || op == "verify-shadow" ? 0 : 1);
+  };
+  std::stable_sort(rows.begin(), rows.end(), [&](const BenchRow& x, const BenchRow& y) { return rank(x) < rank(y); });
+}
+
+// ---------------------------------------------------------------- double and interval rows
+
+/// Certified intervals: Interval_nt<false> with the rounding mode set once per thread; the batch runs them as
+/// IntervalPack, W per instruction (exact/interval_pack.hpp).
+using I = CGAL::Interval_nt<false>;
+
+/// The double and interval inputs and outputs of n items: the buffers of the benchmark's largest phase, into
+/// which every kind of input is converted in turn (fill).
+struct FloatBuffers {
+  SymBatch<double> A;
+  Vec4Batch<double> L;
+  SymBatch<I> AI;
+  Vec4Batch<I> LI;
+  SymBatch<double> P, R, B;
+  Vec4Batch<double> pi;
+  AffineBatch<double> M;
+  SymBatch<I> PI, RI, BI;
+  Vec4Batch<I> piI;
+  AffineBatch<I> MI;
+
+  /// Allocates the buffers of n items, the outputs zeroed.
+  explicit FloatBuffers(Eigen::Index n)
+      : A(n, 10), L(n, 4), AI(n, 10), LI(n, 4), P(SymBatch<double>::Zero(n, 10)), R(SymBatch<double>::Zero(n, 10)),
+        B(SymBatch<double>::Zero(n, 10)), pi(Vec4Batch<double>::Zero(n, 4)), M(AffineBatch<double>::Zero(n, 12)),
+        PI(n, 10), RI(n, 10), BI(n, 10), piI(n, 4), MI(n, 12) {
     PI.setZero(), RI.setZero(), BI.setZero(), piI.setZero(), MI.setZero();
-    // The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals), untimed.
-    auto fill = [&](Kind kind) {
-      const auto t0 = Clock::now();
-      if (kind == Kind::small_rational) {
-        // doubles: p/q rounded once; intervals: the enclosure of p/q. Lights (x, y, z, 1)
-        // with z != 0 (a zero z becomes 1), so that the mirror plane has a normal.
-        parallel_for(n, T, [&](Eigen::Index b, Eigen::Index e) {
-          for (Eigen::Index i = b; i < e; ++i) {
-            for (int k = 0; k < 13; ++k) {
-              const SmallRational x = small_rational(i, k);
-              const double v = static_cast<double>(x.p) / static_cast<double>(x.q);
-              if (k < 10) A(i, k) = v;
-              else L(i, k - 10) = v;
-            }
-            L(i, 3) = 1;
-            if (L(i, 2) == 0) L(i, 2) = 1;
-          }
-          CGAL::Protect_FPU_rounding<true> up;  // the intervals round outwards
-          for (Eigen::Index i = b; i < e; ++i) {
-            for (int k = 0; k < 13; ++k) {
-              const SmallRational x = small_rational(i, k);
-              const I v = I(static_cast<double>(x.p)) / I(static_cast<double>(x.q));
-              if (k < 10) AI(i, k) = v;
-              else LI(i, k - 10) = v;
-            }
-            LI(i, 3) = I(1);
-            if (small_rational(i, 12).p == 0) LI(i, 2) = I(1);
-          }
-        });
-      } else {
-        // double-valued: the doubles themselves (point intervals); decimal-17: the double
-        // nearest to the text, and an enclosure of the text's value (one ulp each side)
-        parallel_for(n, T, [&](Eigen::Index b, Eigen::Index e) {
-          for (Eigen::Index i = b; i < e; ++i)
-            for (int k = 0; k < 13; ++k) {
-              double x, lo, hi;
-              if (kind == Kind::double_valued) {
-                x = lo = hi = random_double(kSeedDouble, entry_index(i, k));
-              } else {
-                x = nearest_double(random_decimal(kSeedDecimal, entry_index(i, k)));
-                lo = std::nextafter(x, -HUGE_VAL), hi = std::nextafter(x, HUGE_VAL);
-              }
-              if (k < 10) A(i, k) = x, AI(i, k) = I(lo, hi);
-              else L(i, k - 10) = x, LI(i, k - 10) = I(lo, hi);
-            }
-          for (Eigen::Index i = b; i < e; ++i) L(i, 3) = 1, LI(i, 3) = I(1);
-        });
-      }
-      generation_s += seconds_since(t0);
-    };
-    // Each round: the copy, then for each kind its inputs (converted again, untimed) and the
-    // four double and interval direct rows, then the copy again.
-    std::vector<std::vector<double>> t(3 * 4);
-    const std::vector<std::function<void()>> direct_rows{
-        [&] { shadow_batch<double>(A, L, Method::direct, P, pi, R, T); },
-        [&] { reflection_batch<double>(A, L, Method::direct, M, B, T); },
-        [&] { shadow_batch<I>(AI, LI, Method::direct, PI, piI, RI, T, guard); },
-        [&] { reflection_batch<I>(AI, LI, Method::direct, MI, BI, T, false, guard); }};
-    auto timed_copy = [&] {
-      const auto t0 = Clock::now();
-      copy(T);
-      copy_times.push_back(seconds_since(t0));
-    };
-    for (int r = 0; r < rounds; ++r) {
-      say("bench: stream copy, double and interval direct rows of every kind of input, round " + std::to_string(r + 1) +
-          "/" + std::to_string(rounds));
-      timed_copy();
-      for (std::size_t k = 0; k < 3; ++k) {
-        fill(kKinds[k]);
-        for (std::size_t j = 0; j < 4; ++j) {
-          const auto t0 = Clock::now();
-          direct_rows[j]();
-          t[4 * k + j].push_back(seconds_since(t0));
-        }
-      }
-      timed_copy();
-    }
-    for (std::size_t k = 0; k < 3; ++k) {
-      add_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n);
-      add_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n);
-      add_row(kKinds[k], "shadow", "interval", "direct", t[4 * k + 2], 2 * kShadowBytes, n);
-      add_row(kKinds[k], "reflection", "interval", "direct", t[4 * k + 3], 2 * kReflectionBytes, n);
-    }
-    // the paper route (one item at a time) against the direct one, on the same items
-    for (Kind kind : kKinds) {
-      fill(kind);
-      const auto tp = interleaved_times(rounds,
-                                        {[&] { shadow_batch<double>(A, L, Method::paper, P, pi, R, T); },
-                                         [&] { reflection_batch<double>(A, L, Method::paper, M, B, T); }},
-                                        progress(std::string(kind_name(kind)) + ": double paper rows"));
-      add_row(kind, "shadow", "double", "paper", tp[0], kShadowBytes, n);
-      add_row(kind, "reflection", "double", "paper", tp[1], kReflectionBytes, n);
-    }
   }
-  {  // ---- exact, small rationals: denominators cleared per item, 128-bit integers, no gcd, no division
-    SymBatch<Int> P(n, 10), R(n, 10), B(n, 10);
-    Vec4Batch<Int> pi(n, 4);
-    AffineBatch<Int> M(n, 12);
+
+  /// The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals); returns the seconds it took
+  /// (untimed by the rows: the document's generation_s).
+  double fill(Kind kind, Eigen::Index n, int threads) {
+    const auto t0 = Clock::now();
+    if (kind == Kind::small_rational) fill_small_rational(n, threads);
+    else fill_double_or_decimal(kind, n, threads);
+    return seconds_since(t0);
+  }
+
+ private:
+  /// doubles: p/q rounded once; intervals: the enclosure of p/q. Lights (x, y, z, 1) with z != 0 (a zero z
+  /// becomes 1), so that the mirror plane has a normal.
+  void fill_small_rational(Eigen::Index n, int threads) {
+    parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index i = b; i < e; ++i) {
+        for (int k = 0; k < 13; ++k) {
+          const SmallRational x = small_rational(i, k);
+          const double v = static_cast<double>(x.p) / static_cast<double>(x.q);
+          if (k < 10) A(i, k) = v;
+          else L(i, k - 10) = v;
+        }
+        L(i, 3) = 1;
+        if (L(i, 2) == 0) L(i, 2) = 1;
+      }
+      CGAL::Protect_FPU_rounding<true> up;  // the intervals round outwards
+      for (Eigen::Index i = b; i < e; ++i) {
+        for (int k = 0; k < 13; ++k) {
+          const SmallRational x = small_rational(i, k);
+          const I v = I(static_cast<double>(x.p)) / I(static_cast<double>(x.q));
+          if (k < 10) AI(i, k) = v;
+          else LI(i, k - 10) = v;
+        }
+        LI(i, 3) = I(1);
+        if (small_rational(i, 12).p == 0) LI(i, 2) = I(1);
+      }
+    });
+  }
+
+  /// double-valued: the doubles themselves (point intervals); decimal-17: the double nearest to the text, and
+  /// an enclosure of the text's value (one ulp each side).
+  void fill_double_or_decimal(Kind kind, Eigen::Index n, int threads) {
+    parallel_for(n, threads, [&](Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index i = b; i < e; ++i)
+        for (int k = 0; k < 13; ++k) {
+          double x, lo, hi;
+          if (kind == Kind::double_valued) {
+            x = lo = hi = random_double(kSeedDouble, entry_index(i, k));
+          } else {
+            x = nearest_double(random_decimal(kSeedDecimal, entry_index(i, k)));
+            lo = std::nextafter(x, -HUGE_VAL), hi = std::nextafter(x, HUGE_VAL);
+          }
+          if (k < 10) A(i, k) = x, AI(i, k) = I(lo, hi);
+          else L(i, k - 10) = x, LI(i, k - 10) = I(lo, hi);
+        }
+      for (Eigen::Index i = b; i < e; ++i) L(i, 3) = 1, LI(i, 3) = I(1);
+    });
+  }
+};
+
+// ------------------------------------------------------------------ exact, small rationals
+
+/// The exact rows on small rationals: each item's denominators cleared (a positive factor: the results are
+/// projective), then the generic formulas on 128-bit integers, no gcd, no division; the outputs n items wide.
+struct SmallRationalExact {
+  SymBatch<Int> P, R, B;
+  Vec4Batch<Int> pi;
+  AffineBatch<Int> M;
+  /// The same items as the double rows', as numerators and denominators (the arrays exist only now: 112
+  /// bytes per item less at the memory peak of the double and interval rows).
+  const RationalInputs q;
+  std::atomic<long> beyond_bound{0};  ///< items beyond the 128-bit bound (GMP would be needed)
+
+  /// Allocates the outputs (zeroed) and makes the inputs of n items on `threads` threads.
+  SmallRationalExact(Eigen::Index n, int threads) : P(n, 10), R(n, 10), B(n, 10), pi(n, 4), M(n, 12), q(n, threads) {
     P.setZero(), R.setZero(), B.setZero(), pi.setZero(), M.setZero();
-    // The same items as above, as numerators and denominators (the arrays exist only now:
-    // 112 bytes per item less at the memory peak of the double and interval rows).
-    const RationalInputs q(n, T);
-    std::atomic<long> beyond_bound{0};  // items beyond the 128-bit bound (GMP would be needed)
-    auto load = [&](Eigen::Index i, Mat4<Int>& a, Vec4<Int>& l) {
-      const long la = lcm_of(&q.den(i, 0), 10);
-      for (int k = 0; k < 10; ++k) {
-        const Int v = Int(q.num(i, k)) * (la / q.den(i, k));
-        a(kSymRow[k], kSymCol[k]) = a(kSymCol[k], kSymRow[k]) = v;
-      }
-      const long ll = lcm_of(&q.den(i, 10), 3);
-      for (int k = 0; k < 3; ++k) l(k) = Int(q.num(i, 10 + k)) * (ll / q.den(i, 10 + k));
-      l(3) = Int(ll);  // the point (x, y, z, 1) times its common denominator
-      if (l(2) == 0) l(2) = Int(ll);
-    };
-    auto shadow_exact = [&](Eigen::Index b, Eigen::Index e) {
-      Mat4<Int> a;
-      Vec4<Int> l;
-      for (Eigen::Index i = b; i < e; ++i) {
-        load(i, a, l);
-        // bit bound: |P| < 2^(3 bits(A) + 2 bits(L) + 5) must fit in 127 bits
-        if (3 * bits(max_abs(a)) + 2 * bits(max_abs(l)) + 5 > 126) {
-          ++beyond_bound;
-          continue;
-        }
-        const Vec4<Int> p = polar_plane<Int>(a, l);
-        scatter_sym(P, i, tangent_cone_from_polar<Int>(a, l, p));
-        pi.row(i) = p.transpose();
-        scatter_sym(R, i, terminator_quadric_from_polar<Int>(l, p));
-      }
-    };
-    auto reflection_exact = [&](Eigen::Index b, Eigen::Index e) {
-      Mat4<Int> a;
-      Vec4<Int> pl;
-      for (Eigen::Index i = b; i < e; ++i) {
-        load(i, a, pl);
-        if (bits(max_abs(a)) + 6 * bits(max_abs(pl)) + 8 > 126) {
-          ++beyond_bound;
-          continue;
-        }
-        const Mat4<Int> m = scaled_mirror_matrix<Int>(pl);
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 4; ++c) M(i, 4 * r + c) = m(r, c);
-        scatter_sym(B, i, mirror_image_division_free<Int>(a, pl));
-      }
-    };
-    const auto t = interleaved_times(rounds, {[&] { parallel_for(n, T, shadow_exact); }, [&] { parallel_for(n, T, reflection_exact); }},
-                                     progress("small-rational: exact rows"));
-    const char* how = "128-bit integers after clearing each item's denominators, no gcd, no division (bit bound checked)";
-    add_row(Kind::small_rational, "shadow", "exact", "direct", t[0], (10 + 4) * 8 + (10 + 4 + 10) * 16, n, {{"arithmetic", how}});
-    add_row(Kind::small_rational, "reflection", "exact", "direct", t[1], (10 + 4) * 8 + (12 + 10) * 16, n,
-            {{"arithmetic", std::string(how) + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)"}});
-    if (beyond_bound > 0)
-      for (int k : {2, 1}) rows[rows.size() - k]["items_beyond_bit_bound"] = beyond_bound.load() / (2 * rounds);
   }
-  // ---- exact, double-valued and decimal-17 inputs: WideInt<10> after aligning exponents
-  const Eigen::Index nx = std::min<Eigen::Index>(n, bench_exact_items(n));
-  json candidates = json::array();
-  for (Kind kind : {Kind::double_valued, Kind::decimal17}) {
-    const std::string K = kind_name(kind);
-    std::vector<double> da, dl;
-    std::vector<Decimal> ca, cl;
+
+  /// Item i with its denominators cleared: A times the lcm of its entries' denominators, the point
+  /// (x, y, z, 1) times its common denominator.
+  void load(Eigen::Index i, Mat4<Int>& a, Vec4<Int>& l) const {
+    const long la = lcm_of(&q.den(i, 0), 10);
+    for (int k = 0; k < 10; ++k) {
+      const Int v = Int(q.num(i, k)) * (la / q.den(i, k));
+      a(kSymRow[k], kSymCol[k]) = a(kSymCol[k], kSymRow[k]) = v;
+    }
+    const long ll = lcm_of(&q.den(i, 10), 3);
+    for (int k = 0; k < 3; ++k) l(k) = Int(q.num(i, 10 + k)) * (ll / q.den(i, 10 + k));
+    l(3) = Int(ll);
+    if (l(2) == 0) l(2) = Int(ll);
+  }
+
+  /// The shadow rows of items [b, e); bit bound: |P| < 2^(3 bits(A) + 2 bits(L) + 5) must fit in 127 bits.
+  void shadow(Eigen::Index b, Eigen::Index e) {
+    Mat4<Int> a;
+    Vec4<Int> l;
+    for (Eigen::Index i = b; i < e; ++i) {
+      load(i, a, l);
+      if (3 * bits(max_abs(a)) + 2 * bits(max_abs(l)) + 5 > 126) {
+        ++beyond_bound;
+        continue;
+      }
+      const Vec4<Int> p = polar_plane<Int>(a, l);
+      scatter_sym(P, i, tangent_cone_from_polar<Int>(a, l, p));
+      pi.row(i) = p.transpose();
+      scatter_sym(R, i, terminator_quadric_from_polar<Int>(l, p));
+    }
+  }
+
+  /// The reflection rows of items [b, e) (the light as the mirror plane).
+  void reflection(Eigen::Index b, Eigen::Index e) {
+    Mat4<Int> a;
+    Vec4<Int> pl;
+    for (Eigen::Index i = b; i < e; ++i) {
+      load(i, a, pl);
+      if (bits(max_abs(a)) + 6 * bits(max_abs(pl)) + 8 > 126) {
+        ++beyond_bound;
+        continue;
+      }
+      const Mat4<Int> m = scaled_mirror_matrix<Int>(pl);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) M(i, 4 * r + c) = m(r, c);
+      scatter_sym(B, i, mirror_image_division_free<Int>(a, pl));
+    }
+  }
+};
+
+// ------------------------------------------- exact, double-valued and decimal-17 inputs
+
+/// The exact rows on double-valued or decimal-17 inputs: the first nx items drawn once (doubles, or decimal
+/// text as m 10^e), each item made integer by aligning its exponents (wide_item) and computed on WideInt<10>
+/// into a per-thread ring; items beyond the WideInt bound on GMP rationals (counted in `beyond`).
+struct WideExact {
+  Kind kind;
+  std::vector<double> da, dl;    ///< double-valued: A's ten entries, the light's four, per item
+  std::vector<Decimal> ca, cl;   ///< decimal-17: the same as decimals
+  std::atomic<long> beyond{0};
+
+  /// Draws the first nx items of kind k on `threads` threads (the lights (x, y, z, 1)).
+  WideExact(Kind k, Eigen::Index nx, int threads) : kind(k) {
     if (kind == Kind::double_valued) da.resize(static_cast<std::size_t>(nx) * 10), dl.resize(static_cast<std::size_t>(nx) * 4);
     else ca.resize(static_cast<std::size_t>(nx) * 10), cl.resize(static_cast<std::size_t>(nx) * 4);
-    parallel_for(nx, T, [&](Eigen::Index b, Eigen::Index e) {
+    parallel_for(nx, threads, [&](Eigen::Index b, Eigen::Index e) {
       for (Eigen::Index i = b; i < e; ++i) {
         const auto u = static_cast<std::size_t>(i);
         for (int k = 0; k < 13; ++k) {
@@ -662,62 +732,256 @@ json run_bench(const BenchOptions& opt) {
         else cl[u * 4 + 3] = Decimal{1, 0};
       }
     });
-    std::atomic<long> beyond{0};
-    auto load = [&](Eigen::Index i, Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) {
+  }
+
+  /// Item i as integers times base^eA and base^eL; false when an entry does not fit.
+  bool load(Eigen::Index i, Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) const {
+    const auto u = static_cast<std::size_t>(i);
+    return kind == Kind::double_valued ? wide_item(&da[u * 10], &dl[u * 4], A, L, eA, eL)
+                                       : wide_item(&ca[u * 10], &cl[u * 4], A, L, eA, eL);
+  }
+
+  /// GMP rationals for an item beyond the bound.
+  void fallback(Eigen::Index i, bool shadow) {
+    ++beyond;
+    Mat4<Rational> A, X, Y;
+    Vec4<Rational> L;
+    exact_item(kind, i, A, L);
+    if (shadow) generic_shadow<Rational>(A, L, X, Y);
+    else generic_reflection<Rational>(A, L, X, Y);
+  }
+
+  /// The shadows of items [b, e).
+  void shadow(Eigen::Index b, Eigen::Index e) {
+    std::vector<WideShadowOut> ring(kRing);
+    Mat4<W> A;
+    Vec4<W> L;
+    int eA, eL;
+    for (Eigen::Index i = b; i < e; ++i) {
+      if (!load(i, A, L, eA, eL) || !shadow_fits(max_bits(A), max_bits(L))) {
+        fallback(i, true);
+        continue;
+      }
+      WideShadowOut& o = ring[static_cast<std::size_t>(i) % kRing];
+      try {
+        wide_shadow(A, L, o);
+      } catch (const WideIntOverflow&) {
+        fallback(i, true);
+        continue;
+      }
+      o.scale = 2 * eA + 2 * eL;
+    }
+  }
+
+  /// The reflections of items [b, e) (the light as the mirror plane).
+  void reflection(Eigen::Index b, Eigen::Index e) {
+    std::vector<WideReflectionOut> ring(kRing);
+    Mat4<W> A;
+    Vec4<W> L;
+    int eA, eL;
+    for (Eigen::Index i = b; i < e; ++i) {
+      if (!load(i, A, L, eA, eL) || !reflection_fits(max_bits(A), max_bits(L))) {
+        fallback(i, false);
+        continue;
+      }
+      WideReflectionOut& o = ring[static_cast<std::size_t>(i) % kRing];
+      try {
+        wide_reflection(A, L, o);
+      } catch (const WideIntOverflow&) {
+        fallback(i, false);
+        continue;
+      }
+      o.scale = eA + 4 * eL;
+    }
+  }
+};
+
+/// The first m double-valued items as matrices of S (for the generic candidates): A and the light.
+template <class S> std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>> generic_inputs(const WideExact& w, Eigen::Index m) {
+  std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>> in;
+  in.first.resize(static_cast<std::size_t>(m)), in.second.resize(static_cast<std::size_t>(m));
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (int k = 0; k < 14; ++k) {
       const auto u = static_cast<std::size_t>(i);
-      return kind == Kind::double_valued ? wide_item(&da[u * 10], &dl[u * 4], A, L, eA, eL)
-                                         : wide_item(&ca[u * 10], &cl[u * 4], A, L, eA, eL);
-    };
-    auto fallback = [&](Eigen::Index i, bool shadow) {  // GMP rationals for an item beyond the bound
-      ++beyond;
-      Mat4<Rational> A, X, Y;
+      const double v = k < 10 ? w.da[u * 10 + k] : w.dl[u * 4 + k - 10];
+      if (k < 10) in.first[u](kSymRow[k], kSymCol[k]) = in.first[u](kSymCol[k], kSymRow[k]) = S(v);
+      else in.second[u](k - 10) = S(v);
+    }
+  return in;
+}
+
+/// The shadow and the reflection of those items by the generic formulas on S, as two jobs (`inputs` must
+/// outlive them).
+template <class S>
+std::vector<std::function<void()>> generic_jobs(const std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>>& inputs,
+                                                Eigen::Index m) {
+  const auto* in = &inputs;
+  return {[in, m] {
+            Mat4<S> X, Y;
+            for (Eigen::Index i = 0; i < m; ++i) generic_shadow<S>(in->first[i], in->second[i], X, Y);
+          },
+          [in, m] {
+            Mat4<S> X, Y;
+            for (Eigen::Index i = 0; i < m; ++i) generic_reflection<S>(in->first[i], in->second[i], X, Y);
+          }};
+}
+
+// -------------------------------------------------------------------- verification
+
+/// The verification's items: exact sample points of double-valued items (terminator points, points of A
+/// reflected exactly), enclosed and cleared, with their results rounded and exact; items without a real
+/// point are left out. Sampling is not part of the timed checks: its wall time is kept apart.
+struct VerifyItems {
+  std::vector<VerifyShadow> S;
+  std::vector<VerifyReflection> Rf;
+  double sample_shadow_s = 0, sample_reflection_s = 0;
+
+  /// The exact points of the shadow items (terminator, generator and polar-plane points).
+  std::size_t shadow_points() const {
+    std::size_t n = 0;
+    for (const auto& x : S) n += x.points();
+    return n;
+  }
+  /// The exact reflected points of the reflection items.
+  std::size_t reflection_points() const {
+    std::size_t n = 0;
+    for (const auto& x : Rf) n += x.pts.exact.size();
+    return n;
+  }
+  /// Per shadow item, the weight that balances the threads: the (point, result) pairs it checks.
+  std::vector<std::size_t> shadow_weights() const {
+    std::vector<std::size_t> w;
+    for (const auto& x : S) w.push_back(x.pairs());
+    return w;
+  }
+  /// Per reflection item, its weight: its points (one pair each).
+  std::vector<std::size_t> reflection_weights() const {
+    std::vector<std::size_t> w;
+    for (const auto& x : Rf) w.push_back(x.pts.exact.size());
+    return w;
+  }
+  /// Bytes of the cleared integer points the exact proof reads (bytes_per_item of the exact rows).
+  std::size_t shadow_proof_bytes() const {
+    std::size_t b = 0;
+    for (const auto& x : S) b += x.pts.cleared.limb_bytes() + x.gen.cleared.limb_bytes() + x.plane.cleared.limb_bytes();
+    return b;
+  }
+  /// The same for the reflection items.
+  std::size_t reflection_proof_bytes() const {
+    std::size_t b = 0;
+    for (const auto& x : Rf) b += x.pts.cleared.limb_bytes();
+    return b;
+  }
+};
+
+/// Samples the first K double-valued items on `threads` threads (item_seed(1, 1, i) for shadows,
+/// item_seed(1, 2, i) for reflections, as verify).
+VerifyItems sample_verify_items(int K, int threads) {
+  std::vector<std::optional<VerifyShadow>> vs(static_cast<std::size_t>(K));
+  std::vector<std::optional<VerifyReflection>> vr(static_cast<std::size_t>(K));
+  const std::vector<std::size_t> ones(static_cast<std::size_t>(K), 1);
+  VerifyItems out;
+  auto t0 = Clock::now();
+  weighted_threads(ones, threads, [&](int, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Mat4<Rational> A;
       Vec4<Rational> L;
-      exact_item(kind, i, A, L);
-      if (shadow) generic_shadow<Rational>(A, L, X, Y);
-      else generic_reflection<Rational>(A, L, X, Y);
-    };
-    auto shadow_kernel = [&](Eigen::Index b, Eigen::Index e) {
-      std::vector<WideShadowOut> ring(kRing);
-      Mat4<W> A;
-      Vec4<W> L;
-      int eA, eL;
-      for (Eigen::Index i = b; i < e; ++i) {
-        if (!load(i, A, L, eA, eL) || !shadow_fits(max_bits(A), max_bits(L))) {
-          fallback(i, true);
-          continue;
-        }
-        WideShadowOut& o = ring[static_cast<std::size_t>(i) % kRing];
-        try {
-          wide_shadow(A, L, o);
-        } catch (const WideIntOverflow&) {
-          fallback(i, true);
-          continue;
-        }
-        o.scale = 2 * eA + 2 * eL;
-      }
-    };
-    auto reflection_kernel = [&](Eigen::Index b, Eigen::Index e) {
-      std::vector<WideReflectionOut> ring(kRing);
-      Mat4<W> A;
-      Vec4<W> L;
-      int eA, eL;
-      for (Eigen::Index i = b; i < e; ++i) {
-        if (!load(i, A, L, eA, eL) || !reflection_fits(max_bits(A), max_bits(L))) {
-          fallback(i, false);
-          continue;
-        }
-        WideReflectionOut& o = ring[static_cast<std::size_t>(i) % kRing];
-        try {
-          wide_reflection(A, L, o);
-        } catch (const WideIntOverflow&) {
-          fallback(i, false);
-          continue;
-        }
-        o.scale = eA + 4 * eL;
-      }
-    };
-    const auto t = interleaved_times(rounds, {[&] { parallel_for(nx, T, shadow_kernel); }, [&] { parallel_for(nx, T, reflection_kernel); }},
-                                     progress(K + ": exact rows"));
+      exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, L);
+      ItemPoints ip = terminator_points(A, L, kVerifySamples, item_seed(1, 1, i));
+      if (ip.points.empty()) continue;
+      const Vec4<Rational> pe = polar_plane<Rational>(A, L);
+      const Mat4<Rational> Pe = tangent_cone_from_polar<Rational>(A, L, pe), Re = terminator_quadric_from_polar<Rational>(L, pe);
+      vs[i].emplace(VerifyShadow{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy),
+                                 FilterPoints(std::move(ip.generators), ip.size, kVerifyAccuracy),
+                                 FilterPoints(std::move(ip.plane), ip.size, kVerifyAccuracy), rounded(Pe),
+                                 rounded(Re), rounded(pe), IntegerQuadric(Pe), IntegerQuadric(Re), IntegerPlane(pe)});
+    }
+  });
+  out.sample_shadow_s = seconds_since(t0);
+  t0 = Clock::now();
+  weighted_threads(ones, threads, [&](int, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Mat4<Rational> A;
+      Vec4<Rational> plane;
+      exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, plane);
+      ItemPoints ip = reflected_points(A, reference_mirror(plane), kVerifySamples, item_seed(1, 2, i));
+      if (ip.points.empty()) continue;
+      const Mat4<Rational> Be = mirror_image_of_plane<Rational>(A, plane);
+      vr[i].emplace(VerifyReflection{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy), rounded(Be),
+                                     IntegerQuadric(Be)});
+    }
+  });
+  out.sample_reflection_s = seconds_since(t0);
+  for (auto& x : vs)
+    if (x) out.S.push_back(std::move(*x));
+  for (auto& x : vr)
+    if (x) out.Rf.push_back(std::move(*x));
+  return out;
+}
+
+/// Passes over the points per run of a filtered row: about 4 10^6 filtered checks (the same checks repeated:
+/// a check keeps nothing from the previous pass).
+int passes_for(std::size_t pairs) {
+  return pairs == 0 ? 1 : static_cast<int>(std::max<std::size_t>(1, (4000000 + pairs - 1) / pairs));
+}
+
+/// The timed verification jobs' times and counts (over all threads, one run each), in the order
+/// filtered shadow, filtered reflection, exact shadow, exact reflection.
+struct VerifyTimes {
+  std::vector<std::vector<double>> t;
+  FilterCounts counts[4];
+};
+
+/// The counts of every thread added up.
+FilterCounts total(const std::vector<FilterCounts>& v) {
+  FilterCounts s;
+  for (const auto& c : v) s += c;
+  return s;
+}
+
+// ------------------------------------------------------------------------- the run
+
+/// One run of the benchmark: the rows in the order they are measured (double and interval, paper, exact,
+/// verification), each phase a function of its own with its own buffers, sharing the run's options, rows,
+/// bandwidth copies and the sections they fill; then the document.
+class BenchRun {
+ public:
+  /// The run's sizes from the options, and the bandwidth copy's buffers (allocated first, as they stay to the end).
+  explicit BenchRun(const BenchOptions& opt)
+      : opt_(opt), n_(opt.n), T_(opt.threads), rounds_(opt.repeats),
+        nx_(std::min<Eigen::Index>(n_, bench_exact_items(n_))),
+        copy_(static_cast<std::size_t>(n_) * kShadowBytes) {}
+
+  /// The double and interval rows, direct (interleaved with the bandwidth copy) and paper, on every kind of input.
+  void float_rows() {
+    FloatBuffers buf(n_);
+    direct_rows(buf);
+    paper_rows(buf);
+  }
+
+  /// The exact rows on small rationals: denominators cleared per item, 128-bit integers, no gcd, no division.
+  void small_rational_exact_rows() {
+    SmallRationalExact x(n_, T_);
+    const auto t = interleaved_times(rounds_,
+                                     {[&] { parallel_for(n_, T_, [&](Eigen::Index b, Eigen::Index e) { x.shadow(b, e); }); },
+                                      [&] { parallel_for(n_, T_, [&](Eigen::Index b, Eigen::Index e) { x.reflection(b, e); }); }},
+                                     progress("small-rational: exact rows"));
+    const std::string how = "128-bit integers after clearing each item's denominators, no gcd, no division (bit bound checked)";
+    rows_.push_back(batch_row(Kind::small_rational, "shadow", "exact", "direct", t[0], (10 + 4) * 8 + (10 + 4 + 10) * 16, n_));
+    rows_.back().arithmetic = how;
+    rows_.push_back(batch_row(Kind::small_rational, "reflection", "exact", "direct", t[1], (10 + 4) * 8 + (12 + 10) * 16, n_));
+    rows_.back().arithmetic = how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)";
+    mark_beyond_bound(x.beyond_bound.load());
+  }
+
+  /// The exact rows on double-valued or decimal-17 inputs (WideInt<10> after aligning exponents), on the
+  /// first nx items; on double-valued inputs also the candidates for exact arithmetic.
+  void wide_exact_rows(Kind kind) {
+    WideExact w(kind, nx_, T_);
+    const auto t = interleaved_times(rounds_,
+                                     {[&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.shadow(b, e); }); },
+                                      [&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.reflection(b, e); }); }},
+                                     progress(std::string(kind_name(kind)) + ": exact rows"));
     const std::string how =
         kind == Kind::double_valued
             ? "WideInt<10> (640-bit integers in place, exact/wide_int.hpp) after shifting each matrix's doubles to the "
@@ -727,125 +991,180 @@ json run_bench(const BenchOptions& opt) {
               "entries (integers times a power of ten): the exact results times a power of ten (bit bound checked, "
               "GMP rationals beyond it)";
     const std::size_t in_bytes = (10 + 4) * (kind == Kind::double_valued ? 8 : sizeof(Decimal));
-    add_row(kind, "shadow", "exact", "direct", t[0], in_bytes + sizeof(WideShadowOut), nx,
-            {{"arithmetic", how}, {"results", "kept in a ring of 1024 items per thread"}});
-    add_row(kind, "reflection", "exact", "direct", t[1], in_bytes + sizeof(WideReflectionOut), nx,
-            {{"arithmetic", how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)"},
-             {"results", "kept in a ring of 1024 items per thread"}});
-    if (beyond > 0)
-      for (int k : {2, 1}) rows[rows.size() - k]["items_beyond_bit_bound"] = beyond.load() / (2 * rounds);
-
-    if (kind == Kind::double_valued) {
-      // ---- the candidates for exact arithmetic on doubles, on the same items, one thread, all
-      // of them in every round (a shared machine: each round samples the same moments for all)
-      const Eigen::Index m = std::min<Eigen::Index>(nx, kCandidateItems);
-      say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
-      auto inputs_as = [&](auto tag) {
-        using S = decltype(tag);
-        std::pair<std::vector<Mat4<S>>, std::vector<Vec4<S>>> in;
-        in.first.resize(static_cast<std::size_t>(m)), in.second.resize(static_cast<std::size_t>(m));
-        for (Eigen::Index i = 0; i < m; ++i)
-          for (int k = 0; k < 14; ++k) {
-            const auto u = static_cast<std::size_t>(i);
-            const double v = k < 10 ? da[u * 10 + k] : dl[u * 4 + k - 10];
-            if (k < 10) in.first[u](kSymRow[k], kSymCol[k]) = in.first[u](kSymCol[k], kSymRow[k]) = S(v);
-            else in.second[u](k - 10) = S(v);
-          }
-        return in;
-      };
-      const auto mpzf = inputs_as(CGAL::Mpzf());
-      const auto mpq = inputs_as(Rational());
-      auto generic_jobs = [m](const auto& inputs) {
-        using S = typename std::decay_t<decltype(inputs.first)>::value_type::Scalar;
-        const auto* in = &inputs;  // outlives the jobs
-        return std::vector<std::function<void()>>{
-            [in, m] {
-              Mat4<S> X, Y;
-              for (Eigen::Index i = 0; i < m; ++i) generic_shadow<S>(in->first[i], in->second[i], X, Y);
-            },
-            [in, m] {
-              Mat4<S> X, Y;
-              for (Eigen::Index i = 0; i < m; ++i) generic_reflection<S>(in->first[i], in->second[i], X, Y);
-            }};
-      };
-      std::vector<std::function<void()>> jobs{[&] { shadow_kernel(0, m); }, [&] { reflection_kernel(0, m); }};
-      for (auto& j : generic_jobs(mpzf)) jobs.push_back(j);
-      for (auto& j : generic_jobs(mpq)) jobs.push_back(j);
-      const auto tc = interleaved_times(rounds, jobs, [](int) {});
-      const char* names[] = {"WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
-      const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
-                             "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
-      for (int c = 0; c < 3; ++c)
-        candidates.push_back({{"arithmetic", names[c]},
-                              {"note", notes[c]},
-                              {"shadow_ns_per_item", 1e9 * best_of(tc[2 * c]) / static_cast<double>(m)},
-                              {"reflection_ns_per_item", 1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)}});
-    }
+    rows_.push_back(batch_row(kind, "shadow", "exact", "direct", t[0], in_bytes + sizeof(WideShadowOut), nx_));
+    rows_.back().arithmetic = how;
+    rows_.push_back(batch_row(kind, "reflection", "exact", "direct", t[1], in_bytes + sizeof(WideReflectionOut), nx_));
+    rows_.back().arithmetic = how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)";
+    for (int k : {2, 1}) rows_[rows_.size() - k].results = "kept in a ring of 1024 items per thread";
+    mark_beyond_bound(w.beyond.load());
+    if (kind == Kind::double_valued) exact_candidates(w);
   }
-  // ---- verification: the filtered point check and the exact proof, on double-valued items
-  json verification;
-  {
-    const int K = bench_verify_items(n);
+
+  /// The verification rows: the filtered point check and the exact proof, on double-valued items.
+  void verification_rows() {
+    const int K = bench_verify_items(n_);
     say("bench: sampling " + std::to_string(kVerifySamples) + " exact points on " + std::to_string(K) +
         " double-valued items (terminators and mirror images)");
-    std::vector<std::optional<VerifyShadow>> vs(static_cast<std::size_t>(K));
-    std::vector<std::optional<VerifyReflection>> vr(static_cast<std::size_t>(K));
-    const std::vector<std::size_t> ones(static_cast<std::size_t>(K), 1);
-    double sample_shadow_s = 0, sample_reflection_s = 0;
-    auto t0 = Clock::now();
-    weighted_threads(ones, T, [&](int, std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        Mat4<Rational> A;
-        Vec4<Rational> L;
-        exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, L);
-        ItemPoints ip = terminator_points(A, L, kVerifySamples, item_seed(1, 1, i));
-        if (ip.points.empty()) continue;
-        const Vec4<Rational> pe = polar_plane<Rational>(A, L);
-        const Mat4<Rational> Pe = tangent_cone_from_polar<Rational>(A, L, pe), Re = terminator_quadric_from_polar<Rational>(L, pe);
-        vs[i].emplace(VerifyShadow{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy),
-                                   FilterPoints(std::move(ip.generators), ip.size, kVerifyAccuracy),
-                                   FilterPoints(std::move(ip.plane), ip.size, kVerifyAccuracy), rounded(Pe),
-                                   rounded(Re), rounded(pe), IntegerQuadric(Pe), IntegerQuadric(Re), IntegerPlane(pe)});
-      }
-    });
-    sample_shadow_s = seconds_since(t0);
-    t0 = Clock::now();
-    weighted_threads(ones, T, [&](int, std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        Mat4<Rational> A;
-        Vec4<Rational> plane;
-        exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, plane);
-        ItemPoints ip = reflected_points(A, reference_mirror(plane), kVerifySamples, item_seed(1, 2, i));
-        if (ip.points.empty()) continue;
-        const Mat4<Rational> Be = mirror_image_of_plane<Rational>(A, plane);
-        vr[i].emplace(VerifyReflection{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy), rounded(Be),
-                                       IntegerQuadric(Be)});
-      }
-    });
-    sample_reflection_s = seconds_since(t0);
-    std::vector<VerifyShadow> S;
-    std::vector<VerifyReflection> Rf;
-    for (auto& x : vs)
-      if (x) S.push_back(std::move(*x));
-    for (auto& x : vr)
-      if (x) Rf.push_back(std::move(*x));
-    std::vector<std::size_t> ws, wr;
-    std::size_t shadow_points = 0, reflection_points = 0;
-    for (const auto& x : S) ws.push_back(x.pairs()), shadow_points += x.points();
-    for (const auto& x : Rf) wr.push_back(x.pts.exact.size()), reflection_points += x.pts.exact.size();
-    // passes over the points per run: about 4 10^6 filtered checks (the same checks repeated:
-    // a check keeps nothing from the previous pass); the exact proof, one pass
-    auto passes_for = [](std::size_t pairs) {
-      return pairs == 0 ? 1 : static_cast<int>(std::max<std::size_t>(1, (4000000 + pairs - 1) / pairs));
-    };
+    const VerifyItems v = sample_verify_items(K, T_);
+    const std::size_t shadow_points = v.shadow_points(), reflection_points = v.reflection_points();
+    const std::vector<std::size_t> ws = v.shadow_weights();
     const int ps = passes_for(std::accumulate(ws.begin(), ws.end(), std::size_t(0))), pr = passes_for(reflection_points);
-    std::vector<FilterCounts> cs(static_cast<std::size_t>(T)), cr(cs), es(cs), er(cs);
+    const VerifyTimes vt = timed_checks(v, ps, pr);
+    auto add = [&](const char* op, const char* precision, const char* method, int j, std::size_t distinct, int passes,
+                   std::size_t bytes, std::size_t items) {
+      if (vt.counts[j].checked == 0) return;  // no item had a real point to sample
+      rows_.push_back(verify_row(op, precision, method, vt.t[j], vt.counts[j], T_, distinct, passes, bytes, items));
+    };
+    add("verify-shadow", "double", "filtered", 0, shadow_points, ps, sizeof(EnclosedPoint), v.S.size());
+    add("verify-reflection", "double", "filtered", 1, reflection_points, pr, sizeof(EnclosedPoint), v.Rf.size());
+    add("verify-shadow", "exact", "exact", 2, shadow_points, 1, shadow_points ? v.shadow_proof_bytes() / shadow_points : 0,
+        v.S.size());
+    add("verify-reflection", "exact", "exact", 3, reflection_points, 1,
+        reflection_points ? v.reflection_proof_bytes() / reflection_points : 0, v.Rf.size());
+    verification_ = verification_section(K, v);
+  }
+
+  /// The qverify-bench/1 document: the bandwidth limit (the best copy of all rounds: a shared machine's noise
+  /// only adds time, to the copy as to the rows, so best against best), the rows finished against it, and
+  /// how everything was measured.
+  json document() {
+    const double bandwidth = copy_.bytes() / best_of(copy_times_);
+    finish_rows(rows_, bandwidth);
+    json rows = json::array();
+    for (const BenchRow& r : rows_) rows.push_back(r.to_json());
+    json bandwidth_runs = json::array();
+    for (double t : copy_times_) bandwidth_runs.push_back(copy_.bytes() / t / 1e9);
+    const std::string R = std::to_string(rounds_);
+    return {{"format", "qverify-bench/1"},
+            {"threads", T_},
+            {"n", n_},
+            {"processor", processor_info()},
+            {"memory_bandwidth_gbps", bandwidth / 1e9},
+            {"memory_bandwidth_gbps_runs", bandwidth_runs},
+            {"bandwidth_method", "parallel stream copy (non-temporal stores, like the double batches) of as many bytes "
+                                 "as the double shadow row moves (read + write), run at the start and at the end of each of the " + R +
+                                 " rounds, around the rows; the best copy"},
+            {"inputs", inputs_section()},
+            {"timing", timing_note()},
+            {"simd", {{"lanes", DoublePack::size()},
+                      {"instruction_set", instruction_set()},
+                      {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
+            {"exact_arithmetic",
+             {{"inputs", kind_name(Kind::double_valued)},
+              {"items", std::min<Eigen::Index>(nx_, kCandidateItems)},
+              {"threads", 1},
+              {"note", "the candidates for exact results from doubles, timed on the same items by the same generic "
+                       "formulas (the direct shadow; the division-free mirror matrix and rank-one image), all of them in each of " + R +
+                       " rounds, best of the rounds, one thread"},
+              {"candidates", candidates_}}},
+            {"verification", verification_},
+            {"rows", rows}};
+  }
+
+ private:
+  /// A line of progress, when the caller asked for them.
+  void say(const std::string& s) const {
+    if (opt_.progress) opt_.progress(s);
+  }
+  /// The progress line of each round of a phase.
+  std::function<void(int)> progress(const std::string& what) const {
+    return [this, what](int r) {
+      say("bench: " + what + ", round " + std::to_string(r + 1) + "/" + std::to_string(rounds_));
+    };
+  }
+  /// The copy that samples the bandwidth, timed.
+  void timed_copy() {
+    const auto t0 = Clock::now();
+    copy_(T_);
+    copy_times_.push_back(seconds_since(t0));
+  }
+  /// Items beyond the bit bound, counted over every round and both ops: per run, on the last two rows.
+  void mark_beyond_bound(long beyond) {
+    if (beyond > 0)
+      for (int k : {2, 1}) rows_[rows_.size() - k].items_beyond_bit_bound = beyond / (2 * rounds_);
+  }
+
+  /// Each round: the copy, then for each kind its inputs (converted again, untimed) and the four double and
+  /// interval direct rows, then the copy again; so that rows and bandwidth sample the same moments.
+  void direct_rows(FloatBuffers& b) {
+    auto guard = [] { return CGAL::Protect_FPU_rounding<true>(); };
+    std::vector<std::vector<double>> t(3 * 4);
+    const std::vector<std::function<void()>> jobs{
+        [&] { shadow_batch<double>(b.A, b.L, Method::direct, b.P, b.pi, b.R, T_); },
+        [&] { reflection_batch<double>(b.A, b.L, Method::direct, b.M, b.B, T_); },
+        [&] { shadow_batch<I>(b.AI, b.LI, Method::direct, b.PI, b.piI, b.RI, T_, guard); },
+        [&] { reflection_batch<I>(b.AI, b.LI, Method::direct, b.MI, b.BI, T_, false, guard); }};
+    for (int r = 0; r < rounds_; ++r) {
+      say("bench: stream copy, double and interval direct rows of every kind of input, round " + std::to_string(r + 1) +
+          "/" + std::to_string(rounds_));
+      timed_copy();
+      for (std::size_t k = 0; k < 3; ++k) {
+        generation_s_ += b.fill(kKinds[k], n_, T_);
+        for (std::size_t j = 0; j < 4; ++j) {
+          const auto t0 = Clock::now();
+          jobs[j]();
+          t[4 * k + j].push_back(seconds_since(t0));
+        }
+      }
+      timed_copy();
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      rows_.push_back(batch_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n_));
+      rows_.push_back(batch_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n_));
+      rows_.push_back(batch_row(kKinds[k], "shadow", "interval", "direct", t[4 * k + 2], 2 * kShadowBytes, n_));
+      rows_.push_back(batch_row(kKinds[k], "reflection", "interval", "direct", t[4 * k + 3], 2 * kReflectionBytes, n_));
+    }
+  }
+
+  /// The paper route (one item at a time) against the direct one, on the same items, kind by kind.
+  void paper_rows(FloatBuffers& b) {
+    for (Kind kind : kKinds) {
+      generation_s_ += b.fill(kind, n_, T_);
+      const auto tp = interleaved_times(rounds_,
+                                        {[&] { shadow_batch<double>(b.A, b.L, Method::paper, b.P, b.pi, b.R, T_); },
+                                         [&] { reflection_batch<double>(b.A, b.L, Method::paper, b.M, b.B, T_); }},
+                                        progress(std::string(kind_name(kind)) + ": double paper rows"));
+      rows_.push_back(batch_row(kind, "shadow", "double", "paper", tp[0], kShadowBytes, n_));
+      rows_.push_back(batch_row(kind, "reflection", "double", "paper", tp[1], kReflectionBytes, n_));
+    }
+  }
+
+  /// The candidates for exact arithmetic on doubles (WideInt<10>, CGAL::Mpzf, GMP rationals), on the same
+  /// first items, one thread, all of them in every round (a shared machine: each round samples the same
+  /// moments for all): the document's exact_arithmetic.candidates.
+  void exact_candidates(WideExact& w) {
+    const Eigen::Index m = std::min<Eigen::Index>(nx_, kCandidateItems);
+    say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
+    const auto mpzf = generic_inputs<CGAL::Mpzf>(w, m);
+    const auto mpq = generic_inputs<Rational>(w, m);
+    std::vector<std::function<void()>> jobs{[&] { w.shadow(0, m); }, [&] { w.reflection(0, m); }};
+    for (auto& j : generic_jobs(mpzf, m)) jobs.push_back(j);
+    for (auto& j : generic_jobs(mpq, m)) jobs.push_back(j);
+    const auto tc = interleaved_times(rounds_, jobs, [](int) {});
+    const char* names[] = {"WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
+    const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
+                           "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
+    for (int c = 0; c < 3; ++c)
+      candidates_.push_back({{"arithmetic", names[c]},
+                             {"note", notes[c]},
+                             {"shadow_ns_per_item", 1e9 * best_of(tc[2 * c]) / static_cast<double>(m)},
+                             {"reflection_ns_per_item", 1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)}});
+  }
+
+  /// The four verification jobs, interleaved over the rounds: the filtered checks (ps and pr passes over the
+  /// points) and the exact proofs (one pass), each on `T_` threads balanced by pairs.
+  VerifyTimes timed_checks(const VerifyItems& v, int ps, int pr) {
+    const auto& S = v.S;
+    const auto& Rf = v.Rf;
+    const std::vector<std::size_t> ws = v.shadow_weights(), wr = v.reflection_weights();
+    std::vector<FilterCounts> cs(static_cast<std::size_t>(T_)), cr(cs), es(cs), er(cs);
     auto run_counted = [&](std::vector<FilterCounts>& out, const std::vector<std::size_t>& w, auto&& body) {
       std::fill(out.begin(), out.end(), FilterCounts{});
-      weighted_threads(w, T, [&](int t, std::size_t b, std::size_t e) { body(out[static_cast<std::size_t>(t)], b, e); });
+      weighted_threads(w, T_, [&](int t, std::size_t b, std::size_t e) { body(out[static_cast<std::size_t>(t)], b, e); });
     };
-    const auto t = interleaved_times(
-        rounds,
+    VerifyTimes vt;
+    vt.t = interleaved_times(
+        rounds_,
         {[&] {
            run_counted(cs, ws, [&](FilterCounts& c, std::size_t b, std::size_t e) {
              for (int p = 0; p < ps; ++p)
@@ -881,55 +1200,20 @@ json run_bench(const BenchOptions& opt) {
            });
          }},
         progress("verify-shadow, verify-reflection: filtered and exact point checks"));
-    auto total = [](const std::vector<FilterCounts>& v) {
-      FilterCounts s;
-      for (const auto& c : v) s += c;
-      return s;
-    };
-    std::size_t proof_bytes_s = 0, proof_bytes_r = 0;
-    for (const auto& x : S) proof_bytes_s += x.pts.cleared.limb_bytes() + x.gen.cleared.limb_bytes() + x.plane.cleared.limb_bytes();
-    for (const auto& x : Rf) proof_bytes_r += x.pts.cleared.limb_bytes();
-    auto add_verify_row = [&](const char* op, const char* precision, const char* method, const std::vector<double>& times,
-                              const FilterCounts& c, std::size_t distinct, int passes, std::size_t bytes, std::size_t items) {
-      if (c.checked == 0) return;  // no item had a real point to sample
-      const double pps = static_cast<double>(c.checked) / best_of(times);
-      const double checks = static_cast<double>(c.checked);
-      rows.push_back({{"op", op},
-                      {"precision", precision},
-                      {"inputs", kind_name(Kind::double_valued)},
-                      {"points_per_s", pps},
-                      {"threads", T},
-                      {"exact_fallbacks", c.fallbacks},
-                      {"points", c.checked},
-                      {"exact_fallbacks_measured", c.measured},
-                      {"points_per_s_per_thread", pps / T},
-                      {"method", method},
-                      {"n", items},
-                      {"distinct_points", distinct},
-                      {"passes", passes},
-                      {"checks_failed", c.failed},
-                      {"items_per_s", pps},
-                      {"ns_per_item", 1e9 / pps},
-                      {"ns_per_item_median", 1e9 * median_of(times) / checks},
-                      {"ns_per_item_runs", per_item_ns(times, checks)},
-                      {"bytes_per_item", bytes},
-                      {"roofline_fraction", nullptr}});
-    };
-    const FilterCounts ts = total(cs), tr = total(cr), xs = total(es), xr = total(er);
-    add_verify_row("verify-shadow", "double", "filtered", t[0], ts, shadow_points, ps, sizeof(EnclosedPoint), S.size());
-    add_verify_row("verify-reflection", "double", "filtered", t[1], tr, reflection_points, pr, sizeof(EnclosedPoint), Rf.size());
-    add_verify_row("verify-shadow", "exact", "exact", t[2], xs, shadow_points, 1,
-                   shadow_points ? proof_bytes_s / shadow_points : 0, S.size());
-    add_verify_row("verify-reflection", "exact", "exact", t[3], xr, reflection_points, 1,
-                   reflection_points ? proof_bytes_r / reflection_points : 0, Rf.size());
-    verification = {
+    vt.counts[0] = total(cs), vt.counts[1] = total(cr), vt.counts[2] = total(es), vt.counts[3] = total(er);
+    return vt;
+  }
+
+  /// The document's "verification" section: the items, the sampling and what the rows check.
+  json verification_section(int K, const VerifyItems& v) const {
+    return {
         {"inputs", kind_name(Kind::double_valued)},
         {"items_drawn", K},
-        {"shadow_items", S.size()},
-        {"reflection_items", Rf.size()},
+        {"shadow_items", v.S.size()},
+        {"reflection_items", v.Rf.size()},
         {"samples_per_item", kVerifySamples},
         {"accuracy", kVerifyAccuracy},
-        {"sampling_s", {{"shadow", sample_shadow_s}, {"reflection", sample_reflection_s}}},
+        {"sampling_s", {{"shadow", v.sample_shadow_s}, {"reflection", v.sample_reflection_s}}},
         {"sampling_note",
          "sampling the exact points (terminator points A ∩ {(A L).x = 0}, points of A reflected exactly, in Q(sqrt d), "
          "accuracy.hpp) and preparing them (enclosures, denominators cleared) is not part of the timed checks; "
@@ -947,43 +1231,10 @@ json run_bench(const BenchOptions& opt) {
          "the polar plane (verify-shadow); B at each reflected point (verify-reflection); passes: the filtered rows check "
          "every pair that many times per run (about 4 10^6 checks), the exact rows once"}};
   }
-  // The bandwidth limit: the best copy of all rounds (a shared machine's noise only adds
-  // time, to the copy as to the rows, so best against best).
-  const double bandwidth = copy.bytes() / best_of(copy_times);
-  // roofline fractions; cost ratios against double/direct of the same op and inputs (the
-  // verification rows: against their double, filtered row)
-  for (auto& r : rows) {
-    r["roofline_fraction"] = r["items_per_s"].get<double>() * r["bytes_per_item"].get<double>() / bandwidth;
-    for (const auto& d : rows)
-      if (d["op"] == r["op"] && d["inputs"] == r["inputs"] && d["precision"] == "double" &&
-          (d["method"] == "direct" || d["method"] == "filtered"))
-        r["cost_vs_double_direct"] = d["items_per_s"].get<double>() / r["items_per_s"].get<double>();
-  }
-  // rows by op group (batch, then verification), inputs, precision, method, op
-  auto rank = [](const json& r) {
-    const std::string p = r["precision"], m = r["method"], in = r["inputs"], op = r["op"];
-    const bool verify = op.rfind("verify", 0) == 0;
-    return std::make_tuple(verify, in == "small-rational" ? 0 : in == "double-valued" ? 1 : 2,
-                           p == "double" ? 0 : p == "interval" ? 1 : 2, m == "paper" ? 1 : 0,
-                           op == "shadow" || op == "verify-shadow" ? 0 : 1);
-  };
-  std::stable_sort(rows.begin(), rows.end(), [&](const json& x, const json& y) { return rank(x) < rank(y); });
-  const std::string R = std::to_string(rounds);
-  return {{"format", "qverify-bench/1"},
-          {"threads", T},
-          {"n", n},
-          {"processor", processor_info()},
-          {"memory_bandwidth_gbps", bandwidth / 1e9},
-          {"memory_bandwidth_gbps_runs", [&] {
-             json a = json::array();
-             for (double t : copy_times) a.push_back(copy.bytes() / t / 1e9);
-             return a;
-           }()},
-          {"bandwidth_method", "parallel stream copy (non-temporal stores, like the double batches) of as many bytes "
-                               "as the double shadow row moves (read + write), run at the start and at the end of each of the " + R +
-                               " rounds, around the rows; the best copy"},
-          {"inputs",
-           {{"small-rational", "random rationals p/q, |p| <= 20, 1 <= q <= 9 (doubles: rounded once; intervals: the "
+
+  /// The document's "inputs" section: how each kind of input is drawn and converted.
+  json inputs_section() const {
+    return {{"small-rational", "random rationals p/q, |p| <= 20, 1 <= q <= 9 (doubles: rounded once; intervals: the "
                                "enclosure of p/q; exact: as p and q): quadrics A, and lights (x, y, z, 1) with z != 0 "
                                "that are also the mirror planes x X + y Y + z Z + 1 = 0"},
             {"double-valued", "random doubles with full 53-bit mantissas, |x| in [2^e, 2^(e+1)) with e uniform in "
@@ -993,27 +1244,43 @@ json run_bench(const BenchOptions& opt) {
                            "(about 2^-30..2^30), random signs; doubles: the nearest double (std::from_chars); "
                            "intervals: that double +- one ulp (an enclosure of the text's value); exact: the text's "
                            "value m 10^e"},
-            {"generation_s", generation_s}}},
-          {"timing", "best of " + R + " rounds; each round runs the copy, then for each kind of input (converted into "
-                     "the same buffers, untimed) the four double and interval direct rows once, and the copy again (so that "
-                     "rows and bandwidth sample the same moments of a shared machine, whose noise only adds time); then the "
-                     "paper rows of each kind, best of " + R + " rounds; then the exact rows of each kind, best of " + R +
-                     " runs (small-rational: all n items; double-valued and decimal-17: the first " + std::to_string(nx) +
-                     " items, the row's n); then the verification rows, best of " + R + " rounds. Outputs pre-allocated; "
-                     "ns_per_item_runs lists every run, ns_per_item_median is the median"},
-          {"simd", {{"lanes", DoublePack::size()},
-                    {"instruction_set", instruction_set()},
-                    {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
-          {"exact_arithmetic",
-           {{"inputs", kind_name(Kind::double_valued)},
-            {"items", std::min<Eigen::Index>(nx, kCandidateItems)},
-            {"threads", 1},
-            {"note", "the candidates for exact results from doubles, timed on the same items by the same generic "
-                     "formulas (the direct shadow; the division-free mirror matrix and rank-one image), all of them in each of " + R +
-                     " rounds, best of the rounds, one thread"},
-            {"candidates", candidates}}},
-          {"verification", verification},
-          {"rows", rows}};
+            {"generation_s", generation_s_}};
+  }
+
+  /// The document's "timing": the order of the phases and what each row's numbers are.
+  std::string timing_note() const {
+    const std::string R = std::to_string(rounds_);
+    return "best of " + R + " rounds; each round runs the copy, then for each kind of input (converted into "
+           "the same buffers, untimed) the four double and interval direct rows once, and the copy again (so that "
+           "rows and bandwidth sample the same moments of a shared machine, whose noise only adds time); then the "
+           "paper rows of each kind, best of " + R + " rounds; then the exact rows of each kind, best of " + R +
+           " runs (small-rational: all n items; double-valued and decimal-17: the first " + std::to_string(nx_) +
+           " items, the row's n); then the verification rows, best of " + R + " rounds. Outputs pre-allocated; "
+           "ns_per_item_runs lists every run, ns_per_item_median is the median";
+  }
+
+  const BenchOptions& opt_;
+  const Eigen::Index n_;   ///< items of the double, interval, paper and small-rational exact rows
+  const int T_;            ///< threads
+  const int rounds_;
+  const Eigen::Index nx_;  ///< items of the exact rows on double-valued and decimal-17 inputs
+  StreamCopy copy_;        ///< as many bytes as the double shadow row moves
+  std::vector<double> copy_times_;
+  double generation_s_ = 0;  ///< converting the inputs, untimed by the rows
+  std::vector<BenchRow> rows_;
+  json candidates_ = json::array();  ///< the exact arithmetic candidates
+  json verification_;                ///< the verification section
+};
+
+}  // namespace
+
+json run_bench(const BenchOptions& opt) {
+  BenchRun run(opt);
+  run.float_rows();
+  run.small_rational_exact_rows();
+  for (Kind kind : {Kind::double_valued, Kind::decimal17}) run.wide_exact_rows(kind);
+  run.verification_rows();
+  return run.document();
 }
 
 }  // namespace qverify
