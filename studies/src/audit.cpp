@@ -130,6 +130,7 @@ struct AuditRow {
     r["correct_bits"] = stats.max > 0 ? number_or_null(-std::log2(stats.max)) : json(nullptr);
     if (stats.max == 0) r["exact_match"] = true;
   }
+  /// A ladder row: its timing and errors, then what timed_results reports.
   json ladder_json(std::size_t n_items) const {
     json r;
     r["precision"] = precision;
@@ -144,6 +145,8 @@ struct AuditRow {
     if (ladder->working_bits) r["working_bits"] = *ladder->working_bits;
     return r;
   }
+  /// The candidate's row: who it is and its status, its time per call and errors, then the ladder's fields
+  /// it has no value for (null or 1), whether it missed the target and its reproducer.
   json candidate_json(std::size_t n_items) const {
     const CandidateFacts& c = *candidate;
     json r;
@@ -180,6 +183,7 @@ struct AuditRow {
 /// each step is a function of its own sharing the run's state, as FamilySweep does for stress.
 class SceneAudit {
  public:
+  /// The exact evaluation of the scene, the reference of every row.
   SceneAudit(const Scene& sc, const AuditOptions& opt)
       : sc_(sc), opt_(opt), ref_(evaluate<Q>(sc, Method::direct)), n_items_(sc.shadows.size() + sc.reflections.size()) {}
 
