@@ -18,7 +18,7 @@
 /// AVX-512), the certified intervals likewise (exact/interval_pack.hpp).
 /// Entry k of W consecutive rows is gathered into one pack and the results are
 /// transposed back into rows on the way out. The packed results are bitwise
-/// the single-item results (tests/test_batch.cpp). The paper route runs one
+/// the single-item results (tests/core/test_batch.cpp). The paper route runs one
 /// item at a time (it is the reference route, not the fast one).
 ///
 /// Matrices only: the status words are per-item decisions (shadow_flags),

@@ -13,7 +13,7 @@
 ///   c' = k a' - beta' w        (= k^2 c of mirror.hpp's mirror_image_from)
 ///   k^2 B = k^2 A - w c'^T - c' w^T,
 /// w = (n, d) the mirror plane: 57 products, and exactly the same matrix as
-/// mirror_image(A, scaled_mirror_matrix(plane)) (tests/test_bench.cpp checks
+/// mirror_image(A, scaled_mirror_matrix(plane)) (tests/verify/test_point_filter.cpp checks
 /// the identity on rationals, 128-bit integers and WideInt).
 ///
 /// Bit bound (for fixed-width integers): with |A| < 2^bA and |w| < 2^bL every

@@ -31,7 +31,7 @@
 /// the flag before a span of packs and recomputes the span item by item (CGAL)
 /// when it is raised. Without NaN every bound above is a correctly directed
 /// rounding of an exact corner value, hence an enclosure; infinite bounds are
-/// valid enclosures. tests/test_batch.cpp (the "[pack]" cases) checks packs
+/// valid enclosures. tests/core/test_batch.cpp (the "[pack]" cases) checks packs
 /// against CGAL bound for bound and against exact results.
 
 #include <qverify/core/batch.hpp>

@@ -33,7 +33,7 @@
 ///  3. the verifier's own measure at that one point (measure_quadric /
 ///     measure_plane, Q(sqrt d) and 80 digits).
 /// `exact_fallbacks` in reports counts the pairs stage 1 left to stages 2 and 3
-/// (`measured`: those that reached 3). tests/test_point_filter.cpp checks the
+/// (`measured`: those that reached 3). tests/verify/test_point_filter.cpp checks the
 /// decisions of stages 1 and 2 against stage 3 on random and adversarial points.
 ///
 /// Proof mode (exact candidates: every residual must be exactly 0) has its own
