@@ -121,6 +121,19 @@ std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::op
   return out;
 }
 
+/// Point k's first-order distance d into the metric; nullopt: the result's gradient vanishes at
+/// the point (it lies off the result there: no distance, the metric is singular). A singular
+/// point stays the worst.
+void add_distance(Metric& m, std::size_t k, const std::optional<Measure>& d) {
+  if (d) {
+    m.distance = mmax(m.distance, *d);
+    if (!m.singular && *d == m.distance) m.worst = k;
+  } else {
+    if (!m.singular) m.worst = k;
+    m.singular = true;
+  }
+}
+
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   Metric m;
   const Measure qnorm = frobenius(Qm);
@@ -137,14 +150,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
       g += gi * gi;
     }
     const Measure w = abs(to_measure(x.coords()[3]));
-    if (g > 0 && w > 0) {
-      const Measure d = fm / (w * 2 * sqrt(g));
-      m.distance = mmax(m.distance, d);
-      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
-    } else {
-      if (!m.singular) m.worst = k;
-      m.singular = true;
-    }
+    add_distance(m, k, g > 0 && w > 0 ? std::optional<Measure>(fm / (w * 2 * sqrt(g))) : std::nullopt);
   }
   return m;
 }
@@ -160,14 +166,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
     const Measure fm = abs(to_measure(f));
     if (pn > 0) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
     const Measure w = abs(to_measure(x.coords()[3]));
-    if (pxyz > 0 && w > 0) {
-      const Measure d = fm / (w * pxyz);
-      m.distance = mmax(m.distance, d);
-      if (!m.singular && d == m.distance) m.worst = k;  // a singular point stays the worst
-    } else {
-      if (!m.singular) m.worst = k;
-      m.singular = true;
-    }
+    add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);
   }
   return m;
 }

@@ -346,21 +346,16 @@ class SceneAudit {
 
   /// The document's "candidate" section: the candidate, its rule, its status and its reproducers.
   json candidate_section() const {
-    const Candidate& cand = *opt_.candidate;
-    return {{"name", cand.name},
-            {"source", "candidate"},
-            {"command", cand.description},
-            {"timeout_seconds", cand.timeout_seconds > 0 ? json(cand.timeout_seconds) : json(nullptr)},
-            {"accuracy", opt_.accuracy},
-            {"rule", "the candidate is called once on the scene and must return a qverify-eval/1 document "
-                     "with every requested item; its row has the matrix errors of the ladder and ns_per_item = "
-                     "the wall time of the call (process start included) / items; each item is checked as "
-                     "verify --candidate checks it (" + std::to_string(opt_.samples) + " exact points, seed 1): "
-                     "geometric_errors; a failed call, a failed check or a geometric error beyond accuracy "
-                     "writes the scene as a reproducer"},
-            {"status", rows_.back().candidate->status},
-            {"failures_dir", reproducers_.empty() ? json(nullptr) : json("failures")},
-            {"reproducers", reproducers_}};
+    json c = candidate_section_head(*opt_.candidate, opt_.accuracy);
+    c["rule"] = "the candidate is called once on the scene and must return a qverify-eval/1 document with every "
+                "requested item; its row has the matrix errors of the ladder and ns_per_item = the wall time of the "
+                "call (process start included) / items; each item is checked as verify --candidate checks it (" +
+                std::to_string(opt_.samples) + " exact points, seed 1): geometric_errors; a failed call, a failed "
+                "check or a geometric error beyond accuracy writes the scene as a reproducer";
+    c["status"] = rows_.back().candidate->status;
+    c["failures_dir"] = reproducers_.empty() ? json(nullptr) : json("failures");
+    c["reproducers"] = reproducers_;
+    return c;
   }
 
   /// The qverify-audit/1 document: how errors and times are measured, the rows, the front, the items.

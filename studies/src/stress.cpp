@@ -537,22 +537,19 @@ class FamilySweep {
 json candidate_section(const Candidate& cand, const StressOptions& opt, const CandidateTotals& t) {
   std::vector<double> sorted = t.call_seconds;
   std::sort(sorted.begin(), sorted.end());
-  return {{"name", cand.name},
-          {"source", "candidate"},
-          {"command", cand.description},
-          {"timeout_seconds", cand.timeout_seconds > 0 ? json(cand.timeout_seconds) : json(nullptr)},
-          {"accuracy", opt.accuracy},
-          {"rule", "the candidate is given each point's scene (the file of its reproducer) and must return a "
-                   "qverify-eval/1 document with the family's item; its results are measured like every run (matrix and "
-                   "geometric error against exact on the same points); a point is a reproducer when the call failed "
-                   "(status candidate-failed, with error) or the item's geometric error over all its results (P, polar "
-                   "plane and R, or B) exceeds accuracy; breakdown is the first such parameter value"},
-          {"calls", t.call_seconds.size()},
-          {"failed_calls", t.failed_calls},
-          {"beyond_accuracy", t.beyond_calls},
-          {"median_seconds_per_call", sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2])},
-          {"failures_dir", t.reproducers.empty() ? json(nullptr) : json("failures")},
-          {"reproducers", t.reproducers}};
+  json c = candidate_section_head(cand, opt.accuracy);
+  c["rule"] = "the candidate is given each point's scene (the file of its reproducer) and must return a qverify-eval/1 "
+              "document with the family's item; its results are measured like every run (matrix and geometric error "
+              "against exact on the same points); a point is a reproducer when the call failed (status "
+              "candidate-failed, with error) or the item's geometric error over all its results (P, polar plane and R, "
+              "or B) exceeds accuracy; breakdown is the first such parameter value";
+  c["calls"] = t.call_seconds.size();
+  c["failed_calls"] = t.failed_calls;
+  c["beyond_accuracy"] = t.beyond_calls;
+  c["median_seconds_per_call"] = sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2]);
+  c["failures_dir"] = t.reproducers.empty() ? json(nullptr) : json("failures");
+  c["reproducers"] = t.reproducers;
+  return c;
 }
 
 }  // namespace

@@ -339,6 +339,15 @@ nlohmann::ordered_json write_candidate_reproducer(const std::filesystem::path& f
   return e;
 }
 
+nlohmann::ordered_json candidate_section_head(const Candidate& c, double accuracy) {
+  using json = nlohmann::ordered_json;
+  return {{"name", c.name},
+          {"source", "candidate"},
+          {"command", c.description},
+          {"timeout_seconds", c.timeout_seconds > 0 ? json(c.timeout_seconds) : json(nullptr)},
+          {"accuracy", accuracy}};
+}
+
 void remove_candidate_reproducers(const std::filesystem::path& failures_dir, const std::string& name) {
   std::error_code ec;
   if (!std::filesystem::is_directory(failures_dir, ec)) return;

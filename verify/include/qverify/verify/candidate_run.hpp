@@ -95,6 +95,11 @@ nlohmann::ordered_json write_candidate_reproducer(const std::filesystem::path& f
                                                   const std::string& scene_text, const CandidateCall& call,
                                                   const std::string& reason);
 
+/// The head of a report's "candidate" section (audit and stress): name,
+/// source, command, timeout_seconds (null: none) and the accuracy target; each
+/// study appends its rule and its counts.
+nlohmann::ordered_json candidate_section_head(const Candidate& c, double accuracy);
+
 /// Removes the reproducers NAME-* left in `failures_dir` by an earlier run.
 void remove_candidate_reproducers(const std::filesystem::path& failures_dir, const std::string& name);
 
