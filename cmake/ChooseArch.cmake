@@ -6,9 +6,12 @@
 # AVX-512 build of the batch kernel measured 2-3x slower than the AVX2 one before the store order
 # of core/batch.hpp was fixed (README, "bench"). So when this machine runs both x86-64-v4 (AVX-512)
 # and x86-64-v3 (AVX2), the choice is made by measurement: cmake/arch_probe.cpp, which times the
-# double direct shadow batch, is built with each -march and the two are run in turn, three times
-# each (best of each); x86-64-v4 is taken only when it is more than 5% faster (ties go to the
-# narrower set: it also lets valgrind run the release CLI). The decision and both timings are
+# double direct shadow batch, is built with each -march and the two are run in turn, seven times
+# each (best of each; a run takes 0.4 s); x86-64-v4 is taken only when it is more than 10% faster.
+# The margin is the noise of the probe on a shared 2-core machine: after the store-order fix the two
+# are at parity on AMD Zen 4, and best-of-three with a 5% margin chose v4 at one configure and v3
+# at the next. Ties go to the narrower set: valgrind then runs the release CLI, and ./run-tests
+# needs no second build without AVX-512. The decision and both timings are
 # cached (QVERIFY_ARCH_MEASURED, internal) for this compiler and these sources of the kernel, so a
 # reconfigure does not measure again; `cmake -U QVERIFY_ARCH_MEASURED <build>` measures again.
 # When the probe cannot be built or run (cross build, a compiler without the -march, no CPU
@@ -78,12 +81,12 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         endif()
       endforeach()
       set(CMAKE_TRY_COMPILE_CONFIGURATION "${_qv_saved_config}")
-      # Three runs of each, in turn (a shared machine's speed drifts; each run is itself the best of
+      # Seven runs of each, in turn (a shared machine's speed drifts; each run is itself the best of
       # five passes over 2^20 items), and the best of each.
       set(_qv_best_3 "")
       set(_qv_best_4 "")
       if(_qv_ok)
-        foreach(_qv_round 1 2 3)
+        foreach(_qv_round 1 2 3 4 5 6 7)
           foreach(_qv_level 3 4)
             execute_process(COMMAND ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level}
                             RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_out ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE
@@ -107,9 +110,9 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         endforeach()
       endif()
       if(_qv_ok)
-        # x86-64-v4 only when more than 5% faster: v4 * 100 < v3 * 95
+        # x86-64-v4 only when more than 10% faster: v4 * 100 < v3 * 90
         math(EXPR _qv_v4_scaled "${_qv_best_4} * 100")
-        math(EXPR _qv_v3_scaled "${_qv_best_3} * 95")
+        math(EXPR _qv_v3_scaled "${_qv_best_3} * 90")
         if(_qv_v4_scaled LESS _qv_v3_scaled)
           set(_qv_choice x86-64-v4)
         else()
