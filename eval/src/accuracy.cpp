@@ -1,6 +1,11 @@
 #include <qverify/eval/accuracy.hpp>
 
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace qverify {
@@ -47,8 +52,13 @@ Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
 }
 
 /// Points on the generator lines of the cone through the terminator points:
-/// x + b L for a few rational b, chosen so that the point lies about
-/// tau * size from x (tau = 1/2, -1/2, 1/4). At most 8 terminator points are used.
+/// x + rho d, d = L_xyz - L_w x (Cartesian x), for rho = tau * scale with
+/// tau = 1/2, -1/2, 1/4 and scale = min(size / |d|, 1 / |L_w|) (rounded to a
+/// double): offsets up to half the object's size along the generator, and at
+/// most half way to the apex (rho L_w = 1), where the cone's gradient vanishes.
+/// In
+/// homogeneous coordinates x = (X, w) maps to (X + rho (w L_xyz - L_w X), w), a
+/// linear map, so the point stays in x's field. At most 8 terminator points are used.
 std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
   std::vector<RootPoint> out;
   const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
@@ -62,11 +72,21 @@ std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator
       d2 += dk * dk;
     }
     if (!(d2 > 0) || !(size > 0)) continue;
-    const double scale = Measure(w * size / sqrt(d2)).convert_to<double>();
+    Measure s = size / sqrt(d2);
+    if (L(3) != 0) {
+      const Measure apex = 1 / abs(to_measure(L(3)));
+      if (apex < s) s = apex;
+    }
+    const double scale = s.convert_to<double>();
     if (!std::isfinite(scale) || scale == 0) continue;
     for (const Q& tau : taus) {
-      const Q b = tau * to_rational(scale);
-      out.emplace_back(Vec4<Q>(x.p() + b * L), x.q(), x.delta());
+      const Q rho = tau * to_rational(scale);
+      Mat4<Q> M = Mat4<Q>::Identity();
+      for (int k = 0; k < 3; ++k) {
+        M(k, k) -= rho * L(3);
+        M(k, 3) += rho * L(k);
+      }
+      out.push_back(x.mapped(M));
     }
   }
   return out;
@@ -98,6 +118,8 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.points = s.points;
   out.exhausted = s.exhausted;
   out.size = object_size(out.points, A);
+  if (!out.points.empty())
+    if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
   out.generators = generator_points(out.points, L, out.size);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
   return out;
@@ -108,6 +130,8 @@ ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint
   ItemPoints out;
   out.exhausted = s.exhausted;
   out.size = object_size(s.points, A);
+  if (!s.points.empty())
+    if (const auto whole = ellipsoid_size(A)) out.size = std::max(out.size, Measure(*whole));
   for (const RootPoint& x : s.points) out.points.push_back(x.mapped(M));
   return out;
 }
@@ -246,33 +270,91 @@ ItemAccuracy refined_accuracy(const ItemPoints& pts, std::optional<ItemPoints>& 
 
 }  // namespace
 
+double size_down(const Measure& size) {
+  const double d = size.convert_to<double>();
+  return Measure(d) > size ? std::nextafter(d, 0.0) : d;
+}
+
+namespace {
+
+/// Combines a certified bound with the largest sampled error of the same results (which it must not be
+/// below) and the sampled error of the results it does not cover (times the margin).
+ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
+                               std::vector<std::string> certified, double target) {
+  if (sampled_covered > Measure(cb.upper))
+    throw std::logic_error("certified error bound " + std::to_string(cb.upper) + " below an error measured on an exact "
+                           "point (" + sampled_covered.str(6) + "): a bug in the bound");
+  ItemAccuracy acc;
+  acc.certified = std::move(certified);
+  const Measure bound = std::max(Measure(cb.upper), Measure(sampled_other * kBoundMargin));
+  if (!(bound < std::numeric_limits<Measure>::infinity())) {
+    std::ostringstream r;
+    r << "no finite bound: near its geometry the result's gradient may vanish (a first-order distance of "
+      << std::setprecision(3) << cb.attained << " of the object's size is attained)";
+    acc.reason = r.str();
+    acc.inaccurate = true;
+    return acc;
+  }
+  acc.bound = bound.convert_to<double>();
+  if (Measure(*acc.bound) < bound) acc.bound = std::nextafter(*acc.bound, std::numeric_limits<double>::infinity());
+  acc.inaccurate = *acc.bound > target;
+  return acc;
+}
+
+}  // namespace
+
 ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
-    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {}
+    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {
+  if (!pts_.points.empty() && !pts_.exhausted) geo_ = shadow_geometry(A, L);
+}
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
-  return refined_accuracy(
-      pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; },
-      [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); });
+  auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
+  if (!geo_)
+    return refined_accuracy(
+        pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
+  const auto r_error = [&](const ItemPoints& p) {  // what the certified bound does not cover
+    const ShadowError e = shadow_error(p, origin, P, polar, R);
+    return std::max({relative(e.R, p.size), relative(e.R_plane, p.size), relative(e.generators, p.size)});
+  };
+  const ShadowError e = shadow_error(pts_, origin, P, polar, R);
+  const Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
+  Measure other = r_error(pts_);
+  if (in_gray_zone(other, opt_.target)) {
+    if (!dense_) dense_ = dense();
+    other = std::max(other, r_error(*dense_));
+  }
+  const CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size_down(pts_.size), opt_.target);
+  return combined_accuracy(cb, covered, other, {"P", "polar_plane"}, opt_.target);
 }
 
 ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
     : A_(A), M_(reference_mirror(plane)), opt_(opt), k_(k),
-      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))) {}
+      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))) {
+  if (!pts_.points.empty() && !pts_.exhausted) geo_ = reflection_geometry(A, M_);
+}
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
-  return refined_accuracy(
-      pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
-      [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
+  if (!geo_)
+    return refined_accuracy(
+        pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
+        [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
+  const CertifiedBound cb = reflection_bound(*geo_, origin, B, size_down(pts_.size), opt_.target);
+  return combined_accuracy(cb, reflection_error(pts_, origin, B).geometric, 0, {"B"}, opt_.target);
 }
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
-      "object size) evaluated exactly on " + std::to_string(accuracy.samples) + " seeded exact sample points (the "
-      "points of verify --seed " + std::to_string(accuracy.seed) + "; P also on its generator lines, R also on the "
-      "polar plane; near the target again on " + std::to_string(kRefineFactor) + " times as many), times " +
-      std::to_string(kBoundMargin) + " as the margin for the points between them; flag inaccurate when error_bound > accuracy";
+      "object size, the largest distance of those points from A's centre). Where A is an ellipsoid, P and the polar "
+      "plane on the terminator and B are bounded over every point of their geometry by interval branch and bound "
+      "(certified_for names them); R, P on its generator lines, and every result of other quadrics, are measured "
+      "exactly on " +
+      std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
+      std::to_string(accuracy.seed) + "; near the target again on " +
+      std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
+      " times, a margin for the points between them that is not a proof; flag inaccurate when error_bound > accuracy";
 }
 
 }  // namespace qverify

@@ -81,6 +81,11 @@ json check_json(const VerifyCheck& v, bool exact) {
     c["item_status"] = r.item_status;
     if (v.inaccurate) c["flags"] = json::array({"inaccurate"});
   }
+  if (r.certified)  // the bound over every point of the geometry, not only the samples
+    c["certified"] = {{"results", r.certified_for},
+                      {"geometric_error_bound", number_or_null(r.certified->upper)},
+                      {"geometric_error_attained", r.certified->attained},
+                      {"boxes", r.certified->boxes}};
   verdict_json(c, r);
   return c;
 }

@@ -131,14 +131,15 @@ case "$scene" in
   *-0.json) echo "crashing on purpose" >&2; exit 1;;
   *-1.json) echo 'garbage {' > "$out"; exit 0;;
   *-2.json) echo '{"format": "qverify-eval/1", "shadows": []}' > "$out"; exit 0;;
-  *-3.json) sleep 30; exit 0;;
+  *-3.json) sleep 600; exit 0;;
   *-4.json) kill -SEGV $$;;
 esac
 exec )") + QVERIFY_EXE + " eval \"$scene\" --json > \"$out\"\n");
   const auto t0 = std::chrono::steady_clock::now();
   const Run r = run("stress --family far-from-origin --out " + dir.string() + " --candidate-cmd 'sh " + script +
                     " {scene} {out}' --candidate-name flaky --candidate-timeout 1");
-  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 25);
+  // the hang was cut, not waited for (the whole sweep takes about 10 s here, 30 s under the sanitizers)
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 300);
   CHECK(r.code == 0);  // stress measures and reports: exit 0 whatever it finds
   CHECK(r.out.find("candidate flaky: breaks at d = 1") != std::string::npos);
   const auto doc = read_json(dir / "report.json");

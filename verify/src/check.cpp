@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <stdexcept>
 #include <limits>
 #include <sstream>
 
@@ -132,6 +133,26 @@ std::string fmt_double(double v) {
   std::ostringstream s;
   s << std::setprecision(6) << v;
   return s.str();
+}
+
+/// A floating candidate's verdict over every point of its geometry (not only the samples): it fails
+/// when a point is certainly beyond the target, and when the bound cannot bring it within.
+void certify(CheckReport& rep, const CertifiedBound& cb, double T, std::vector<std::string> what,
+             const Measure& sampled) {
+  std::string names;
+  for (const std::string& w : what) names += (names.empty() ? "" : " and ") + w;
+  if (sampled > Measure(cb.upper))
+    throw std::logic_error("certified error bound " + fmt_double(cb.upper) + " of " + names +
+                           " below an error measured on an exact point (" + sampled.str(6) + "): a bug in the bound");
+  rep.certified = cb;
+  rep.certified_for = std::move(what);
+  if (cb.attained > T)
+    rep.problems.push_back("certified: points of the geometry between the samples lie " + fmt_double(cb.attained) +
+                           " of the object's size from " + names + ", beyond the accuracy target");
+  else if (cb.upper > T)
+    rep.problems.push_back("the geometric error of " + names + " is not certified within the accuracy target (bound " +
+                           fmt_double(cb.upper) + " over every point, " + fmt_double(cb.attained) + " attained)");
+  rep.geometric_error = std::max(rep.geometric_error, cb.attained);
 }
 
 std::string fmt_matrix(const Mat4<Q>& m) {
@@ -342,6 +363,16 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (!(pts.size > 0))
     rep.notes.push_back("the terminator is a single real point: no object size to measure distances against; judged by "
                         "the relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy");
+  if (!exact && (got.P || got.polar_plane) && !pts.exhausted)
+    if (const auto geo = shadow_geometry(Aw, Lw)) {
+      std::vector<std::string> what;
+      Measure sampled = 0;
+      if (got.P) what.push_back("P"), sampled = relative(onP->metric, pts.size);
+      if (got.polar_plane) what.push_back("polar_plane"), sampled = mmax(sampled, relative(onPolar->metric, pts.size));
+      certify(rep, shadow_bound(*geo, got.origin, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr,
+                                size_down(pts.size), opt.accuracy),
+              opt.accuracy, std::move(what), sampled);
+    }
   rep.passed = problems.empty();
   return rep;
 }
@@ -406,6 +437,10 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (CGAL::is_zero(y.form(*got.B))) ++rep.proved_exactly;
   const QuadricCheck* onB = rep.find("on_B");
   rep.geometric_error = onB ? onB->geometric_error : 0;
+  if (!exact && got.B && !pts.exhausted)
+    if (const auto geo = reflection_geometry(Aw, Mw))
+      certify(rep, reflection_bound(*geo, got.origin, *got.B, size_down(pts.size), opt.accuracy), opt.accuracy, {"B"},
+              relative(onB->metric, pts.size));
   rep.consistent_with_precision = exact ? (!onB || onB->metric.all_zero) && (!got.M || *got.M == M_ref)
                                         : !(onB && onB->metric.residual > tol) && !(m_err > tol);
   rep.rounding_tolerance = to_d(tol);

@@ -15,9 +15,10 @@
 /// its quadratic part, -K^-1 k; the points' centroid where K is singular).
 /// A far-away point therefore cannot make a wrong result look small.
 
+#include <qverify/eval/certified_bound.hpp>
+#include <qverify/eval/frames.hpp>
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/sampling.hpp>
-#include <qverify/eval/frames.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -58,7 +59,11 @@ struct ItemPoints {
   /// terminator; only the cone P vanishes on these), and rational points of the polar plane
   /// inside the object (R, the plane pair through it, vanishes there; A does not).
   std::vector<RootPoint> generators, plane;
-  Measure size = 0;               ///< largest distance of the object's points from A's centre
+  /// Largest distance of the object's points from A's centre: over all of them where A is an
+  /// ellipsoid (terminator_size, ellipsoid_size: a certified lower bound within 2^-19), else over
+  /// the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
+  /// 7 units of its 10^4: a size from the samples alone made every relative error 1400 times too large.)
+  Measure size = 0;
   bool exhausted = false;         ///< fewer real points than asked
 };
 
@@ -70,6 +75,10 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index);
 ItemPoints terminator_points(const Mat4<Rational>& A, const Vec4<Rational>& L, int n, std::uint64_t seed);
 /// Points of A reflected by the exact mirror matrix M (size measured on A's points).
 ItemPoints reflected_points(const Mat4<Rational>& A, const Mat4<Rational>& M, int n, std::uint64_t seed);
+
+/// The object size rounded down to a double (a lower bound of the true size, as the sampled one is):
+/// what a certified bound divides by.
+double size_down(const Measure& size);
 
 /// The points moved exactly into the frame with origin o (x_local = x - o).
 std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Rational>>& origin);
@@ -107,9 +116,12 @@ ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3
 /// core's mirror_matrix, which is under test): x - 2 (n.x + d) n / (n.n).
 Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
-/// error_bound of eval: a bound of the geometric error from the measure above.
-/// It is exact on the sampled points and doubled as the margin for the points
-/// between them (kBoundMargin).
+/// error_bound of eval. Where A is an ellipsoid, P and the polar plane on the
+/// terminator and B are bounded over every point (certified_bound.hpp); what
+/// is measured on samples only (R, P on its generator lines, and every result
+/// of other quadrics) counts
+/// twice its largest sampled error (kBoundMargin), a margin for the points
+/// between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
 
 
@@ -119,6 +131,9 @@ struct ItemAccuracy {
   std::optional<double> bound;  ///< error_bound; nullopt with a reason where none can be given
   std::string reason;
   bool inaccurate = false;
+  /// The results whose part of the bound is certified over every point of their geometry
+  /// (certified_bound.hpp: "P", "polar_plane", "B"); the other parts are measured on samples.
+  std::vector<std::string> certified;
 };
 
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).
@@ -147,13 +162,15 @@ std::string error_bound_rule(const AccuracyOptions& accuracy);
 /// The accuracy of a result that has non-finite entries: no bound, inaccurate.
 ItemAccuracy non_finite_accuracy();
 
-/// eval's error_bound and `inaccurate` of one shadow item (index k): its
-/// results (P, polar plane, R in the frame with `origin`) measured on the
-/// item's seeded sample points (shadow_error), and, in the gray zone, again on
-/// kRefineFactor times as many other points; the larger measure counts. The
-/// points are sampled once per meter and kept, so a result measured again
-/// (after escalation) is measured on the same points. Used by eval's accuracy
-/// assessment and by its adaptive mode alike.
+/// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
+/// polar plane bounded over the whole terminator where A is an ellipsoid
+/// (shadow_bound); R, P on its generator lines, and every result of other
+/// quadrics, measured on the item's seeded sample points (shadow_error) and, in
+/// the gray zone, again on kRefineFactor times as many other points, the larger
+/// measure counting, times kBoundMargin. A sampled error above the certified
+/// bound is a bug and throws std::logic_error. The points are sampled once per
+/// meter and kept, so a result measured again (after escalation) is measured on
+/// the same points. Used by eval's accuracy assessment and by its adaptive mode alike.
 class ShadowMeter {
  public:
   ShadowMeter(const Mat4<Rational>& A, const Vec4<Rational>& L, const AccuracyOptions& opt, std::size_t k);
@@ -167,10 +184,12 @@ class ShadowMeter {
   std::size_t k_;
   ItemPoints pts_;
   std::optional<ItemPoints> dense_;
+  std::optional<ShadowGeometry> geo_;
 };
 
-/// The same for one reflection item: B measured on the points of A reflected
-/// by the exact mirror of `plane` (reflection_error).
+/// The same for one reflection item: B bounded over the whole of A reflected by
+/// the exact mirror of `plane` where A is an ellipsoid (reflection_bound), else
+/// measured on its sampled points (reflection_error).
 class ReflectionMeter {
  public:
   ReflectionMeter(const Mat4<Rational>& A, const Vec4<Rational>& plane, const AccuracyOptions& opt, std::size_t k);
@@ -182,6 +201,7 @@ class ReflectionMeter {
   std::size_t k_;
   ItemPoints pts_;
   std::optional<ItemPoints> dense_;
+  std::optional<ReflectionGeometry> geo_;
 };
 
 }  // namespace qverify

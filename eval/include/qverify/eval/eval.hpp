@@ -376,10 +376,12 @@ inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
   return {o(0).convert_to<double>(), o(1).convert_to<double>(), o(2).convert_to<double>()};
 }
 
-/// error_bound of an item (or null, with the reason in `reason`).
+/// error_bound of an item (or null, with the reason in `reason`), and
+/// `certified_for`: the results bounded over every point of their geometry.
 inline void accuracy_json(nlohmann::ordered_json& j, const ItemAccuracy* acc) {
   if (!acc) return;
   j["error_bound"] = acc->bound ? nlohmann::ordered_json(*acc->bound) : nlohmann::ordered_json(nullptr);
+  j["certified_for"] = acc->certified;  // the results whose part of the bound holds at every point
   if (!acc->reason.empty()) j["reason"] = acc->reason;
 }
 

@@ -1,0 +1,103 @@
+#pragma once
+/// \file certified_bound.hpp
+/// A certified upper bound of a result's geometric error over *every* exact
+/// point of its geometry, not only over sampled ones: interval branch and bound.
+///
+/// Where A is an ellipsoid (K definite, real points) the geometry of an item is
+/// the image of the unit circle or sphere, u = v / |v| with v on the faces of
+/// the square or cube [-1, 1]^k, so that its pieces are boxes of parameters:
+///  - the terminator A ∩ {pi . x = 0}, pi = A L, an ellipse: in plane
+///    coordinates (s, t), x = p0 + s e1 + t e2, the section is the conic
+///    (s t 1) C (s t 1)^T, C = G^T A G; with its centre m and S = C2 / (-C(m))
+///    = R^T R (Cholesky, in intervals), x = c + y0 + [e1 e2] R^-1 u;
+///  - A reflected: x = c + R3^-1 u with K / (-A(c)) = R3^T R3, carried by the
+///    exact mirror M (the reflected point minus M c is H R3^-1 u).
+///
+/// For a returned quadric Q^ (in the frame with origin o) and an exact quadric
+/// Q that vanishes on the geometry (the reference, computed from A and L or the
+/// mirror by the formulas of the paper, not by the functions under test), every
+/// lambda gives, on the geometry,
+///   x^T Q^ x = x^T E x,   E = Q^ - lambda Q_o            (Q_o: Q in the frame)
+///   (Q^ x)_xyz = lambda (Q3 (p - e) + (Q (e, 1))_xyz) + (E x)_xyz,
+/// p the Cartesian world point and e an exact expansion point near the object.
+/// E and the exact gradient terms are computed in rationals and only then
+/// enclosed, so nothing cancels inside the intervals: a result 10^12 from its
+/// object is bounded as tightly as one at the origin. On a box of parameters
+/// the first-order distance |x^T E x| / (2 |grad|) (plane: |eps . x| / |pi^_xyz|)
+/// is bounded above by interval arithmetic (CGAL Interval_nt, rounding upward;
+/// on the terminator also by the mean-value form in the circle's parameter,
+/// whose overestimate shrinks with the square of the box: a terminator 10^6
+/// times longer than wide is otherwise not bounded within any budget), the
+/// gradient also from below by a floor that holds on the whole geometry (on A,
+/// |K (x - c)| >= sqrt(mu |A(c)|), mu <= the smallest eigenvalue of +-K, proved
+/// exactly; P on the terminator is (L^T A L) times A's gradient there), so that
+/// a thin object's wide boxes, whose gradient enclosure contains 0, are still
+/// bounded; and below at the box's centre (a point of the geometry lies in the
+/// thin box evaluated there). The box with the largest upper bound is bisected until the
+/// bound is within a factor 2 of a distance attained, or below a thousandth of
+/// the target, or a budget of boxes is spent; the bound is the largest upper
+/// bound left, divided by the object size (a lower bound of the true size, so
+/// the quotient bounds the relative error above).
+
+#include <qverify/core/scalar.hpp>
+#include <qverify/exact/root_point.hpp>
+#include <qverify/exact/scalars.hpp>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace qverify {
+
+/// The certified bound of one or more results over one piece of geometry.
+struct CertifiedBound {
+  double upper = 0;     ///< sup of the relative first-order distance over the geometry <= upper (may be inf)
+  double attained = 0;  ///< a relative distance attained at a point of the geometry (sup >= attained)
+  int boxes = 0;        ///< boxes evaluated
+};
+
+/// One returned result with its exact reference, ready for interval evaluation.
+class BoundedResult;
+
+/// A parametrised piece of an item's geometry (the terminator, A reflected).
+class Geometry;
+
+/// The geometry of a shadow item where A is an ellipsoid and the terminator a
+/// real ellipse; nullopt otherwise (the error is then measured on samples only).
+struct ShadowGeometry {
+  std::shared_ptr<const Geometry> terminator;
+  Mat4<Rational> P_ref;  ///< (L^T A L) A - (A L)(A L)^T, world frame
+  Vec4<Rational> pi_ref; ///< A L
+  /// A lower bound of |(P_ref x)_xyz| on the terminator (0: none known).
+  Measure grad_floor = 0;
+};
+std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);
+
+/// The geometry of a reflection item where A is an ellipsoid; nullopt otherwise.
+struct ReflectionGeometry {
+  std::shared_ptr<const Geometry> surface;
+  Mat4<Rational> B_ref;  ///< M^T A M, world frame
+  Measure grad_floor = 0; ///< a lower bound of |(B_ref x)_xyz| on A reflected (0: none known)
+};
+std::optional<ReflectionGeometry> reflection_geometry(const Mat4<Rational>& A, const Mat4<Rational>& M);
+
+/// The object size (docs/json-documents.md, accuracy): the largest distance from A's centre of
+/// the terminator's points (shadow) or of A's points (reflection), over all of
+/// them, from below and within a relative 2^-19 of the truth, where A is an
+/// ellipsoid (and the terminator an ellipse); nullopt otherwise.
+std::optional<double> terminator_size(const Mat4<Rational>& A, const Vec4<Rational>& L);
+std::optional<double> ellipsoid_size(const Mat4<Rational>& A);
+
+/// The certified bound of the returned P and polar plane (in the frame with
+/// `origin`; either may be absent) over the terminator. `target` (relative)
+/// steers the bisection only: it goes on while the bound is above the target
+/// and the distance attained below it. (P on its generator lines, and R, are
+/// measured on samples: accuracy.hpp.)
+CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Rational>>& origin,
+                            const Mat4<Rational>* P, const Vec4<Rational>* polar, double size, double target);
+
+/// The certified bound of the returned B over A reflected.
+CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Rational>>& origin,
+                                const Mat4<Rational>& B, double size, double target);
+
+}  // namespace qverify

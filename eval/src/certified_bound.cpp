@@ -1,0 +1,621 @@
+#include <qverify/eval/certified_bound.hpp>
+
+#include <qverify/exact/interval.hpp>
+#include <qverify/exact/root_point.hpp>
+#include <qverify/exact/rounding.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include <Eigen/Eigenvalues>
+#include <utility>
+
+namespace qverify {
+
+using Q = Rational;
+
+namespace {
+
+/// Interval arithmetic without its own rounding-mode switches: every use below runs inside one
+/// Protect_FPU_rounding<true> scope (rounding upward), as CGAL's unprotected intervals require.
+using IA = CGAL::Interval_nt<false>;
+using V3 = std::array<IA, 3>;
+
+IA enc(const Q& q) {
+  const Interval i = enclose(q);
+  return IA(i.inf(), i.sup());
+}
+V3 enc3(const Vec3<Q>& v) { return {enc(v(0)), enc(v(1)), enc(v(2))}; }
+double mag(const IA& x) { return std::max(-x.inf(), x.sup()); }
+double mig(const IA& x) { return x.inf() > 0 ? x.inf() : x.sup() < 0 ? -x.sup() : 0.0; }
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The same inside a rounding scope of its own (construction happens outside the branch and bound).
+template <class F> auto upward(F f) {
+  CGAL::Protect_FPU_rounding<true> up;
+  return f();
+}
+
+}  // namespace
+
+
+/// A box of parameters on one face of the square (k = 2) or cube (k = 3).
+struct ParamBox {
+  int face = 0;
+  std::array<IA, 2> p;  ///< the face's free coordinates (one for the circle, two for the sphere)
+};
+
+/// A piece of geometry as the image of the unit circle (k = 2) or sphere (k = 3):
+///   p - e = y0 + B R u,   |u| = 1,
+/// with y0 and B (3 x k) exact and R (k x k) known only in intervals (it has square roots), so
+/// that every coefficient of a result's form in u is exact up to the factor R (BoundedResult).
+class Geometry {
+ public:
+  int k = 2;
+  Vec3<Q> e;                            ///< the exact expansion point
+  Vec3<Q> y0;                           ///< exact
+  Eigen::Matrix<Q, 3, Eigen::Dynamic> B;  ///< exact, 3 x k
+  std::array<std::array<IA, 3>, 3> R;   ///< k x k, enclosed
+  V3 y0_box;                            ///< y0 enclosed
+  std::array<std::array<IA, 3>, 3> BR;  ///< B R enclosed (3 x k)
+
+  /// Encloses y0 and B R once (enclosing a rational costs two MPFR roundings).
+  void enclose_parts() {
+    y0_box = enc3(y0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        BR[i][j] = IA(0);
+        if (j < k)
+          for (int l = 0; l < k; ++l) BR[i][j] += enc(B(i, l)) * R[l][j];
+      }
+  }
+
+  int faces() const { return 2 * k; }
+  int dims() const { return k - 1; }
+  /// u = v / |v|, v the point of the box's face (v[axis] = +-1, the others the box's coordinates).
+  std::array<IA, 3> unit(const ParamBox& b) const {
+    std::array<IA, 3> v{IA(0), IA(0), IA(0)};
+    const int axis = b.face / 2;
+    int next = 0;
+    IA n2(0);
+    for (int i = 0; i < k; ++i) {
+      v[i] = i == axis ? IA(b.face % 2 ? -1.0 : 1.0) : b.p[next++];
+      n2 += CGAL::square(v[i]);
+    }
+    const IA n = CGAL::sqrt(n2);
+    for (int i = 0; i < k; ++i) v[i] /= n;
+    return v;
+  }
+  /// The box shrunk to its centre.
+  ParamBox centre(const ParamBox& b) const {
+    ParamBox c = b;
+    for (int i = 0; i < dims(); ++i) c.p[i] = IA((b.p[i].inf() + b.p[i].sup()) / 2);
+    return c;
+  }
+  /// k = 2: du/da over the box, u = v / |v|, v = (+-1, a) or (a, +-1): (e - u (u . e)) / |v|, e the free axis.
+  std::array<IA, 3> du(const ParamBox& b) const {
+    const auto u = unit(b);
+    const int free = b.face / 2 == 0 ? 1 : 0;
+    const IA n = CGAL::sqrt(CGAL::square(b.p[0]) + IA(1));
+    std::array<IA, 3> d{IA(0), IA(0), IA(0)};
+    for (int i = 0; i < 2; ++i) d[i] = ((i == free ? IA(1) : IA(0)) - u[i] * u[free]) / n;
+    return d;
+  }
+  /// p - e over a box (for the object's size).
+  V3 offset(const ParamBox& b) const {
+    const auto u = unit(b);
+    V3 y;
+    for (int i = 0; i < 3; ++i) {
+      y[i] = y0_box[i];
+      for (int j = 0; j < k; ++j) y[i] += BR[i][j] * u[j];
+    }
+    return y;
+  }
+};
+
+/// One returned result (quadric or plane, in the frame with origin o) as forms in u on one
+/// geometry. With z = (p - o, 1) = z0 + (B R u, 0), z0 = (y0 + e - o, 1) exact, E = Q^ - lambda Q_o:
+///   x^T Q^ x = z^T E z = a + b . u + u^T C u            (Q_o vanishes on the geometry)
+///   (Q^ z)_xyz = g0 + G u,   (E z)_xyz = h0 + H u       (the part of the gradient that is error)
+/// a = z0^T E z0, b = R^T B^T (E + E^T)_{xyz} z0, C = R^T (B^T E_{xyz,xyz} B) R, g0 = lambda (Q3 y0 +
+/// (Q (e, 1))_xyz) + h0, G = (lambda Q3 + E_{xyz,xyz}) B R: every bracket exact, then enclosed and
+/// multiplied by R. A plane: eps . z = a + b . u, gradient pi^_xyz.
+class BoundedResult {
+ public:
+  bool plane = false;
+  int k = 2;
+  IA a;
+  std::array<IA, 3> b;
+  std::array<std::array<IA, 3>, 3> C;
+  V3 g0, h0;
+  std::array<std::array<IA, 3>, 3> G, H;  ///< 3 x k
+  /// quadric: a lower bound of |lambda (Q3 (p - e) + g_e)| at every point of the geometry, 0 where
+  /// none is known
+  double floor = 0;
+
+  /// Upper and lower bounds of the first-order distance over a box. One-parameter geometries are
+  /// also enclosed by the mean-value form (value at the centre + derivative times [-h, h]),
+  /// intersected with the natural one: its overestimate shrinks with the square of the box.
+  std::pair<double, double> distance(const Geometry& geo, const ParamBox& box) const {
+    const auto u = geo.unit(box);
+    IA f;
+    V3 grad, err;
+    forms(u, f, grad, err);
+    const auto uc = geo.unit(geo.centre(box));
+    IA fc;
+    V3 gc, ec;
+    forms(uc, fc, gc, ec);
+    if (geo.dims() == 1) {
+      const auto du = geo.du(box);
+      const IA half((box.p[0].inf() - box.p[0].sup()) / 2, (box.p[0].sup() - box.p[0].inf()) / 2);
+      IA df(0);
+      for (int i = 0; i < k; ++i) {
+        IA d = b[i];
+        if (!plane)
+          for (int j = 0; j < k; ++j) d += (C[i][j] + C[j][i]) * u[j];
+        df += d * du[i];
+      }
+      f = meet(f, fc + df * half);
+      if (!plane)
+        for (int i = 0; i < 3; ++i) {
+          IA dg(0);
+          for (int j = 0; j < k; ++j) dg += G[i][j] * du[j];
+          grad[i] = meet(grad[i], gc[i] + dg * half);
+        }
+    }
+    IA lo2(0), hi2(0), e2(0);
+    for (const IA& c : grad) lo2 += CGAL::square(IA(mig(c)));
+    for (const IA& c : gc) hi2 += CGAL::square(IA(mag(c)));
+    if (!plane) {
+      // the gradient is the exact one (at least `floor`) plus (E x)_xyz: a lower bound on the whole box
+      // however wide, where the enclosure of a thin object's gradient contains 0
+      for (const IA& c : err) e2 += CGAL::square(IA(mag(c)));
+      const double floored = (IA(floor) - CGAL::sqrt(e2)).inf();
+      if (floored > 0 && lo2.inf() < floored * floored) lo2 = IA(floored) * IA(floored);
+    }
+    const IA factor(plane ? 1.0 : 2.0);
+    const double upper = lo2.inf() > 0 ? (IA(mag(f)) / (factor * CGAL::sqrt(lo2))).sup() : (mag(f) > 0 ? kInf : 0.0);
+    const double lower =
+        hi2.sup() > 0 && std::isfinite(hi2.sup()) ? (IA(mig(fc)) / (factor * CGAL::sqrt(hi2))).inf() : 0.0;
+    return {std::isnan(upper) ? kInf : upper, std::isnan(lower) ? 0.0 : lower};
+  }
+
+ private:
+  static IA meet(const IA& x, const IA& y) {
+    return IA(std::max(x.inf(), y.inf()), std::min(x.sup(), y.sup()));  // both enclose the same values
+  }
+  void forms(const std::array<IA, 3>& u, IA& f, V3& grad, V3& err) const {
+    f = a;
+    for (int i = 0; i < k; ++i) {
+      f += b[i] * u[i];
+      if (!plane)
+        for (int j = 0; j < k; ++j) f += C[i][j] * u[i] * u[j];
+    }
+    for (int i = 0; i < 3; ++i) {
+      grad[i] = g0[i], err[i] = h0[i];
+      if (!plane)
+        for (int j = 0; j < k; ++j) grad[i] += G[i][j] * u[j], err[i] += H[i][j] * u[j];
+    }
+  }
+};
+
+namespace {
+
+Mat4<Q> translation_of(const std::optional<Vec3<Q>>& o) {
+  Mat4<Q> T = Mat4<Q>::Identity();
+  if (o)
+    for (int i = 0; i < 3; ++i) T(i, 3) = (*o)(i);
+  return T;
+}
+
+/// lambda minimising |hat - lambda ref| (any lambda is exact; this one makes E small).
+template <class M> Q best_scale(const M& hat, const M& ref) {
+  // a result proportional to the reference, exactly: that ratio (E = 0)
+  Eigen::Index k = 0;
+  for (Eigen::Index i = 1; i < ref.size(); ++i)
+    if (abs(ref(i)) > abs(ref(k))) k = i;
+  if (ref(k) != 0) {
+    const Q ratio = hat(k) / ref(k);
+    if (M(hat - ratio * ref).isZero()) return ratio;
+  }
+  Measure num = 0, den = 0;
+  for (Eigen::Index i = 0; i < hat.size(); ++i) {
+    const Measure r = to_measure(ref(i));
+    num += to_measure(hat(i)) * r;
+    den += r * r;
+  }
+  if (!(den > 0)) return Q(0);
+  // to 80 digits, not to a double: (lambda_best - lambda) ref vanishes on the geometry, but its
+  // enclosure does not, and with a float128 result a double lambda would be the largest term of E
+  Mpfr l;
+  l.precision(std::numeric_limits<Measure>::digits10 + 10);
+  l = Mpfr(num / den);
+  return boost::multiprecision::isfinite(l) ? to_rational(l) : Q(0);
+}
+
+/// 2^-e with 2^e the size of m's largest entry (1 for a zero m): an exact scale that brings m's
+/// entries near 1, so that their enclosures in double neither overflow nor underflow. (The
+/// first-order distance does not change when a result, or its reference, is scaled.)
+template <class M> Q unit_scale(const M& m) {
+  Measure big = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) big = std::max(big, Measure(abs(to_measure(m(i)))));
+  if (!(big > 0)) return Q(1);
+  int e = 0;
+  (void)frexp(big, &e);
+  const boost::multiprecision::mpz_int p = boost::multiprecision::mpz_int(1) << std::abs(e);
+  return e >= 0 ? Q(1) / Q(p) : Q(p);
+}
+
+/// A double at most x (x >= 0, to 80 digits: the margin covers its last digits and the rounding).
+double lower_double(const Measure& x) {
+  const double d = Measure(x * Measure(1 - 1e-15)).convert_to<double>();
+  return std::isfinite(d) && d > 0 ? d : 0.0;
+}
+
+/// (enclosure of the exact 3 x k matrix X) times R.
+std::array<std::array<IA, 3>, 3> times_R(const Eigen::Matrix<Q, 3, Eigen::Dynamic>& X, const Geometry& geo) {
+  std::array<std::array<IA, 3>, 3> out{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      out[i][j] = IA(0);
+      if (j < geo.k)
+        for (int l = 0; l < geo.k; ++l) out[i][j] += enc(X(i, l)) * geo.R[l][j];
+    }
+  return out;
+}
+
+/// `floor`: a lower bound of |(ref (p, 1))_xyz| over the geometry (0: none known).
+BoundedResult quadric_result(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Geometry& geo,
+                             const std::optional<Vec3<Q>>& o, const Measure& floor = 0) {
+  const Mat4<Q> T = translation_of(o);
+  const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
+  const Q ref_scale = unit_scale(ref_in);
+  const Mat4<Q> ref = ref_scale * ref_in;
+  const Mat4<Q> ref_o = T.transpose() * ref * T;
+  const Q lambda = best_scale(hat, ref_o);
+  const Mat4<Q> E = hat - lambda * ref_o;
+  Vec4<Q> z0, eh;
+  z0 << Vec3<Q>(geo.y0 + geo.e - (o ? *o : Vec3<Q>::Zero())), Q(1);
+  eh << geo.e, Q(1);
+  const Mat3<Q> E3 = E.topLeftCorner<3, 3>();
+  const Eigen::Matrix<Q, 3, Eigen::Dynamic> EB = E3 * geo.B;
+  const Vec3<Q> h0 = Vec4<Q>(E * z0).head<3>();
+  const Vec3<Q> g0 = lambda * (Mat3<Q>(ref.topLeftCorner<3, 3>()) * geo.y0 + Vec4<Q>(ref * eh).head<3>()) + h0;
+  const Eigen::Matrix<Q, 3, Eigen::Dynamic> GB = lambda * Mat3<Q>(ref.topLeftCorner<3, 3>()) * geo.B + EB;
+  const Mat4<Q> Es = E + E.transpose();
+  const Eigen::Matrix<Q, Eigen::Dynamic, 1> bB = geo.B.transpose() * Vec4<Q>(Es * z0).head<3>();
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> CB = geo.B.transpose() * EB;
+  const double scaled_floor = lower_double(abs(to_measure(Q(lambda * ref_scale))) * floor);
+  return upward([&] {
+    BoundedResult r;
+    r.k = geo.k;
+    r.a = enc(Q(z0.dot(E * z0)));
+    for (int i = 0; i < 3; ++i) {
+      r.b[i] = IA(0);
+      for (int j = 0; j < 3; ++j) r.C[i][j] = IA(0);
+    }
+    for (int j = 0; j < geo.k; ++j)  // b = R^T bB, C = R^T CB R
+      for (int l = 0; l < geo.k; ++l) {
+        r.b[j] += geo.R[l][j] * enc(bB(l));
+        for (int m = 0; m < geo.k; ++m)
+          for (int n = 0; n < geo.k; ++n) r.C[j][m] += geo.R[l][j] * enc(CB(l, n)) * geo.R[n][m];
+      }
+    r.g0 = enc3(g0), r.h0 = enc3(h0);
+    r.G = times_R(GB, geo), r.H = times_R(EB, geo);
+    r.floor = scaled_floor;
+    return r;
+  });
+}
+
+BoundedResult plane_result(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const Geometry& geo,
+                           const std::optional<Vec3<Q>>& o) {
+  const Vec4<Q> hat = unit_scale(hat_in) * hat_in;
+  const Vec4<Q> ref_o = translation_of(o).transpose() * Vec4<Q>(unit_scale(ref_in) * ref_in);
+  const Q lambda = best_scale(hat, ref_o);
+  const Vec4<Q> eps = hat - lambda * ref_o;
+  Vec4<Q> z0;
+  z0 << Vec3<Q>(geo.y0 + geo.e - (o ? *o : Vec3<Q>::Zero())), Q(1);
+  const Eigen::Matrix<Q, Eigen::Dynamic, 1> bB = geo.B.transpose() * Vec3<Q>(eps.head<3>());
+  return upward([&] {
+    BoundedResult r;
+    r.plane = true;
+    r.k = geo.k;
+    r.a = enc(Q(eps.dot(z0)));
+    for (int j = 0; j < 3; ++j) {
+      r.b[j] = IA(0);
+      if (j < geo.k)
+        for (int l = 0; l < geo.k; ++l) r.b[j] += geo.R[l][j] * enc(bB(l));
+    }
+    r.g0 = enc3(Vec3<Q>(hat.head<3>()));
+    return r;
+  });
+}
+
+/// Branch and bound over the boxes of one geometry (absolute distances), then relative to size.
+CertifiedBound branch_and_bound(const Geometry& geo, const std::vector<const BoundedResult*>& results, double size,
+                                double target) {
+  constexpr int kBudget = 3000;
+  CGAL::Protect_FPU_rounding<true> up;
+  struct Node {
+    double upper;
+    ParamBox box;
+    bool operator<(const Node& o) const { return upper < o.upper; }
+  };
+  CertifiedBound out;
+  double attained = 0;
+  auto evaluate = [&](const ParamBox& b) {
+    double u = 0;
+    for (const BoundedResult* r : results) {
+      const auto [hi, lo] = r->distance(geo, b);
+      u = std::max(u, hi);
+      attained = std::max(attained, lo);
+    }
+    ++out.boxes;
+    return u;
+  };
+  std::priority_queue<Node> heap;
+  const int n0 = geo.dims() == 1 ? 16 : 4;  // initial pieces per parameter
+  for (int f = 0; f < geo.faces(); ++f)
+    for (int i = 0; i < n0; ++i)
+      for (int j = 0; j < (geo.dims() == 1 ? 1 : n0); ++j) {
+        ParamBox b;
+        b.face = f;
+        b.p[0] = IA(-1.0 + 2.0 * i / n0, -1.0 + 2.0 * (i + 1) / n0);
+        b.p[1] = geo.dims() == 1 ? IA(0) : IA(-1.0 + 2.0 * j / n0, -1.0 + 2.0 * (j + 1) / n0);
+        heap.push({evaluate(b), b});
+      }
+  const double enough = target * size / 1000, decide = target * size;
+  while (out.boxes < kBudget) {
+    const Node top = heap.top();
+    // done: far below the target, or within a factor 2 of a distance attained on the same side of the target
+    const bool undecided = attained <= decide && top.upper > decide;
+    if (top.upper <= enough || (top.upper <= 2 * attained && !undecided)) break;
+    heap.pop();
+    const int k = geo.dims() == 2 && top.box.p[1].sup() - top.box.p[1].inf() > top.box.p[0].sup() - top.box.p[0].inf() ? 1 : 0;
+    const double mid = (top.box.p[k].inf() + top.box.p[k].sup()) / 2;
+    ParamBox lo = top.box, hi = top.box;
+    lo.p[k] = IA(top.box.p[k].inf(), mid);
+    hi.p[k] = IA(mid, top.box.p[k].sup());
+    heap.push({evaluate(lo), lo});
+    heap.push({evaluate(hi), hi});
+  }
+  const double worst = heap.top().upper;
+  out.upper = worst == 0 ? 0.0 : std::isfinite(worst) ? (IA(worst) / IA(size)).sup() : kInf;
+  out.attained = (IA(attained) / IA(size)).inf();
+  return out;
+}
+
+/// Signs of the leading principal minors: +1 positive definite, -1 negative definite, 0 neither.
+int definiteness(const Mat3<Q>& K) {
+  const Q d1 = K(0, 0), d2 = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0), d3 = K.determinant();
+  if (d1 > 0 && d2 > 0 && d3 > 0) return 1;
+  if (d1 < 0 && d2 > 0 && d3 < 0) return -1;
+  return 0;
+}
+
+struct EllipsoidParts {
+  Vec3<Q> c;  ///< centre
+  Q r;        ///< A(c)
+  /// |(A x)_xyz| >= grad_floor at every point x of A: with sK positive definite (s = +-1) and mu <= its
+  /// smallest eigenvalue, |K y|^2 = y^T (sK)^2 y >= mu y^T (sK) y = mu |r| for y = x - c.
+  Measure grad_floor = 0;
+};
+
+/// mu > 0 with S - mu I positive definite (proved exactly), S positive definite; 0 when none is found.
+Q eigen_floor(const Mat3<Q>& S) {
+  Eigen::Matrix3d d;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) d(i, j) = S(i, j).convert_to<double>();
+  double m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d, Eigen::EigenvaluesOnly).eigenvalues()(0) / 2;
+  for (int k = 0; k < 40 && m > 0 && std::isfinite(m); ++k, m /= 16) {
+    const Q mu = to_rational(m);
+    if (definiteness(Mat3<Q>(S - mu * Mat3<Q>::Identity())) == 1) return mu;
+  }
+  return Q(0);
+}
+/// The centre of A and its value there, when A is an ellipsoid with real points (not a single point).
+std::optional<EllipsoidParts> ellipsoid(const Mat4<Q>& A) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const int s = definiteness(K);
+  if (s == 0) return std::nullopt;
+  EllipsoidParts p;
+  p.c = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+  p.r = A(3, 3) + Vec3<Q>(A.topRightCorner<3, 1>()).dot(p.c);
+  if (!(s > 0 ? p.r < 0 : p.r > 0)) return std::nullopt;
+  const Q mu = eigen_floor(Mat3<Q>(Q(s) * K));
+  if (mu > 0) p.grad_floor = sqrt(to_measure(Q(mu * abs(p.r))));  // 80 digits: see lower_double
+  return p;
+}
+
+}  // namespace
+
+namespace {
+
+/// The terminator ellipse of an ellipsoid A lit from L (nullptr: not an ellipse with real points).
+std::shared_ptr<Geometry> make_ellipse(const Mat4<Q>& A, const Vec4<Q>& L, const EllipsoidParts& ell) {
+  const Vec4<Q> pi = A * L;
+  if (pi.head<3>().isZero()) return nullptr;
+  // the normal scaled (exactly) to about 1, so that e1, e2 and the conic's entries stay near the
+  // object's own scale (a light 10^100 away gives |A L| ~ 10^100; the plane does not change)
+  const Vec3<Q> n = unit_scale(Vec3<Q>(pi.head<3>())) * Vec3<Q>(pi.head<3>());
+  // plane coordinates: x = p0 + s e1 + t e2
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (abs(n(i)) < abs(n(axis))) axis = i;
+  const Vec3<Q> e1 = n.cross(Vec3<Q>(Vec3<Q>::Unit(axis))), e2 = n.cross(e1);
+  const Vec3<Q> p0 = -pi(3) / pi.head<3>().squaredNorm() * Vec3<Q>(pi.head<3>());
+  Eigen::Matrix<Q, 4, 3> G = Eigen::Matrix<Q, 4, 3>::Zero();
+  G.block<3, 1>(0, 0) = e1;
+  G.block<3, 1>(0, 1) = e2;
+  G.block<3, 1>(0, 2) = p0;
+  G(3, 2) = 1;
+  const Mat3<Q> C = G.transpose() * A * G;
+  const Q det2 = C(0, 0) * C(1, 1) - C(0, 1) * C(1, 0);
+  if (!(det2 > 0)) return nullptr;  // not an ellipse
+  const Q m0 = -(C(1, 1) * C(0, 2) - C(0, 1) * C(1, 2)) / det2, m1 = -(C(0, 0) * C(1, 2) - C(1, 0) * C(0, 2)) / det2;
+  const Q r0 = C(2, 2) + C(0, 2) * m0 + C(1, 2) * m1;
+  if (r0 == 0 || !(C(0, 0) / -r0 > 0)) return nullptr;  // a single point, or no real point
+  const Q S00 = C(0, 0) / -r0, S01 = C(0, 1) / -r0, S11 = C(1, 1) / -r0;
+  auto geo = std::make_shared<Geometry>();
+  geo->k = 2;
+  geo->e = ell.c;
+  geo->y0 = p0 + m0 * e1 + m1 * e2 - ell.c;
+  geo->B.resize(3, 2);
+  geo->B.col(0) = e1;
+  geo->B.col(1) = e2;
+  const bool ok = upward([&] {  // S = U^T U (Cholesky), R = U^-1
+    const IA a00 = CGAL::sqrt(enc(S00));
+    const IA b = enc(S01) / a00;
+    const IA c2 = enc(S11) - CGAL::square(b);
+    if (!(a00.inf() > 0) || !(c2.inf() > 0)) return false;
+    const IA cc = CGAL::sqrt(c2);
+    for (auto& row : geo->R) row.fill(IA(0));
+    geo->R[0][0] = IA(1) / a00, geo->R[0][1] = -b / (a00 * cc), geo->R[1][1] = IA(1) / cc;
+    geo->enclose_parts();
+    return true;
+  });
+  return ok ? geo : nullptr;
+}
+
+/// A's surface as the image of the unit sphere (p - c = U^-1 u, K / -A(c) = U^T U), carried by the mirror
+/// M (identity: A itself): p - M c = H U^-1 u, H the linear part of M.
+std::shared_ptr<Geometry> make_surface(const Mat4<Q>& A, const Mat4<Q>& M, const EllipsoidParts& ell) {
+  const Mat3<Q> S = A.topLeftCorner<3, 3>() / -ell.r;  // positive definite
+  auto geo = std::make_shared<Geometry>();
+  geo->k = 3;
+  Vec4<Q> ch;
+  ch << ell.c, Q(1);
+  geo->e = Vec4<Q>(M * ch).head<3>();
+  geo->y0 = Vec3<Q>::Zero();
+  geo->B = M.topLeftCorner<3, 3>();
+  const bool ok = upward([&] {
+    const IA U00 = CGAL::sqrt(enc(S(0, 0)));
+    const IA U01 = enc(S(0, 1)) / U00, U02 = enc(S(0, 2)) / U00;
+    const IA s11 = enc(S(1, 1)) - CGAL::square(U01);
+    if (!(U00.inf() > 0) || !(s11.inf() > 0)) return false;
+    const IA U11 = CGAL::sqrt(s11), U12 = (enc(S(1, 2)) - U01 * U02) / U11;
+    const IA s22 = enc(S(2, 2)) - CGAL::square(U02) - CGAL::square(U12);
+    if (!(s22.inf() > 0)) return false;
+    const IA U22 = CGAL::sqrt(s22);
+    auto& N = geo->R;  // U^-1, upper triangular
+    for (auto& row : N) row.fill(IA(0));
+    N[0][0] = IA(1) / U00, N[1][1] = IA(1) / U11, N[2][2] = IA(1) / U22;
+    N[1][2] = -U12 * N[2][2] / U11;
+    N[0][1] = -U01 * N[1][1] / U00;
+    N[0][2] = -(U01 * N[1][2] + U02 * N[2][2]) / U00;
+    geo->enclose_parts();
+    return true;
+  });
+  return ok ? geo : nullptr;
+}
+
+/// The largest |p - e| over a geometry (e its expansion point), from below, to a relative 2^-20:
+/// branch and bound on |y|^2, bounded above on each box and attained at its centre.
+double largest_offset(const Geometry& geo) {
+  CGAL::Protect_FPU_rounding<true> up;
+  struct Node {
+    double upper;
+    ParamBox box;
+    bool operator<(const Node& o) const { return upper < o.upper; }
+  };
+  double best = 0;
+  auto evaluate = [&](const ParamBox& b) {
+    const V3 y = geo.offset(b);
+    IA hi(0), lo(0);
+    for (const IA& c : y) hi += CGAL::square(IA(mag(c))), lo += CGAL::square(IA(mig(c)));
+    ParamBox centre = b;
+    for (int k = 0; k < geo.dims(); ++k) centre.p[k] = IA((b.p[k].inf() + b.p[k].sup()) / 2);
+    IA at(0);
+    for (const IA& c : geo.offset(centre)) at += CGAL::square(IA(mig(c)));
+    best = std::max({best, lo.inf(), at.inf()});
+    return hi.sup();
+  };
+  std::priority_queue<Node> heap;
+  for (int f = 0; f < geo.faces(); ++f)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < (geo.dims() == 1 ? 1 : 4); ++j) {
+        ParamBox b;
+        b.face = f;
+        b.p[0] = IA(-1.0 + i / 2.0, -1.0 + (i + 1) / 2.0);
+        b.p[1] = geo.dims() == 1 ? IA(0) : IA(-1.0 + j / 2.0, -1.0 + (j + 1) / 2.0);
+        heap.push({evaluate(b), b});
+      }
+  for (int n = 0; n < 4000 && heap.top().upper > best * (1 + std::ldexp(1.0, -19)); ++n) {
+    const Node top = heap.top();
+    heap.pop();
+    const int k = geo.dims() == 2 && top.box.p[1].sup() - top.box.p[1].inf() > top.box.p[0].sup() - top.box.p[0].inf() ? 1 : 0;
+    const double mid = (top.box.p[k].inf() + top.box.p[k].sup()) / 2;
+    ParamBox lo = top.box, hi = top.box;
+    lo.p[k] = IA(top.box.p[k].inf(), mid);
+    hi.p[k] = IA(mid, top.box.p[k].sup());
+    heap.push({evaluate(lo), lo});
+    heap.push({evaluate(hi), hi});
+  }
+  return CGAL::sqrt(IA(best)).inf();
+}
+
+}  // namespace
+
+std::optional<double> terminator_size(const Mat4<Q>& A, const Vec4<Q>& L) {
+  const auto ell = ellipsoid(A);
+  if (!ell) return std::nullopt;
+  const auto e = make_ellipse(A, L, *ell);
+  if (!e) return std::nullopt;
+  return largest_offset(*e);
+}
+
+std::optional<double> ellipsoid_size(const Mat4<Q>& A) {
+  const auto ell = ellipsoid(A);
+  if (!ell) return std::nullopt;
+  const auto s = make_surface(A, Mat4<Q>::Identity(), *ell);
+  if (!s) return std::nullopt;
+  return largest_offset(*s);
+}
+
+std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L) {
+  const auto ell = ellipsoid(A);
+  if (!ell) return std::nullopt;
+  auto ellipse = make_ellipse(A, L, *ell);
+  if (!ellipse) return std::nullopt;
+  ShadowGeometry g;
+  g.terminator = ellipse;
+  g.pi_ref = A * L;
+  const Q s = L.dot(g.pi_ref);
+  g.P_ref = s * A - g.pi_ref * g.pi_ref.transpose();
+  // on the terminator (P_ref x)_xyz = s (A x)_xyz, since pi.x = 0 there
+  g.grad_floor = abs(to_measure(s)) * ell->grad_floor;
+  return g;
+}
+
+std::optional<ReflectionGeometry> reflection_geometry(const Mat4<Q>& A, const Mat4<Q>& M) {
+  const auto ell = ellipsoid(A);
+  if (!ell) return std::nullopt;
+  auto surf = make_surface(A, M, *ell);
+  if (!surf) return std::nullopt;
+  ReflectionGeometry g;
+  g.surface = surf;
+  g.B_ref = M.transpose() * A * M;
+  g.grad_floor = ell->grad_floor;  // (B_ref M x)_xyz = H^T (A x)_xyz, H orthogonal (M M = I)
+  return g;
+}
+
+CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>>& origin, const Mat4<Q>* P,
+                            const Vec4<Q>* polar, double size, double target) {
+  std::optional<BoundedResult> bp, bpi;
+  std::vector<const BoundedResult*> results;
+  if (P) results.push_back(&bp.emplace(quadric_result(*P, g.P_ref, *g.terminator, origin, g.grad_floor)));
+  if (polar) results.push_back(&bpi.emplace(plane_result(*polar, g.pi_ref, *g.terminator, origin)));
+  if (results.empty()) return {};
+  return branch_and_bound(*g.terminator, results, size, target);
+}
+
+CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B,
+                                double size, double target) {
+  const BoundedResult bb = quadric_result(B, g.B_ref, *g.surface, origin, g.grad_floor);
+  return branch_and_bound(*g.surface, {&bb}, size, target);
+}
+
+}  // namespace qverify

@@ -1,0 +1,157 @@
+// The certified bound of eval/certified_bound.hpp against the exact sampled measure of accuracy.hpp
+// (a separate code path: exact points in Q(sqrt d), not intervals): the bound is never below an error
+// measured at an exact point, it is zero for exact results, and it is tight (within the factor of its
+// stopping rule of a distance it certifies as attained).
+#include "laws.hpp"
+
+#include <qverify/eval/accuracy.hpp>
+#include <qverify/eval/certified_bound.hpp>
+#include <qverify/exact/rounding.hpp>
+
+using namespace qverify;
+using Q = Rational;
+
+namespace {
+
+/// A random ellipsoid: K = G^T G + I/4 (positive definite), a random centre, a radius.
+Mat4<Q> random_ellipsoid(test::RandomRationals& rng, const Q& far) {
+  Mat3<Q> G;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) G(i, j) = rng.next() / 4;
+  const Mat3<Q> K = G.transpose() * G + Mat3<Q>::Identity() / 4;
+  const Vec3<Q> c(rng.next() * far, rng.next() * far, rng.next() * far);
+  Mat4<Q> A = Mat4<Q>::Zero();
+  A.topLeftCorner<3, 3>() = K;
+  A.topRightCorner<3, 1>() = -K * c;
+  A.bottomLeftCorner<1, 3>() = (-K * c).transpose();
+  A(3, 3) = c.dot(K * c) - (Q(1) + abs(rng.next()));
+  return A;
+}
+
+/// m with every entry perturbed by a random relative amount up to rel, then rounded to double.
+template <int R, int C> Eigen::Matrix<Q, R, C> perturbed(const Eigen::Matrix<Q, R, C>& m, double rel, std::mt19937_64& g) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::Matrix<Q, R, C> out;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = to_rational(m(i).template convert_to<double>() * (1 + rel * u(g)));
+  return out;
+}
+
+Mat4<Q> in_frame_quadric(const Mat4<Q>& Qw, const Vec3<Q>& o) {
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topRightCorner<3, 1>() = o;
+  return T.transpose() * Qw * T;
+}
+
+}  // namespace
+
+TEST_CASE("certified bound: exact results are bounded by 0, in any frame", "[accuracy][certified]") {
+  test::RandomRationals rng(3);
+  for (int t = 0; t < 20; ++t) {
+    const Mat4<Q> A = random_ellipsoid(rng, t % 2 ? Q(1) : Q(1000));
+    Vec4<Q> L = rng.vec4();
+    L(3) = t % 3 == 0 ? Q(0) : Q(1);
+    if (L(3) != 0) L.head<3>() *= 50;  // a point light far enough to be outside
+    const ItemPoints pts = terminator_points(A, L, 16, 1);
+    if (pts.points.empty()) continue;
+    const auto geo = shadow_geometry(A, L);
+    REQUIRE(geo);
+    const Vec3<Q> o(rng.next(), rng.next(), rng.next());
+    const Mat4<Q> P = 3 * in_frame_quadric(geo->P_ref, o);
+    Mat4<Q> T = Mat4<Q>::Identity();
+    T.topRightCorner<3, 1>() = o;
+    const Vec4<Q> pi = Vec4<Q>(T.transpose() * geo->pi_ref) / 2;
+    const CertifiedBound b = shadow_bound(*geo, o, &P, &pi, size_down(pts.size), 1e-9);
+    CHECK(b.upper == 0);
+    CHECK(b.attained == 0);
+  }
+}
+
+TEST_CASE("certified bound: never below an error measured at an exact point, and tight", "[accuracy][certified]") {
+  test::RandomRationals rng(7);
+  std::mt19937_64 g(5);
+  int shadows = 0, reflections = 0;
+  for (int t = 0; t < 40; ++t) {
+    INFO("case " << t);
+    const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
+    const double rel = std::pow(10.0, -3 - (t % 10));
+    const std::optional<Vec3<Q>> origin =
+        t % 3 == 0 ? std::nullopt : std::optional<Vec3<Q>>(Vec3<Q>(rng.next() / 3, rng.next() / 3, rng.next() / 3));
+    Mat4<Q> T = Mat4<Q>::Identity();
+    if (origin) T.topRightCorner<3, 1>() = *origin;
+    {  // shadow: P and the polar plane perturbed, in the frame
+      Vec4<Q> L = rng.vec4();
+      L(3) = t % 5 == 0 ? Q(0) : Q(1);
+      if (L(3) != 0) {
+        const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+        L.head<3>() = c + 40 * L.head<3>();
+      }
+      const ItemPoints pts = terminator_points(A, L, 256, 100 + t);
+      const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
+      if (geo) {
+        ++shadows;
+        const Mat4<Q> P = perturbed(in_frame_quadric(geo->P_ref, T.topRightCorner<3, 1>()), rel, g);
+        const Vec4<Q> pi = perturbed(Vec4<Q>(T.transpose() * geo->pi_ref), rel, g);
+        const CertifiedBound b = shadow_bound(*geo, origin, &P, &pi, size_down(pts.size), 1e-9);
+        const ShadowError e = shadow_error(pts, origin, P, pi, P);
+        const Measure sampled = std::max(relative(e.P, pts.size), relative(e.polar, pts.size));
+        INFO("rel " << rel << " sampled " << sampled.str(6) << " bound " << b.upper << " attained " << b.attained);
+        CHECK(sampled <= Measure(b.upper));
+        CHECK(b.attained <= b.upper);
+        CHECK(b.upper > 0);
+        if (b.boxes < 3000 && b.upper > 1e-12) CHECK(b.upper <= 2 * b.attained * (1 + 1e-9));
+        CHECK(Measure(b.upper) <= 1000 * sampled);  // the samples see most of it (these results are smooth)
+      }
+    }
+    {  // reflection: B perturbed
+      Vec4<Q> plane = rng.vec4();
+      if (plane.head<3>().isZero()) plane(0) = 1;
+      const Mat4<Q> M = reference_mirror(plane);
+      const ItemPoints pts = reflected_points(A, M, 256, 200 + t);
+      const auto geo = reflection_geometry(A, M);
+      REQUIRE(geo);
+      ++reflections;
+      const Mat4<Q> B = perturbed(in_frame_quadric(geo->B_ref, T.topRightCorner<3, 1>()), rel, g);
+      const CertifiedBound b = reflection_bound(*geo, origin, B, size_down(pts.size), 1e-9);
+      const Measure sampled = reflection_error(pts, origin, B).geometric;
+      INFO("reflection rel " << rel << " sampled " << sampled.str(6) << " bound " << b.upper);
+      CHECK(sampled <= Measure(b.upper));
+      CHECK(b.attained <= b.upper);
+      CHECK(Measure(b.upper) <= 1000 * sampled);
+    }
+  }
+  CHECK(shadows >= 30);
+  CHECK(reflections == 40);
+}
+
+TEST_CASE("certified bound: the object size is the whole terminator's, not the samples'", "[accuracy][certified]") {
+  // an ellipsoid 10^4 long, 1 wide and 10^-4 thin lit from the side: 64 random chords of its
+  // terminator reach about 7 units from the centre; the terminator reaches 10^4
+  Mat4<Q> A = Mat4<Q>::Zero();
+  A(0, 0) = Q(100000000), A(1, 1) = 1, A(2, 2) = Q(1, 100000000), A(3, 3) = -1;
+  const Vec4<Q> L(2, 3, 6, 1);
+  const auto whole = terminator_size(A, L);
+  REQUIRE(whole);
+  CHECK(*whole > 9999);
+  CHECK(*whole < 10001);
+  const ItemPoints pts = terminator_points(A, L, 64, 11);
+  CHECK(pts.size >= Measure(*whole));
+  const auto e = ellipsoid_size(A);
+  REQUIRE(e);
+  CHECK(*e == Approx(10000).epsilon(1e-5));
+  CHECK(*e <= 10000);
+}
+
+TEST_CASE("certified bound: only ellipsoids with a real elliptic terminator", "[accuracy][certified]") {
+  Mat4<Q> hyperboloid = Mat4<Q>::Zero();
+  hyperboloid(0, 0) = 1, hyperboloid(1, 1) = 1, hyperboloid(2, 2) = -1, hyperboloid(3, 3) = -1;
+  CHECK_FALSE(shadow_geometry(hyperboloid, Vec4<Q>(5, 0, 0, 1)));
+  CHECK_FALSE(reflection_geometry(hyperboloid, Mat4<Q>::Identity()));
+  CHECK_FALSE(terminator_size(hyperboloid, Vec4<Q>(5, 0, 0, 1)));
+  Mat4<Q> sphere = Mat4<Q>::Identity();
+  sphere(3, 3) = -1;
+  CHECK_FALSE(shadow_geometry(sphere, Vec4<Q>(0, 0, Q(1, 2), 1)));  // light inside: no terminator
+  CHECK_FALSE(shadow_geometry(sphere, Vec4<Q>(0, 0, 1, 1)));        // on the surface: a single point
+  CHECK(shadow_geometry(sphere, Vec4<Q>(0, 0, 2, 1)));
+  Mat4<Q> imaginary = Mat4<Q>::Identity();  // x^2 + y^2 + z^2 + 1 = 0
+  CHECK_FALSE(reflection_geometry(imaginary, Mat4<Q>::Identity()));
+}
