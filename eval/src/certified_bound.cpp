@@ -334,30 +334,23 @@ BoundedResult plane_result(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const G
   });
 }
 
-/// Branch and bound over the boxes of one geometry (absolute distances), then relative to size.
-CertifiedBound branch_and_bound(const Geometry& geo, const std::vector<const BoundedResult*>& results, double size,
-                                double target) {
-  constexpr int kBudget = 3000;
-  CGAL::Protect_FPU_rounding<true> up;
+/// Best-first branch and bound over a geometry's boxes: `evaluate(box)` returns an upper bound of
+/// the quantity on the box (recording what it attains); the box with the largest bound is bisected
+/// along its longer side, until `done(largest bound)` or `budget` boxes have been evaluated. `n0`
+/// initial pieces per parameter. Returns the largest bound left and the boxes evaluated.
+template <class Evaluate, class Done>
+std::pair<double, int> best_first(const Geometry& geo, int n0, int budget, Evaluate evaluate, Done done) {
   struct Node {
     double upper;
     ParamBox box;
     bool operator<(const Node& o) const { return upper < o.upper; }
   };
-  CertifiedBound out;
-  double attained = 0;
-  auto evaluate = [&](const ParamBox& b) {
-    double u = 0;
-    for (const BoundedResult* r : results) {
-      const auto [hi, lo] = r->distance(geo, b);
-      u = std::max(u, hi);
-      attained = std::max(attained, lo);
-    }
-    ++out.boxes;
-    return u;
-  };
   std::priority_queue<Node> heap;
-  const int n0 = geo.dims() == 1 ? 16 : 4;  // initial pieces per parameter
+  int boxes = 0;
+  auto push = [&](const ParamBox& b) {
+    heap.push({evaluate(b), b});
+    ++boxes;
+  };
   for (int f = 0; f < geo.faces(); ++f)
     for (int i = 0; i < n0; ++i)
       for (int j = 0; j < (geo.dims() == 1 ? 1 : n0); ++j) {
@@ -365,24 +358,47 @@ CertifiedBound branch_and_bound(const Geometry& geo, const std::vector<const Bou
         b.face = f;
         b.p[0] = IA(-1.0 + 2.0 * i / n0, -1.0 + 2.0 * (i + 1) / n0);
         b.p[1] = geo.dims() == 1 ? IA(0) : IA(-1.0 + 2.0 * j / n0, -1.0 + 2.0 * (j + 1) / n0);
-        heap.push({evaluate(b), b});
+        push(b);
       }
-  const double enough = target * size / 1000, decide = target * size;
-  while (out.boxes < kBudget) {
+  while (boxes < budget && !done(heap.top().upper)) {
     const Node top = heap.top();
-    // done: far below the target, or within a factor 2 of a distance attained on the same side of the target
-    const bool undecided = attained <= decide && top.upper > decide;
-    if (top.upper <= enough || (top.upper <= 2 * attained && !undecided)) break;
     heap.pop();
-    const int k = geo.dims() == 2 && top.box.p[1].sup() - top.box.p[1].inf() > top.box.p[0].sup() - top.box.p[0].inf() ? 1 : 0;
+    const auto width = [&](int k) { return top.box.p[k].sup() - top.box.p[k].inf(); };
+    const int k = geo.dims() == 2 && width(1) > width(0) ? 1 : 0;
     const double mid = (top.box.p[k].inf() + top.box.p[k].sup()) / 2;
     ParamBox lo = top.box, hi = top.box;
     lo.p[k] = IA(top.box.p[k].inf(), mid);
     hi.p[k] = IA(mid, top.box.p[k].sup());
-    heap.push({evaluate(lo), lo});
-    heap.push({evaluate(hi), hi});
+    push(lo);
+    push(hi);
   }
-  const double worst = heap.top().upper;
+  return {heap.top().upper, boxes};
+}
+
+/// The first-order distance of the results over one geometry (absolute), then relative to size.
+CertifiedBound branch_and_bound(const Geometry& geo, const std::vector<const BoundedResult*>& results, double size,
+                                double target) {
+  CGAL::Protect_FPU_rounding<true> up;
+  double attained = 0;
+  const double enough = target * size / 1000, decide = target * size;
+  const auto [worst, boxes] = best_first(
+      geo, geo.dims() == 1 ? 16 : 4, 3000,
+      [&](const ParamBox& b) {
+        double u = 0;
+        for (const BoundedResult* r : results) {
+          const auto [hi, lo] = r->distance(geo, b);
+          u = std::max(u, hi);
+          attained = std::max(attained, lo);
+        }
+        return u;
+      },
+      [&](double top) {
+        // done: far below the target, or within a factor 2 of a distance attained on the same side of it
+        const bool undecided = attained <= decide && top > decide;
+        return top <= enough || (top <= 2 * attained && !undecided);
+      });
+  CertifiedBound out;
+  out.boxes = boxes;
   out.upper = worst == 0 ? 0.0 : std::isfinite(worst) ? (IA(worst) / IA(size)).sup() : kInf;
   out.attained = (IA(attained) / IA(size)).inf();
   return out;
@@ -516,44 +532,17 @@ std::shared_ptr<Geometry> make_surface(const Mat4<Q>& A, const Mat4<Q>& M, const
 /// branch and bound on |y|^2, bounded above on each box and attained at its centre.
 double largest_offset(const Geometry& geo) {
   CGAL::Protect_FPU_rounding<true> up;
-  struct Node {
-    double upper;
-    ParamBox box;
-    bool operator<(const Node& o) const { return upper < o.upper; }
-  };
   double best = 0;
-  auto evaluate = [&](const ParamBox& b) {
-    const V3 y = geo.offset(b);
-    IA hi(0), lo(0);
-    for (const IA& c : y) hi += CGAL::square(IA(mag(c))), lo += CGAL::square(IA(mig(c)));
-    ParamBox centre = b;
-    for (int k = 0; k < geo.dims(); ++k) centre.p[k] = IA((b.p[k].inf() + b.p[k].sup()) / 2);
-    IA at(0);
-    for (const IA& c : geo.offset(centre)) at += CGAL::square(IA(mig(c)));
-    best = std::max({best, lo.inf(), at.inf()});
-    return hi.sup();
-  };
-  std::priority_queue<Node> heap;
-  for (int f = 0; f < geo.faces(); ++f)
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < (geo.dims() == 1 ? 1 : 4); ++j) {
-        ParamBox b;
-        b.face = f;
-        b.p[0] = IA(-1.0 + i / 2.0, -1.0 + (i + 1) / 2.0);
-        b.p[1] = geo.dims() == 1 ? IA(0) : IA(-1.0 + j / 2.0, -1.0 + (j + 1) / 2.0);
-        heap.push({evaluate(b), b});
-      }
-  for (int n = 0; n < 4000 && heap.top().upper > best * (1 + std::ldexp(1.0, -19)); ++n) {
-    const Node top = heap.top();
-    heap.pop();
-    const int k = geo.dims() == 2 && top.box.p[1].sup() - top.box.p[1].inf() > top.box.p[0].sup() - top.box.p[0].inf() ? 1 : 0;
-    const double mid = (top.box.p[k].inf() + top.box.p[k].sup()) / 2;
-    ParamBox lo = top.box, hi = top.box;
-    lo.p[k] = IA(top.box.p[k].inf(), mid);
-    hi.p[k] = IA(mid, top.box.p[k].sup());
-    heap.push({evaluate(lo), lo});
-    heap.push({evaluate(hi), hi});
-  }
+  best_first(
+      geo, 4, 4000,
+      [&](const ParamBox& b) {
+        IA hi(0), lo(0), at(0);
+        for (const IA& c : geo.offset(b)) hi += CGAL::square(IA(mag(c))), lo += CGAL::square(IA(mig(c)));
+        for (const IA& c : geo.offset(geo.centre(b))) at += CGAL::square(IA(mig(c)));
+        best = std::max({best, lo.inf(), at.inf()});
+        return hi.sup();
+      },
+      [&](double top) { return top <= best * (1 + std::ldexp(1.0, -19)); });
   return CGAL::sqrt(IA(best)).inf();
 }
 
