@@ -221,7 +221,8 @@ Attributes:
     kind, skipped, exact (proof mode), exact_status, item_status, accuracy,
     exhausted, second_plane_error, M_error, proved_exactly,
     consistent_with_precision, rounding_tolerance, kappa, reference (the
-    exact expected matrix as Fractions, or None), notes, origin.
+    exact expected matrix as Fractions, or None), notes, origin, certified
+    (floating candidates of an ellipsoid: the bound over every point, or None).
 )")
       .def_readonly("kind", &CheckReport::kind, "'shadow' or 'reflection'.")
       .def_readonly("passed", &CheckReport::passed, "True when the check passes.")
@@ -252,6 +253,18 @@ Attributes:
       .def_property_readonly("reference", [](const CheckReport& r) {
         return r.reference ? fractions(*r.reference) : py::object(py::none());
       }, "The exact expected matrix (P_ref or B_ref, in the candidate's frame) as Fractions, or None.")
+      .def_property_readonly("certified", [](const CheckReport& r) -> py::object {
+        if (!r.certified) return py::none();
+        py::dict d;
+        d["results"] = r.certified_for;
+        d["geometric_error_bound"] = r.certified->upper;
+        d["geometric_error_attained"] = r.certified->attained;
+        d["boxes"] = r.certified->boxes;
+        return std::move(d);
+      }, "Floating candidates of an ellipsoid: the geometric error of P and the polar plane (over the whole "
+         "terminator) or of B (over all of A reflected) bounded at every point, not only the samples: a dict "
+         "(results, geometric_error_bound, geometric_error_attained, boxes), or None. A pass needs the bound "
+         "within the accuracy target.")
       .def_readonly("notes", &CheckReport::notes, "Remarks (few real points, one-point terminator, ...).")
       .def_property_readonly("origin", [](const CheckReport& r) {
         return r.origin ? py::object(doubles(*r.origin)) : py::object(py::none());

@@ -43,6 +43,9 @@ def test_check_passes_for_qverify_result(sphere, light):
         assert set(c) >= {"name", "geometric_error", "passed", "max_distance", "max_residual", "worst", "worst_approx"}
         assert isinstance(c["geometric_error"], float)
     assert isinstance(rep.summary, str) and rep.summary
+    # a sphere: P and the polar plane are also bounded at every point of the terminator
+    assert rep.certified["results"] == ["P", "polar_plane"]
+    assert 0 <= rep.certified["geometric_error_attained"] <= rep.certified["geometric_error_bound"] <= 1e-9
 
 
 def test_check_fails_for_perturbed_P(sphere, light):
@@ -55,6 +58,7 @@ def test_check_fails_for_perturbed_P(sphere, light):
     assert not rep.passed and not bool(rep)
     assert rep.problems
     assert rep.geometric_error > 1e-9
+    assert rep.certified["geometric_error_attained"] > 1e-9  # certainly off, at some point of the terminator
     worst = [c for c in rep.checks if not c["passed"]]
     assert worst and worst[0]["worst_approx"] is not None
     assert "FAILED" in repr(rep)
