@@ -20,9 +20,14 @@
 ///   x^T Q^ x = x^T E x,   E = Q^ - lambda Q_o            (Q_o: Q in the frame)
 ///   (Q^ x)_xyz = lambda (Q3 (p - e) + (Q (e, 1))_xyz) + (E x)_xyz,
 /// p the Cartesian world point and e an exact expansion point near the object.
-/// E and the exact gradient terms are computed in rationals and only then
-/// enclosed, so nothing cancels inside the intervals: a result 10^12 from its
-/// object is bounded as tightly as one at the origin. On a box of parameters
+/// With p - e = y0 + B R u (y0, B exact; R the inverse Cholesky factor, in
+/// intervals) both are polynomials in u,
+///   x^T E x = a + b . u + u^T C u,   (Q^ x)_xyz = g0 + G u,
+/// whose coefficients are exact rationals (times R), computed exactly and only
+/// then enclosed: nothing cancels inside the intervals, so a result 10^12 from
+/// its object, or a needle 10^10 long, is bounded as tightly as a ball at the
+/// origin (P_ref = (L^T A L) A - (A L)(A L)^T, eq. (3), vanishes on the plane's
+/// directions e1, e2 exactly, which its enclosure alone would not). On a box of parameters
 /// the first-order distance |x^T E x| / (2 |grad|) (plane: |eps . x| / |pi^_xyz|)
 /// is bounded above by interval arithmetic (CGAL Interval_nt, rounding upward;
 /// on the terminator also by the mean-value form in the circle's parameter,
