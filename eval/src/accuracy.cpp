@@ -314,16 +314,15 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (!geo_)
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
-  const auto r_error = [&](const ItemPoints& p) {  // what the certified bound does not cover
-    const ShadowError e = shadow_error(p, origin, P, polar, R);
-    return std::max({relative(e.R, p.size), relative(e.R_plane, p.size), relative(e.generators, p.size)});
+  const auto uncovered = [](const ShadowError& e, const Measure& size) {  // what the certified bound does not cover
+    return std::max({relative(e.R, size), relative(e.R_plane, size), relative(e.generators, size)});
   };
-  const ShadowError e = shadow_error(pts_, origin, P, polar, R);
+  const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   const Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
-  Measure other = r_error(pts_);
+  Measure other = uncovered(e, pts_.size);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
-    other = std::max(other, r_error(*dense_));
+    other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size));
   }
   const CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size_down(pts_.size), opt_.target);
   return combined_accuracy(cb, covered, other, {"P", "polar_plane"}, opt_.target);
