@@ -10,7 +10,13 @@
 #include <qverify/studies/bench.hpp>
 #include <qverify/studies/paper_audit.hpp>
 #include <qverify/studies/stress.hpp>
+#include <qverify/report/audit_document.hpp>
+#include <qverify/report/bench.hpp>
+#include <qverify/report/eval_document.hpp>
+#include <qverify/report/paper_document.hpp>
+#include <qverify/report/render_document.hpp>
 #include <qverify/report/report.hpp>
+#include <qverify/report/stress.hpp>
 #include <qverify/report/verify_document.hpp>
 #include <qverify/render/render.hpp>
 
@@ -61,192 +67,6 @@ Method method_of(const std::string& text) {
   throw UsageError("--method: unknown method \"" + text + "\" (expected direct or paper)");
 }
 
-/// Human-readable number: JSON strings unquoted.
-std::string cell(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
-
-void print_matrix(const char* name, const json& m) {
-  if (m.empty() || !m[0].is_array()) {
-    std::string row;
-    for (const auto& x : m) row += fmt::format(" {:>14}", cell(x));
-    fmt::print("    {:<12}[{} ]\n", name, row);
-    return;
-  }
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    std::string row;
-    for (const auto& x : m[i]) row += fmt::format(" {:>14}", cell(x));
-    fmt::print("    {:<12}[{} ]\n", i == 0 ? name : "", row);
-  }
-}
-
-/// The item's error bound, and in words whether it may miss the accuracy target.
-void print_accuracy(const json& item, const json& doc) {
-  if (!item.contains("error_bound")) return;
-  const double T = doc["accuracy"].get<double>();
-  const bool inaccurate = std::find(item["flags"].begin(), item["flags"].end(), "inaccurate") != item["flags"].end();
-  if (item["error_bound"].is_null())
-    fmt::print("    error bound: none ({}){}\n", item.contains("reason") ? item["reason"].get<std::string>() : "",
-               inaccurate ? "; INACCURATE: the result may be off by more than the accuracy target" : "");
-  else if (inaccurate)
-    fmt::print("    INACCURATE: error bound {:.3g} of the object size exceeds the accuracy target {:.3g}\n",
-               item["error_bound"].get<double>(), T);
-  else
-    fmt::print("    accurate: error bound {:.3g} of the object size (target {:.3g})\n", item["error_bound"].get<double>(), T);
-}
-
-void print_eval(const json& doc) {
-  fmt::print("scene      {}\nprecision  {}   method {}\n", doc["scene"].get<std::string>(),
-             doc["precision"].get<std::string>(), doc["method"].get<std::string>());
-  for (const auto& s : doc["shadows"]) {
-    fmt::print("\nshadow  {} lit by {}: {}\n", s["quadric"].get<std::string>(), s["light"].get<std::string>(),
-               s["status"].get<std::string>());
-    print_matrix("P", s["P"]);
-    print_matrix("polar_plane", s["polar_plane"]);
-    print_matrix("R", s["R"]);
-    print_accuracy(s, doc);
-  }
-  for (const auto& r : doc["reflections"]) {
-    fmt::print("\nreflection  {} in {}: {}\n", r["quadric"].get<std::string>(), r["mirror"].get<std::string>(),
-               r["status"].get<std::string>());
-    print_matrix("M", r["M"]);
-    print_matrix("B", r["B"]);
-    print_accuracy(r, doc);
-  }
-  if (!doc["skipped"].empty()) {
-    fmt::print("\nleft out ({}):\n", doc["skipped"].size());
-    for (const auto& k : doc["skipped"])
-      fmt::print("    {} / {}: {}\n", k["quadric"].get<std::string>(),
-                 k.contains("light") ? k["light"].get<std::string>() : k["mirror"].get<std::string>(),
-                 k["reason"].get<std::string>());
-  }
-  if (!doc["inputs_rounded"].empty())
-    fmt::print("\n{} input number(s) are not exactly representable in {} and were rounded once to nearest.\n",
-               doc["inputs_rounded"].size(), doc["precision"].get<std::string>());
-}
-
-void print_verify(const json& doc) {
-  fmt::print("scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}   accuracy target {}\n\n",
-             doc["scene"].get<std::string>(), doc["precision"].get<std::string>(), doc["method"].get<std::string>(),
-             doc["source"].get<std::string>(), doc["samples"].get<int>(), doc["seed"].get<std::uint64_t>(),
-             doc["accuracy"].get<double>() == 0 ? std::string("0 (exact proof)") : fmt::format("{:.3g}", doc["accuracy"].get<double>()));
-  fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", "kind", "quadric", "with", "status",
-             "points", "geo. error", "obj. size", "proved", "rounding");
-  auto num = [](const json& c, const char* k) {
-    return !c.contains(k) ? std::string("-") : c[k].is_null() ? std::string("inf") : fmt::format("{:.2e}", c[k].get<double>());
-  };
-  for (const auto& c : doc["checks"]) {
-    const std::string other = c.contains("light") ? c["light"].get<std::string>() : c["mirror"].get<std::string>();
-    fmt::print("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", c["kind"].get<std::string>(),
-               c["quadric"].get<std::string>(), other, c["status"].get<std::string>(),
-               c.contains("points") ? c["points"].get<int>() : 0, num(c, "geometric_error"), num(c, "object_size"),
-               c.contains("proved_exactly") ? std::to_string(c["proved_exactly"].get<int>()) : "-",
-               !c.contains("consistent_with_precision") ? "-" : c["consistent_with_precision"].get<bool>() ? "as good" : "worse");
-    if (c.contains("reason")) fmt::print("            {}\n", c["reason"].get<std::string>());
-  }
-  fmt::print("\npass = geometric error <= accuracy target{}; 'rounding' says whether the residuals are as small as "
-             "this precision can make them (information only)\n",
-             doc["accuracy"].get<double>() == 0 ? " (exact: every residual exactly zero)" : "");
-  fmt::print("\n{} passed, {} failed, {} skipped\n", doc["passed"].get<int>(), doc["failed"].get<int>(),
-             doc["skipped"].get<int>());
-}
-
-void print_audit(const json& doc, const std::string& dir) {
-  fmt::print("precision audit of {} (reference: exact)\n\n", doc["scene"].get<std::string>());
-  fmt::print("{:<12} {:<9} {:>12} {:>14} {:>14} {:>8} {:>11}  {}\n", "precision", "method", "ns/item", "max rel.err", "median",
-             "bits", "inaccurate", "pareto");
-  std::vector<std::string> front;
-  for (const auto& p : doc["pareto"]) front.push_back(p.get<std::string>());
-  auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.3g}", v.get<double>()); };
-  for (const auto& r : doc["rows"]) {
-    const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
-    const bool candidate = r.contains("source");
-    fmt::print("{:<12} {:<9} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r["precision"].get<std::string>(),
-               r["method"].get<std::string>(), r["ns_per_item"].get<double>(), num(r["max_rel_error"]),
-               num(r["median_rel_error"]),
-               r["correct_bits"].is_null() ? std::string(candidate && !r.contains("exact_match") ? "-" : "exact")
-                                           : num(r["correct_bits"]),
-               candidate ? std::string("-") : fmt::format("{}/{}", r["inaccurate_items"].get<int>(), r["items"].get<int>()),
-               std::find(front.begin(), front.end(), key) != front.end() ? "*" : "");
-  }
-  if (doc.contains("candidate")) {
-    const json& c = doc["candidate"];
-    for (const auto& r : doc["rows"])
-      if (r.contains("source")) {
-        fmt::print("\ncandidate {}: {}", c["name"].get<std::string>(), r["status"].get<std::string>());
-        if (r.contains("error")) fmt::print(" ({})", r["error"].get<std::string>());
-        fmt::print("; {:.3f} s per call; largest geometric error {} (target {:.3g})\n", r["seconds_per_call"].get<double>(),
-                   num(r["max_geometric_error"]), c["accuracy"].get<double>());
-      }
-    for (const auto& rep : c["reproducers"]) fmt::print("reproducer: {}/{} ({})\n", dir, rep["scene"].get<std::string>(),
-                                                        rep["reason"].get<std::string>());
-  }
-  fmt::print("\nwrote {0}/report.json, {0}/report.html, {0}/error-vs-time.svg\n", dir);
-}
-
-void print_stress(const json& doc, const std::string& dir) {
-  for (const auto& f : doc["families"]) {
-    fmt::print("\n{} ({}): geometric error of {} / object size; default double meets the target: {}\n",
-               f["name"].get<std::string>(), f["parameter"].get<std::string>(), f["item"].get<std::string>(),
-               f["default_meets_target"].get<bool>() ? "yes" : "NO");
-    fmt::print("{:>10} {:>10} {:>10}", f["parameter"].get<std::string>(), "eps*kappa", "rounded");
-    for (const auto& r : f["points"][0]["runs"]) {
-      std::string label = r["run"].get<std::string>();
-      fmt::print(" {:>12}", label.substr(0, label.find(' ')).substr(0, 12));
-    }
-    fmt::print("\n");
-    auto num = [](const json& v) { return v.is_null() ? std::string("-") : fmt::format("{:.2e}", v.get<double>()); };
-    for (const auto& p : f["points"]) {
-      fmt::print("{:>10} {:>10} {:>10}", num(p["param"]), num(p["predicted_double_error"]), num(p["rounded_exact_error"]));
-      for (const auto& r : p["runs"])
-        fmt::print(" {:>12}", r["status"] == "candidate-failed" ? std::string("FAILED") : num(r["geometric_error"]));
-      fmt::print("\n");
-    }
-    if (f.contains("candidate")) {
-      const json& c = f["candidate"];
-      if (c["breakdown"].is_null())
-        fmt::print("candidate {}: within the target at every point\n", c["name"].get<std::string>());
-      else
-        fmt::print("candidate {}: breaks at {} = {:.3g}: {}\n", c["name"].get<std::string>(), f["parameter"].get<std::string>(),
-                   c["breakdown"].get<double>(), c["breakdown_reason"].get<std::string>());
-    }
-  }
-  if (doc.contains("candidate")) {
-    const json& c = doc["candidate"];
-    fmt::print("\ncandidate {}: {} calls, {} failed, {} beyond the target {:.3g}; {} reproducer(s){}\n",
-               c["name"].get<std::string>(), c["calls"].get<int>(), c["failed_calls"].get<int>(),
-               c["beyond_accuracy"].get<int>(), c["accuracy"].get<double>(), c["reproducers"].size(),
-               c["reproducers"].empty() ? std::string() : " in " + dir + "/failures/");
-  }
-  fmt::print("\nwrote {0}/report.json, {0}/report.html and one SVG per family\n", dir);
-}
-
-void print_bench(const json& doc) {
-  auto text = [](const json& j) { return j.is_string() ? j.get<std::string>() : std::string("?"); };
-  const json& cpu = doc["processor"];
-  fmt::print("{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({})\n"
-             "processor: {} {} (family {}, model {})\n\n",
-             doc["n"].get<long>(), doc["threads"].get<int>(), doc["memory_bandwidth_gbps"].get<double>(),
-             doc["simd"]["lanes"].get<int>(), doc["simd"]["instruction_set"].get<std::string>(), text(cpu["vendor"]),
-             text(cpu["model_name"]), cpu["family"].dump(), cpu["model"].dump());
-  fmt::print("{:<17} {:<9} {:<8} {:<14} {:>12} {:>10} {:>6} {:>8} {:>9}\n", "op", "precision", "method", "inputs",
-             "items/s", "ns/item", "bytes", "roofline", "x double");
-  for (const auto& r : doc["rows"]) {
-    fmt::print("{:<17} {:<9} {:<8} {:<14} {:>12.4g} {:>10.2f} {:>6} {:>8.2f} {:>9.1f}", r["op"].get<std::string>(),
-               r["precision"].get<std::string>(), r["method"].get<std::string>(), r["inputs"].get<std::string>(),
-               r["items_per_s"].get<double>(), r["ns_per_item"].get<double>(), r["bytes_per_item"].get<long>(),
-               r["roofline_fraction"].get<double>(), r["cost_vs_double_direct"].get<double>());
-    if (r.contains("points"))  // verification rows: point checks
-      fmt::print("  {:.3g} checks/s per thread{}", r["points_per_s_per_thread"].get<double>(),
-                 r["precision"] == "exact" ? std::string(", proof mode")
-                                           : fmt::format(", {} of {} past the filter", r["exact_fallbacks"].get<long>(),
-                                                         r["points"].get<long>()));
-    fmt::print("\n");
-  }
-  fmt::print("\nverification rows: point checks ((point, result) pairs) of double-valued items; sampling the exact "
-             "points took {:.2f} s (shadow) and {:.2f} s (reflection), not timed in the rows\n",
-             doc["verification"]["sampling_s"]["shadow"].get<double>(),
-             doc["verification"]["sampling_s"]["reflection"].get<double>());
-}
-
 /// MemAvailable of /proc/meminfo in bytes, or 0 where there is none.
 std::size_t available_memory() {
   std::ifstream in("/proc/meminfo");
@@ -267,39 +87,6 @@ std::function<void(const std::string&)> progress_after_two_seconds() {
   };
 }
 
-/// Wraps text at `width` columns with an indent.
-std::string wrap_text(const std::string& text, std::size_t width, const std::string& indent) {
-  std::string out, line;
-  std::istringstream words(text);
-  std::string w;
-  while (words >> w) {
-    if (!line.empty() && line.size() + 1 + w.size() > width) {
-      out += indent + line + "\n";
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + w;
-  }
-  if (!line.empty()) out += indent + line + "\n";
-  return out;
-}
-
-void print_paper(const std::vector<AuditEntry>& entries) {
-  fmt::print("Audit of Hashimoto & Suenaga, 'A study on the transformation of quadric surfaces' (exact arithmetic)\n\n");
-  fmt::print("{:<6} {:<20} {}\n", "eq.", "verdict", "claim");
-  fmt::print("{:-<6} {:-<20} {:-<70}\n", "", "", "");
-  for (const auto& e : entries)
-    fmt::print("{:<6} {:<20} {}\n", e.id, e.verdict + (e.factor.empty() ? "" : " (" + e.factor.substr(0, e.factor.find(' ')) + ")"),
-               e.claim.substr(0, 70) + (e.claim.size() > 70 ? "..." : ""));
-  for (const auto& e : entries) {
-    fmt::print("\n{} {}\n", e.id, e.verdict);
-    fmt::print("  claim:\n{}", wrap_text(e.claim, 96, "    "));
-    if (!e.reading.empty()) fmt::print("  reading:\n{}", wrap_text(e.reading, 96, "    "));
-    if (!e.factor.empty()) fmt::print("  factor:   {}\n", e.factor);
-    fmt::print("  evidence:\n{}", wrap_text(e.evidence, 96, "    "));
-    if (!e.corrected.empty()) fmt::print("  corrected:\n{}", wrap_text(e.corrected, 96, "    "));
-  }
-}
-
 // ------------------------------------------------------------------ render
 
 struct RenderArgs {
@@ -309,10 +96,6 @@ struct RenderArgs {
   long max_checked = 2000;
   double min_agreement = 0.999;
 };
-
-json pixel_json(const render::Renderer& r, const render::PixelId& id) {
-  return {{"surface", id.surface}, {"mirror", id.mirror}, {"shadowed", id.shadowed}, {"reads", r.describe(id)}};
-}
 
 /// Throws FileWriteError (exit 2, the path named) when the file cannot be written.
 void write_image(const std::string& file, const render::Image& img, const std::vector<std::uint8_t>& rgb) {
@@ -330,90 +113,25 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
     opt.box_half = *v;
   }
   const render::Renderer r(sc, opt);
-  const auto& cam = r.camera();
   if (!a.compare) {
     if (a.out.empty()) throw UsageError("render: --out image.png is required (or --compare)");
     const auto method = a.method == "raytrace" ? render::RenderMethod::raytrace : render::RenderMethod::transforms;
     const render::Image img = r.render(method);
     write_image(a.out, img, img.rgb);
     if (!a.ids.empty()) write_image(a.ids, img, render::id_image(img));
-    if (as_json) {
-      std::cout << json{{"format", "qverify-render/1"}, {"method", render::method_word(method)}, {"width", cam.width},
-                        {"height", cam.height}, {"pixels", static_cast<long>(img.ids.size())},
-                        {"seconds", {{render::method_word(method), img.seconds}}}, {"threads", r.threads()},
-                        {"left_out", r.left_out()}}
-                       .dump(2)
-                << "\n";
-    } else {
-      fmt::print("rendered {} ({}x{}) by {} in {:.3f} s on {} threads\n", a.out, cam.width, cam.height,
-                 render::method_word(method), img.seconds, r.threads());
-      for (const auto& l : r.left_out()) fmt::print("left out: {}\n", l);
-    }
+    const render::RenderReport report = render::render_report(r, img, method, a.out);
+    if (as_json) std::cout << render_json(report).dump(2) << "\n";
+    else std::cout << render_text(report);
     return kOk;
   }
   const render::Comparison c = render::compare_methods(r, a.repeat, a.max_checked);
   if (!a.out.empty()) write_image(a.out, c.transforms_image, c.transforms_image.rgb);
   if (!a.ids.empty()) write_image(a.ids, c.transforms_image, render::id_image(c.transforms_image));
   if (!a.diff.empty()) write_image(a.diff, c.transforms_image, c.diff_rgb);
-  const bool pass = c.agreement >= a.min_agreement;
-  // the disagreements grouped by what each method drew and what is certified true
-  std::map<std::tuple<std::string, std::string, std::string>, long> kinds;
-  for (const auto& p : c.checked)
-    ++kinds[{r.describe(p.transforms), r.describe(p.raytrace),
-             p.certified.decided ? r.describe(p.certified.truth) : std::string("undecided")}];
-  std::vector<std::pair<long, std::tuple<std::string, std::string, std::string>>> by_count;
-  for (const auto& [k, n] : kinds) by_count.push_back({n, k});
-  std::sort(by_count.begin(), by_count.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-  if (as_json) {
-    json kinds_json = json::array();
-    for (const auto& [n, k] : by_count)
-      kinds_json.push_back({{"pixels", n}, {"transforms", std::get<0>(k)}, {"raytrace", std::get<1>(k)}, {"certified", std::get<2>(k)}});
-    json px = json::array();
-    for (const auto& p : c.checked) {
-      if (px.size() >= 50) break;
-      json e{{"x", p.x}, {"y", p.y}, {"transforms", pixel_json(r, p.transforms)}, {"raytrace", pixel_json(r, p.raytrace)}};
-      if (p.certified.decided)
-        e["certified"] = {{"id", pixel_json(r, p.certified.truth)}, {"bits", p.certified.bits},
-                          {"right", p.certified.truth == p.transforms ? "transforms"
-                                    : p.certified.truth == p.raytrace ? "raytrace" : "neither"}};
-      else e["certified"] = nullptr;
-      px.push_back(e);
-    }
-    json doc{{"format", "qverify-render/1"},
-             {"pixels", c.pixels},
-             {"agreement", c.agreement},
-             {"disagreeing", c.disagreeing},
-             {"seconds", {{"transforms", c.seconds_transforms}, {"raytrace", c.seconds_raytrace}}},
-             {"speedup", c.seconds_transforms > 0 ? c.seconds_raytrace / c.seconds_transforms : 0.0},
-             {"width", cam.width},
-             {"height", cam.height},
-             {"threads", r.threads()},
-             {"certified", {{"checked", static_cast<long>(c.checked.size())}, {"transforms_right", c.transforms_right},
-                            {"raytrace_right", c.raytrace_right}, {"neither", c.neither}, {"undecided", c.undecided},
-                            {"unchecked", c.unchecked}, {"methods_differ_exactly", c.methods_differ_exactly}}},
-             {"kinds", kinds_json},
-             {"disagreements", px},
-             {"left_out", r.left_out()}};
-    std::cout << doc.dump(2) << "\n";
-  } else {
-    fmt::print("scene        {} ({}x{}, {} threads)\n", sc.file, cam.width, cam.height, r.threads());
-    fmt::print("agreement    {:.6f}% of {} pixels ({} disagree)\n", 100 * c.agreement, c.pixels, c.disagreeing);
-    fmt::print("seconds      transforms {:.4f}   raytrace {:.4f}   raytrace/transforms {:.2f}x (fastest of {})\n",
-               c.seconds_transforms, c.seconds_raytrace,
-               c.seconds_transforms > 0 ? c.seconds_raytrace / c.seconds_transforms : 0.0, std::max(1, a.repeat));
-    fmt::print("certified    {} checked: transforms right {}, raytrace right {}, neither {}, undecided {}{}\n",
-               c.checked.size(), c.transforms_right, c.raytrace_right, c.neither, c.undecided,
-               c.unchecked ? fmt::format(", {} not checked", c.unchecked) : std::string());
-    if (c.methods_differ_exactly)
-      fmt::print("WARNING      {} pixels differ between the methods even in certified arithmetic\n", c.methods_differ_exactly);
-    for (std::size_t i = 0; i < by_count.size() && i < 12; ++i) {
-      const auto& [n, k] = by_count[i];
-      fmt::print("  {:>6} px  transforms: {}; raytrace: {}; certified: {}\n", n, std::get<0>(k), std::get<1>(k), std::get<2>(k));
-    }
-    for (const auto& l : r.left_out()) fmt::print("left out: {}\n", l);
-    if (!pass) fmt::print("FAIL: agreement below {}\n", a.min_agreement);
-  }
-  return pass ? kOk : 1;
+  const render::CompareReport report = render::compare_report(sc, r, c, a.repeat, a.min_agreement);
+  if (as_json) std::cout << compare_json(report).dump(2) << "\n";
+  else std::cout << compare_text(report);
+  return report.pass() ? kOk : 1;
 }
 
 /// Every option of every command, as parsed (one place: the commands share --json, --accuracy, the
@@ -611,10 +329,11 @@ int run_eval(const Options& o) {
   if (o.tolerance > 0 && o.tolerance < std::ldexp(1.0, -53))
     throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
                      "result rounded to double is that far); use --precision exact");
-  const json doc = o.tolerance > 0 ? adaptive_eval_document(sc, method, o.tolerance, AccuracyOptions{o.accuracy})
-                                   : eval_document(sc, prec, method, frame_of(o.frame_text), AccuracyOptions{o.accuracy});
-  if (o.as_json) std::cout << doc.dump(2) << "\n";
-  else print_eval(doc);
+  const EvalReport report = o.tolerance > 0
+                                ? adaptive_eval_report(sc, method, o.tolerance, AccuracyOptions{o.accuracy})
+                                : eval_report(sc, prec, method, frame_of(o.frame_text), AccuracyOptions{o.accuracy});
+  if (o.as_json) std::cout << eval_json(report).dump(2) << "\n";
+  else std::cout << eval_text(report);
   return kOk;
 }
 
@@ -626,9 +345,8 @@ int run_verify(const Options& o) {
                                                               AccuracyOptions{o.accuracy, o.samples, o.seed})
                                            : candidate_results(sc, o.candidate, prec);
   const VerifyReport v = verify_results(sc, rs, VerifyOptions{o.samples, o.seed, o.accuracy});
-  const json doc = verify_document(sc, v);
-  if (o.as_json) std::cout << doc.dump(2) << "\n";
-  else print_verify(doc);
+  if (o.as_json) std::cout << verify_document(sc, v).dump(2) << "\n";
+  else std::cout << verify_text(sc, v);
   return v.failed > 0 ? 1 : kOk;
 }
 
@@ -651,19 +369,15 @@ int run_audit_command(const Options& o, bool with_candidate) {
   }
   const AuditReport report = run_audit(sc, opt);
   write_audit_report(o.out_dir, report);
-  if (o.as_json) std::cout << report.document.dump(2) << "\n";
-  else print_audit(report.document, o.out_dir);
+  if (o.as_json) std::cout << audit_json(report).dump(2) << "\n";
+  else std::cout << audit_text(report, o.out_dir);
   return kOk;
 }
 
 int run_stress_command(const Options& o, bool with_candidate) {
   if (o.list_families) {
-    json list = json::array();
-    for (const auto& f : stress_families()) {
-      if (!o.as_json) fmt::print("{:<20} {}\n", f.name, f.description);
-      list.push_back({{"name", f.name}, {"parameter", f.parameter}, {"description", f.description}});
-    }
-    if (o.as_json) std::cout << json{{"families", list}}.dump(2) << "\n";
+    if (o.as_json) std::cout << stress_families_json(stress_families()).dump(2) << "\n";
+    else std::cout << stress_families_text(stress_families());
     return kOk;
   }
   if (o.out_dir.empty()) throw UsageError("stress: --out DIR is required (or --list)");
@@ -681,8 +395,8 @@ int run_stress_command(const Options& o, bool with_candidate) {
   }
   const StressReport report = run_stress(opt);
   write_stress_report(o.out_dir, report);
-  if (o.as_json) std::cout << report.document.dump(2) << "\n";
-  else print_stress(report.document, o.out_dir);
+  if (o.as_json) std::cout << stress_json(report).dump(2) << "\n";
+  else std::cout << stress_text(report, o.out_dir);
   return kOk;
 }
 
@@ -694,16 +408,16 @@ int run_bench_command(const Options& o) {
                                  "are available; use a smaller --n",
                                  opt.n, need / 1e9, bench_bytes_per_item(), static_cast<double>(have) / 1e9));
   opt.progress = [](const std::string& line) { std::cerr << line << "\n"; };
-  const json doc = run_bench(opt);
-  if (o.as_json) std::cout << doc.dump(2) << "\n";
-  else print_bench(doc);
+  const BenchReport report = run_bench(opt);
+  if (o.as_json) std::cout << bench_json(report).dump(2) << "\n";
+  else std::cout << bench_text(report);
   return kOk;
 }
 
 int run_paper(const Options& o) {
   const auto entries = audit_paper();
-  if (o.as_json) std::cout << audit_json(entries).dump(2) << "\n";
-  else print_paper(entries);
+  if (o.as_json) std::cout << paper_json(entries).dump(2) << "\n";
+  else std::cout << paper_text(entries);
   const bool errata = std::any_of(entries.begin(), entries.end(), [](const AuditEntry& e) { return e.verdict == "fails"; });
   return o.strict && errata ? 1 : kOk;
 }

@@ -4,22 +4,17 @@ QVERIFY_FOR_EACH_SCALAR(QVERIFY_EXTERN)
 
 namespace qverify {
 
-nlohmann::ordered_json skipped_json(const Scene& sc) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const Pair& p : sc.skipped_shadows())
-    out.push_back({{"quadric", sc.quadrics[p.quadric].id},
-                   {"light", sc.lights[p.other].id},
-                   {"reason", "not requested (requests.shadows)"}});
+std::vector<SkippedPair> skipped_pairs(const Scene& sc) {
+  std::vector<SkippedPair> out;
+  for (const Pair& p : sc.skipped_shadows()) out.push_back({true, sc.quadrics[p.quadric].id, sc.lights[p.other].id});
   for (const Pair& p : sc.skipped_reflections())
-    out.push_back({{"quadric", sc.quadrics[p.quadric].id},
-                   {"mirror", sc.mirrors[p.other].id},
-                   {"reason", "not requested (requests.reflections)"}});
+    out.push_back({false, sc.quadrics[p.quadric].id, sc.mirrors[p.other].id});
   return out;
 }
 
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
-                                     const AccuracyOptions& accuracy) {
-  return with_scalar(prec, [&](auto tag) { return eval_document<decltype(tag)>(sc, prec, method, frame, accuracy); });
+EvalReport eval_report(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
+                       const AccuracyOptions& accuracy) {
+  return with_scalar(prec, [&](auto tag) { return eval_report<decltype(tag)>(sc, prec, method, frame, accuracy); });
 }
 
 ResultSet computed_results(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,

@@ -8,6 +8,7 @@
 #include <qverify/verify/check.hpp>
 #include <qverify/eval/eval.hpp>
 #include <qverify/verify/verifier.hpp>
+#include <qverify/report/eval_document.hpp>
 #include <qverify/report/verify_document.hpp>
 
 #include <pybind11/stl.h>
@@ -109,7 +110,7 @@ QuadricSpec quadric_spec(const Mat4<Rational>& A) {
 json eval_one(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame, double accuracy) {
   py::gil_scoped_release nogil;
   auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr);
-  return eval_document(sc, prec, method, frame, AccuracyOptions{accuracy});
+  return eval_json(eval_report(sc, prec, method, frame, AccuracyOptions{accuracy}));
 }
 
 py::object matrix_out(const json& m, bool exact) { return exact ? json_to_fractions(m) : py::object(json_to_array(m)); }
@@ -241,8 +242,8 @@ py::object eval_scene_py(const py::object& path, const py::object& text, const s
   {
     py::gil_scoped_release nogil;
     auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr || tolerance.has_value());
-    doc = tolerance ? adaptive_eval_document(sc, method, *tolerance)
-                    : eval_document(sc, prec, method, frame, AccuracyOptions{accuracy});
+    doc = tolerance ? eval_json(adaptive_eval_report(sc, method, *tolerance))
+                    : eval_json(eval_report(sc, prec, method, frame, AccuracyOptions{accuracy}));
   }
   return json_to_python(doc);
 }

@@ -11,6 +11,7 @@
 #include "options.hpp"
 
 #include <qverify/report/report.hpp>
+#include <qverify/report/stress.hpp>
 #include <qverify/scene/files.hpp>
 #include <qverify/studies/stress.hpp>
 #include <qverify/verify/item_candidate.hpp>
@@ -227,7 +228,7 @@ py::object stress_py(const py::object& shadow_in, const py::object& reflection_i
     opt.candidate.reset();  // drops the functions (their deleters take the GIL)
   }
   if (aborted) throw py::error_already_set();  // the KeyboardInterrupt (...) the function raised
-  return json_to_python(report.document);
+  return json_to_python(stress_json(report));
 }
 
 py::list families_py() {

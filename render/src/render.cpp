@@ -4,7 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <thread>
+#include <tuple>
 
 namespace qverify::render {
 
@@ -376,6 +378,54 @@ Comparison compare_methods(const Renderer& r, int repeat, long max_checked) {
   }
   cmp.agreement = cmp.pixels ? 1.0 - static_cast<double>(cmp.disagreeing) / static_cast<double>(cmp.pixels) : 1.0;
   return cmp;
+}
+
+RenderReport render_report(const Renderer& r, const Image& img, RenderMethod method, const std::string& out) {
+  const auto& cam = r.camera();
+  return {out, method, cam.width, cam.height, r.threads(), static_cast<long>(img.ids.size()), img.seconds, r.left_out()};
+}
+
+CompareReport compare_report(const Scene& sc, const Renderer& r, const Comparison& c, int repeat, double min_agreement) {
+  const auto& cam = r.camera();
+  CompareReport rep;
+  rep.scene_file = sc.file;
+  rep.width = cam.width;
+  rep.height = cam.height;
+  rep.threads = r.threads();
+  rep.repeat = std::max(1, repeat);
+  rep.pixels = c.pixels;
+  rep.disagreeing = c.disagreeing;
+  rep.agreement = c.agreement;
+  rep.min_agreement = min_agreement;
+  rep.seconds_transforms = c.seconds_transforms;
+  rep.seconds_raytrace = c.seconds_raytrace;
+  rep.checked = static_cast<long>(c.checked.size());
+  rep.transforms_right = c.transforms_right;
+  rep.raytrace_right = c.raytrace_right;
+  rep.neither = c.neither;
+  rep.undecided = c.undecided;
+  rep.unchecked = c.unchecked;
+  rep.methods_differ_exactly = c.methods_differ_exactly;
+  // the disagreements grouped by what each method drew and what is certified true, most frequent first
+  std::map<std::tuple<std::string, std::string, std::string>, long> kinds;
+  for (const auto& p : c.checked)
+    ++kinds[{r.describe(p.transforms), r.describe(p.raytrace),
+             p.certified.decided ? r.describe(p.certified.truth) : std::string("undecided")}];
+  for (const auto& [k, n] : kinds) rep.kinds.push_back({n, std::get<0>(k), std::get<1>(k), std::get<2>(k)});
+  std::stable_sort(rep.kinds.begin(), rep.kinds.end(),
+                   [](const DisagreementKind& x, const DisagreementKind& y) { return x.pixels > y.pixels; });
+  for (const auto& p : c.checked) {
+    if (rep.disagreements.size() >= kListedDisagreements) break;
+    DisagreeingPixel d{p.x, p.y, {p.transforms, r.describe(p.transforms)}, {p.raytrace, r.describe(p.raytrace)}, {}, 0, {}};
+    if (p.certified.decided) {
+      d.certified = PixelReading{p.certified.truth, r.describe(p.certified.truth)};
+      d.bits = p.certified.bits;
+      d.right = p.certified.truth == p.transforms ? "transforms" : p.certified.truth == p.raytrace ? "raytrace" : "neither";
+    }
+    rep.disagreements.push_back(std::move(d));
+  }
+  rep.left_out = r.left_out();
+  return rep;
 }
 
 }  // namespace qverify::render

@@ -1,5 +1,7 @@
 #include <qverify/report/plot.hpp>
+#include <qverify/report/audit_document.hpp>
 #include <qverify/report/report.hpp>
+#include <qverify/report/stress.hpp>
 #include <qverify/scene/files.hpp>
 
 #include <algorithm>
@@ -173,19 +175,21 @@ std::string candidate_html(const json& doc) {
 void write_audit_report(const std::filesystem::path& dir, const AuditReport& report) {
   const std::string svg = render_svg(report.error_vs_time);
   write_file(dir / "error-vs-time.svg", svg);
-  write_file(dir / "report.json", report.document.dump(2) + "\n");
-  write_file(dir / "report.html", audit_html(report.document, svg));
+  const nlohmann::ordered_json doc = audit_json(report);
+  write_file(dir / "report.json", doc.dump(2) + "\n");
+  write_file(dir / "report.html", audit_html(doc, svg));
 }
 
 void write_stress_report(const std::filesystem::path& dir, const StressReport& report) {
   std::vector<std::pair<std::string, std::string>> svgs;
   for (const auto& [name, plot] : report.plots) svgs.emplace_back(name, render_svg(plot));
   for (const auto& [name, svg] : svgs) write_file(dir / (name + ".svg"), svg);
-  write_file(dir / "report.json", report.document.dump(2) + "\n");
-  std::string html = stress_html(report.document, svgs);
-  if (report.document.contains("candidate")) {
+  const nlohmann::ordered_json doc = stress_json(report);
+  write_file(dir / "report.json", doc.dump(2) + "\n");
+  std::string html = stress_html(doc, svgs);
+  if (report.candidate) {
     const std::size_t at = html.rfind("</body>");
-    html.insert(at == std::string::npos ? html.size() : at, candidate_html(report.document));
+    html.insert(at == std::string::npos ? html.size() : at, candidate_html(doc));
   }
   write_file(dir / "report.html", html);
 }

@@ -1,4 +1,7 @@
+#include <qverify/report/eval_document.hpp>
 #include <qverify/report/verify_document.hpp>
+
+#include <fmt/format.h>
 
 #include <cmath>
 #include <string>
@@ -32,12 +35,15 @@ void measures_json(json& c, const CheckReport& r, const std::vector<const char*>
     if (const QuadricCheck* q = r.find(name)) c[name] = metric_json(*q);
 }
 
+/// A check's problems in one line.
+std::string problems_text(const CheckReport& r) {
+  std::string text;
+  for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
+  return text;
+}
+
 void verdict_json(json& c, const CheckReport& r) {
-  if (!r.problems.empty()) {
-    std::string text;
-    for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
-    c["reason"] = text;
-  }
+  if (!r.problems.empty()) c["reason"] = problems_text(r);
   c["status"] = r.passed ? "pass" : "fail";
 }
 
@@ -117,9 +123,35 @@ json verify_document(const Scene& sc, const VerifyReport& report) {
   doc["passed"] = report.passed;
   doc["failed"] = report.failed;
   doc["skipped"] = report.skipped;
-  doc["left_out"] = skipped_json(sc);
+  doc["left_out"] = skipped_json(skipped_pairs(sc));
   if (!report.notes.empty()) doc["notes"] = report.notes;
   return doc;
+}
+
+std::string verify_text(const Scene& sc, const VerifyReport& report) {
+  const bool exact = report.precision.kind == Precision::Kind::exact;
+  const double target = exact ? 0.0 : report.options.accuracy;
+  std::string out = fmt::format(
+      "scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}   accuracy target {}\n\n",
+      sc.name, report.precision.name(), method_name(report.method), report.source, report.options.samples,
+      report.options.seed, exact ? std::string("0 (exact proof)") : fmt::format("{:.3g}", target));
+  out += fmt::format("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", "kind", "quadric", "with", "status",
+                     "points", "geo. error", "obj. size", "proved", "rounding");
+  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.2e}", v) : std::string("inf"); };
+  for (const VerifyCheck& v : report.checks) {
+    const CheckReport* r = v.report && !v.report->skipped ? &*v.report : nullptr;  // measured
+    out += fmt::format("{:<11} {:<10} {:<10} {:<8} {:>6} {:>11} {:>11} {:>11} {:>9}\n", v.kind, v.quadric, v.other,
+                       v.status(), r ? r->points : 0, r ? num(r->geometric_error) : "-", r ? num(r->object_size) : "-",
+                       r && exact ? std::to_string(r->proved_exactly) : "-",
+                       !r ? "-" : r->consistent_with_precision ? "as good" : "worse");
+    const std::string reason = !v.report ? v.missing : v.report->skipped ? v.report->problems.front() : problems_text(*r);
+    if (!reason.empty()) out += fmt::format("            {}\n", reason);
+  }
+  out += fmt::format("\npass = geometric error <= accuracy target{}; 'rounding' says whether the residuals are as small as "
+                     "this precision can make them (information only)\n",
+                     exact ? " (exact: every residual exactly zero)" : "");
+  out += fmt::format("\n{} passed, {} failed, {} skipped\n", report.passed, report.failed, report.skipped);
+  return out;
 }
 
 }  // namespace qverify

@@ -1,7 +1,7 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/studies/audit.hpp>
 #include <qverify/scene/files.hpp>
-#include <qverify/scene/json_tree.hpp>
+#include <qverify/scene/json_tree.hpp>  // JsonLimits: the size limit of a scene file
 
 #include <cmath>
 #include <cstdio>
@@ -13,7 +13,6 @@
 
 namespace qverify {
 
-using json = nlohmann::ordered_json;
 using Q = Rational;
 
 namespace {
@@ -70,113 +69,11 @@ std::vector<double> item_errors(const ResultSet& rs, const Evaluation<Q>& ref) {
   return out;
 }
 
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-/// The largest and the median of a row's per-item errors (0 for a scene with no items): the two numbers a row
-/// reports and the Pareto front and the figure read.
-struct ErrorStats {
-  double max = 0, median = 0;
-};
 ErrorStats error_stats(std::vector<double> e) {
   std::sort(e.begin(), e.end());
   if (e.empty()) return {};
   return {e.back(), e[e.size() / 2]};
 }
-
-/// What timed_results measured of a ladder row beside its errors.
-struct LadderFacts {
-  int inaccurate_items = 0;  ///< eval's flag: items whose error bound exceeds the accuracy target 1e-9
-  long reps_per_batch = 0;
-  int batches = 0;
-  std::size_t inputs_rounded = 0;
-  std::optional<unsigned> working_bits;  ///< mpfr only: the precision actually used
-};
-
-/// What the candidate's call and the verification of its results found beside its errors.
-struct CandidateFacts {
-  std::string name;
-  bool ok = false;                ///< the call returned every requested item
-  std::string error;              ///< why the call failed (when !ok)
-  std::string status;             ///< "pass", "fail" or "candidate-failed"
-  std::string claimed_precision;  ///< as its document states (when ok)
-  std::string claimed_method;
-  int checks_passed = 0, checks_failed = 0;  ///< verify's counts (when !ok: every item counts as failed)
-  double seconds = 0;                        ///< wall time of the call
-  double max_geometric_error = 0;            ///< over the items with something to measure
-  bool bad = false;              ///< failed, a failed check or a geometric error beyond the accuracy target
-  std::optional<json> reproducer;  ///< the reproducer's scene, when one was written
-};
-
-/// One row of the audit as typed values: a precision and method of the ladder, or the candidate. The Pareto
-/// front, the items' errors and the figure are computed from these; the row's JSON is written once (to_json).
-struct AuditRow {
-  std::string precision, method;  ///< the candidate: its name and "candidate"
-  double ns_per_item = 0;
-  std::vector<double> errors;  ///< per item (infinity when missing or not finite)
-  ErrorStats stats;
-  std::optional<LadderFacts> ladder;        ///< set for a ladder row
-  std::optional<CandidateFacts> candidate;  ///< set for the candidate's row
-
-  /// "precision/method": the row's name in the document's pareto list and in each item's errors.
-  std::string key() const { return precision + "/" + method; }
-  /// The row's JSON (qverify-audit/1), fields in the document's order.
-  json to_json(std::size_t n_items) const { return candidate ? candidate_json(n_items) : ladder_json(n_items); }
-
- private:
-  /// max_rel_error, median_rel_error, correct_bits (= -log2(error); null for an exact zero) and exact_match.
-  void error_fields(json& r) const {
-    r["max_rel_error"] = number_or_null(stats.max);
-    r["median_rel_error"] = number_or_null(stats.median);
-    r["correct_bits"] = stats.max > 0 ? number_or_null(-std::log2(stats.max)) : json(nullptr);
-    if (stats.max == 0) r["exact_match"] = true;
-  }
-  /// A ladder row: its timing and errors, then what timed_results reports.
-  json ladder_json(std::size_t n_items) const {
-    json r;
-    r["precision"] = precision;
-    r["method"] = method;
-    r["ns_per_item"] = ns_per_item;
-    error_fields(r);
-    r["items"] = n_items;
-    r["inaccurate_items"] = ladder->inaccurate_items;
-    r["reps_per_batch"] = ladder->reps_per_batch;
-    r["batches"] = ladder->batches;
-    r["inputs_rounded"] = ladder->inputs_rounded;
-    if (ladder->working_bits) r["working_bits"] = *ladder->working_bits;
-    return r;
-  }
-  /// The candidate's row: who it is and its status, its time per call and errors, then the ladder's fields
-  /// it has no value for (null or 1), whether it missed the target and its reproducer.
-  json candidate_json(std::size_t n_items) const {
-    const CandidateFacts& c = *candidate;
-    json r;
-    r["precision"] = precision;
-    r["method"] = method;
-    r["source"] = "candidate";
-    r["run"] = c.name;
-    r["status"] = c.status;
-    if (c.ok) {
-      r["claimed_precision"] = c.claimed_precision;
-      r["claimed_method"] = c.claimed_method;
-      r["checks_passed"] = c.checks_passed;
-      r["checks_failed"] = c.checks_failed;
-    } else {
-      r["error"] = c.error;
-    }
-    r["ns_per_item"] = ns_per_item;
-    r["seconds_per_call"] = c.seconds;
-    error_fields(r);
-    r["max_geometric_error"] = number_or_null(c.max_geometric_error);
-    r["items"] = n_items;
-    r["inaccurate_items"] = nullptr;
-    r["reps_per_batch"] = 1;
-    r["batches"] = 1;
-    r["inputs_rounded"] = nullptr;
-    r["beyond_accuracy"] = c.ok && c.bad;
-    if (c.reproducer) r["reproducer"] = *c.reproducer;
-    return r;
-  }
-};
 
 /// One audit of a scene: the exact reference, then every row (the ladder's, the candidate's), then what is
 /// computed from the rows (the Pareto front, the items' errors, the figure) and the document. A class so that
@@ -216,10 +113,19 @@ class SceneAudit {
     rows_.push_back(std::move(r));
   }
 
-  /// The document (qverify-audit/1) and its figure, from the rows.
+  /// The report: the rows, and what is computed from them (the Pareto front, the items, the figure).
   AuditReport report() const {
-    const std::vector<std::string> front = pareto_front();
-    return {document(front), plot(front)};
+    AuditReport rep;
+    rep.scene = sc_.name;
+    rep.options = opt_;
+    rep.options.progress = nullptr;
+    if (rep.options.ladder.empty()) rep.options.ladder = default_ladder();
+    rep.rows = rows_;
+    rep.pareto = pareto_front();
+    rep.items = items();
+    rep.skipped = skipped_pairs(sc_);
+    rep.error_vs_time = plot(rep.pareto);
+    return rep;
   }
 
  private:
@@ -294,11 +200,7 @@ class SceneAudit {
     std::snprintf(buf, sizeof buf, "largest item geometric error %.3g of the object size (accuracy target %.3g); %d of %zu checks failed",
                   c.max_geometric_error, opt_.accuracy, c.checks_failed, n_items_);
     const std::string reason = call.ok ? std::string(buf) : "candidate-failed: " + call.error;
-    json rep = write_candidate_reproducer(failures_dir, c.name, "audit", 0, 0, text, call, reason);
-    rep.erase("param");
-    rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
-    c.reproducer = rep["scene"];
-    reproducers_.push_back(rep);
+    c.reproducer = qverify::write_reproducer(failures_dir, c.name, "audit", 0, 0, text, call, reason);
   }
 
   /// The rows not dominated in (time, error): no other row is as fast and as accurate and better in one.
@@ -319,70 +221,16 @@ class SceneAudit {
     return front;
   }
 
-  /// Every item (shadows, then reflections) with its error in every row, and the candidate's geometric error.
-  json items() const {
-    json items = json::array();
-    std::size_t k = 0;
-    auto add_item = [&](json it) {
-      json errs;
-      for (const AuditRow& r : rows_) errs[r.key()] = number_or_null(r.errors[k]);
-      it["errors"] = errs;
-      if (opt_.candidate) it["geometric_errors"] = {{opt_.candidate->name, number_or_null(candidate_geo_[k])}};
-      items.push_back(it);
-      ++k;
-    };
+  /// Every item (shadows, then reflections), with the candidate's geometric error on it.
+  std::vector<AuditItem> items() const {
+    std::vector<AuditItem> items;
     for (const auto& it : ref_.shadows)
-      add_item({{"kind", "shadow"},
-                {"quadric", sc_.quadrics[it.pair.quadric].id},
-                {"light", sc_.lights[it.pair.other].id},
-                {"exact_status", it.result.status()}});
+      items.push_back({true, sc_.quadrics[it.pair.quadric].id, sc_.lights[it.pair.other].id, it.result.status(), {}});
     for (const auto& it : ref_.reflections)
-      add_item({{"kind", "reflection"},
-                {"quadric", sc_.quadrics[it.pair.quadric].id},
-                {"mirror", sc_.mirrors[it.pair.other].id},
-                {"exact_status", it.result.status()}});
+      items.push_back({false, sc_.quadrics[it.pair.quadric].id, sc_.mirrors[it.pair.other].id, it.result.status(), {}});
+    if (opt_.candidate)
+      for (std::size_t k = 0; k < items.size(); ++k) items[k].candidate_geometric_error = candidate_geo_[k];
     return items;
-  }
-
-  /// The document's "candidate" section: the candidate, its rule, its status and its reproducers.
-  json candidate_section() const {
-    json c = candidate_section_head(*opt_.candidate, opt_.accuracy);
-    c["rule"] = "the candidate is called once on the scene and must return a qverify-eval/1 document with every "
-                "requested item; its row has the matrix errors of the ladder and ns_per_item = the wall time of the "
-                "call (process start included) / items; each item is checked as verify --candidate checks it (" +
-                std::to_string(opt_.samples) + " exact points, seed 1): geometric_errors; a failed call, a failed "
-                "check or a geometric error beyond accuracy writes the scene as a reproducer";
-    c["status"] = rows_.back().candidate->status;
-    c["failures_dir"] = reproducers_.empty() ? json(nullptr) : json("failures");
-    c["reproducers"] = reproducers_;
-    return c;
-  }
-
-  /// The qverify-audit/1 document: how errors and times are measured, the rows, the front, the items.
-  json document(const std::vector<std::string>& front) const {
-    json rows = json::array();
-    for (const AuditRow& r : rows_) rows.push_back(r.to_json(n_items_));
-    json doc;
-    doc["format"] = "qverify-audit/1";
-    doc["scene"] = sc_.name;
-    doc["reference"] = "exact";
-    doc["scale_removal"] =
-        "each result X is compared with the exact Y as a projective object: max_i |X_i Y_p - Y_i X_p| / (|X|_max |Y_p|), "
-        "p the largest entry of Y (cross-multiplication, no division by an entry; zero exactly when X = lambda Y). P, the "
-        "polar plane and B must have the contract's positive factor (a sign error counts as 2); R is free up to any "
-        "non-zero factor; M is compared entry by entry (relative to max(1, |M|_max)). An item's error is the largest of "
-        "its matrices'; errors are computed exactly from the results converted to rationals.";
-    doc["timing"] = "ns_per_item: median over " + std::to_string(opt_.batches) +
-                    " batches of the evaluation of all requested items from inputs already in the precision (each batch "
-                    "repeated until it lasts >= " +
-                    std::to_string(static_cast<int>(opt_.batch_seconds * 1000)) +
-                    " ms; results kept behind a compiler barrier), single thread";
-    doc["rows"] = rows;
-    doc["pareto"] = front;
-    doc["items"] = items();
-    doc["skipped"] = skipped_json(sc_);
-    if (opt_.candidate) doc["candidate"] = candidate_section();
-    return doc;
   }
 
   /// The figure: max error against ns per item, direct, paper and the candidate as series, the front as a line.
@@ -418,7 +266,6 @@ class SceneAudit {
   const std::size_t n_items_;  ///< requested items: shadows, then reflections
   std::vector<AuditRow> rows_;  ///< the ladder's, then the candidate's
   std::vector<double> candidate_geo_;  ///< per item: the candidate's geometric error as verify --candidate measures it
-  json reproducers_ = json::array();   ///< the candidate's reproducer, when written
 };
 
 }  // namespace

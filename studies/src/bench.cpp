@@ -27,7 +27,6 @@
 
 namespace qverify {
 
-using json = nlohmann::ordered_json;
 using Int = __int128;
 
 namespace {
@@ -395,40 +394,34 @@ std::size_t bench_bytes_per_item() {
   return (10 + 4) * 8 * 3 + ((10 + 4 + 10) + (12 + 10)) * 8 * 3 + kShadowBytes;
 }
 
-json processor_info() {
+ProcessorInfo processor_info() {
   std::ifstream in("/proc/cpuinfo");
-  std::string line, vendor, model_name, flags;
-  json family = nullptr, model = nullptr;
+  std::string line, flags;
+  ProcessorInfo p;
   auto trim = [](std::string s) {
     const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
     return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
   };
   while (std::getline(in, line)) {
     if (line.empty()) {
-      if (!vendor.empty()) break;  // the first processor's block
+      if (p.vendor) break;  // the first processor's block
       continue;
     }
     const auto colon = line.find(':');
     if (colon == std::string::npos) continue;
     const std::string key = trim(line.substr(0, colon)), value = trim(line.substr(colon + 1));
-    if (key == "vendor_id") vendor = value;
-    else if (key == "model name") model_name = value;
-    else if (key == "cpu family") family = std::atoi(value.c_str());
-    else if (key == "model") model = std::atoi(value.c_str());
+    if (key == "vendor_id" && !value.empty()) p.vendor = value;
+    else if (key == "model name" && !value.empty()) p.model_name = value;
+    else if (key == "cpu family") p.family = std::atoi(value.c_str());
+    else if (key == "model") p.model = std::atoi(value.c_str());
     else if (key == "flags") flags = " " + value + " ";
   }
-  json supports = json::array();
   for (const auto& [flag, name] : {std::pair{"sse2", "SSE2"}, {"avx2", "AVX2"}, {"avx512f", "AVX-512"}, {"avx512ifma", "AVX-512 IFMA"}})
-    if (flags.find(std::string(" ") + flag + " ") != std::string::npos) supports.push_back(name);
-  return {{"vendor", vendor.empty() ? json(nullptr) : json(vendor)},
-          {"model_name", model_name.empty() ? json(nullptr) : json(model_name)},
-          {"family", family},
-          {"model", model},
-          {"instruction_set", instruction_set()},
-          {"lanes", DoublePack::size()},
-          {"supports", supports},
-          {"logical_cpus", std::thread::hardware_concurrency()},
-          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for"}};
+    if (flags.find(std::string(" ") + flag + " ") != std::string::npos) p.supports.push_back(name);
+  p.instruction_set = instruction_set();
+  p.lanes = static_cast<int>(DoublePack::size());
+  p.logical_cpus = std::thread::hardware_concurrency();
+  return p;
 }
 
 namespace {
@@ -441,65 +434,6 @@ std::vector<double> per_item_ns(const std::vector<double>& times, double items) 
   for (double t : times) out.push_back(1e9 * t / items);
   return out;
 }
-
-/// What a verification row counted beside its times: the (point, result) pairs checked and how they were decided.
-struct VerifyRowFacts {
-  FilterCounts counts;          ///< over all threads, in one run
-  int threads = 0;
-  std::size_t distinct_points = 0;
-  int passes = 0;               ///< checks of every pair per run
-};
-
-/// One row of the document as typed values: an op, precision, method and kind of inputs with its times and
-/// the bytes it moves per item. The roofline fraction and the cost against double are computed from these
-/// once every row and the bandwidth are known (finish_rows), and the row's JSON is written once (to_json).
-struct BenchRow {
-  std::string op, precision, method, inputs;
-  long n = 0;  ///< items per run (verification rows: items with points)
-  double items_per_s = 0, ns_per_item = 0, ns_per_item_median = 0;
-  std::vector<double> ns_per_item_runs;
-  std::size_t bytes_per_item = 0;
-  std::string arithmetic, results;             ///< exact rows: how they compute, where the results go
-  std::optional<long> items_beyond_bit_bound;  ///< exact rows: items that needed GMP rationals, when any
-  std::optional<VerifyRowFacts> verify;        ///< set for a verification row
-  double roofline_fraction = 0;
-  std::optional<double> cost_vs_double_direct;
-
-  /// The row's JSON, fields in the document's order (the verification rows' order is their own).
-  json to_json() const {
-    json r;
-    if (verify) {
-      const double pps = items_per_s;
-      r = {{"op", op},
-           {"precision", precision},
-           {"inputs", inputs},
-           {"points_per_s", pps},
-           {"threads", verify->threads},
-           {"exact_fallbacks", verify->counts.fallbacks},
-           {"points", verify->counts.checked},
-           {"exact_fallbacks_measured", verify->counts.measured},
-           {"points_per_s_per_thread", pps / verify->threads},
-           {"method", method},
-           {"n", n},
-           {"distinct_points", verify->distinct_points},
-           {"passes", verify->passes},
-           {"checks_failed", verify->counts.failed}};
-    } else {
-      r = {{"op", op}, {"precision", precision}, {"method", method}, {"inputs", inputs}, {"n", n}};
-    }
-    r["items_per_s"] = items_per_s;
-    r["ns_per_item"] = ns_per_item;
-    r["ns_per_item_median"] = ns_per_item_median;
-    r["ns_per_item_runs"] = ns_per_item_runs;
-    r["bytes_per_item"] = bytes_per_item;
-    r["roofline_fraction"] = roofline_fraction;
-    if (!arithmetic.empty()) r["arithmetic"] = arithmetic;
-    if (!results.empty()) r["results"] = results;
-    if (items_beyond_bit_bound) r["items_beyond_bit_bound"] = *items_beyond_bit_bound;
-    if (cost_vs_double_direct) r["cost_vs_double_direct"] = *cost_vs_double_direct;
-    return r;
-  }
-};
 
 /// A batch row: `items` items per run, `times` the runs (best of them: items_per_s).
 BenchRow batch_row(Kind kind, const char* op, const char* precision, const char* method, const std::vector<double>& times,
@@ -534,7 +468,7 @@ BenchRow verify_row(const char* op, const char* precision, const char* method, c
 
 /// Roofline fractions (items/s x bytes/item against the bandwidth), cost ratios against double/direct of the
 /// same op and inputs (the verification rows: against their double, filtered row), then the rows in the
-/// document's order: op group (batch, then verification), inputs, precision, method, op.
+/// report's order: op group (batch, then verification), inputs, precision, method, op.
 void finish_rows(std::vector<BenchRow>& rows, double bandwidth) {
   for (auto& r : rows) {
     r.roofline_fraction = r.items_per_s * static_cast<double>(r.bytes_per_item) / bandwidth;
@@ -581,7 +515,7 @@ struct FloatBuffers {
   }
 
   /// The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals); returns the seconds it took
-  /// (untimed by the rows: the document's generation_s).
+  /// (untimed by the rows: the report's generation_s).
   double fill(Kind kind, Eigen::Index n, int threads) {
     const auto t0 = Clock::now();
     if (kind == Kind::small_rational) fill_small_rational(n, threads);
@@ -943,7 +877,7 @@ FilterCounts total(const std::vector<FilterCounts>& v) {
 
 /// One run of the benchmark: the rows in the order they are measured (double and interval, paper, exact,
 /// verification), each phase a function of its own with its own buffers, sharing the run's options, rows,
-/// bandwidth copies and the sections they fill; then the document.
+/// bandwidth copies and the sections they fill; then the report.
 class BenchRun {
  public:
   /// The run's sizes from the options, and the bandwidth copy's buffers (allocated first, as they stay to the end).
@@ -1021,44 +955,29 @@ class BenchRun {
         v.S.size());
     add("verify-reflection", "exact", "exact", 3, reflection_points, 1,
         reflection_points ? v.reflection_proof_bytes() / reflection_points : 0, v.Rf.size());
-    verification_ = verification_section(K, v);
+    verification_ = {K, v.S.size(), v.Rf.size(), kVerifySamples, kVerifyAccuracy, v.sample_shadow_s, v.sample_reflection_s};
   }
 
-  /// The qverify-bench/1 document: the bandwidth limit (the best copy of all rounds: a shared machine's noise
-  /// only adds time, to the copy as to the rows, so best against best), the rows finished against it, and
-  /// how everything was measured.
-  json document() {
+  /// The report: the bandwidth limit (the best copy of all rounds: a shared machine's noise only adds time, to
+  /// the copy as to the rows, so best against best), the rows finished against it, and the sections. Last: the
+  /// rows and sections are moved into it.
+  BenchReport report() {
+    BenchReport r;
+    r.threads = T_;
+    r.n = n_;
+    r.rounds = rounds_;
+    r.exact_items = nx_;
+    r.processor = processor_info();
     const double bandwidth = copy_.bytes() / best_of(copy_times_);
+    r.memory_bandwidth_gbps = bandwidth / 1e9;
+    for (double t : copy_times_) r.memory_bandwidth_gbps_runs.push_back(copy_.bytes() / t / 1e9);
+    r.generation_s = generation_s_;
+    r.exact_arithmetic_items = std::min<Eigen::Index>(nx_, kCandidateItems);
+    r.exact_arithmetic = std::move(candidates_);
+    r.verification = verification_;
     finish_rows(rows_, bandwidth);
-    json rows = json::array();
-    for (const BenchRow& r : rows_) rows.push_back(r.to_json());
-    json bandwidth_runs = json::array();
-    for (double t : copy_times_) bandwidth_runs.push_back(copy_.bytes() / t / 1e9);
-    const std::string R = std::to_string(rounds_);
-    return {{"format", "qverify-bench/1"},
-            {"threads", T_},
-            {"n", n_},
-            {"processor", processor_info()},
-            {"memory_bandwidth_gbps", bandwidth / 1e9},
-            {"memory_bandwidth_gbps_runs", bandwidth_runs},
-            {"bandwidth_method", "parallel stream copy (non-temporal stores, like the double batches) of as many bytes "
-                                 "as the double shadow row moves (read + write), run at the start and at the end of each of the " + R +
-                                 " rounds, around the rows; the best copy"},
-            {"inputs", inputs_section()},
-            {"timing", timing_note()},
-            {"simd", {{"lanes", DoublePack::size()},
-                      {"instruction_set", instruction_set()},
-                      {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
-            {"exact_arithmetic",
-             {{"inputs", kind_name(Kind::double_valued)},
-              {"items", std::min<Eigen::Index>(nx_, kCandidateItems)},
-              {"threads", 1},
-              {"note", "the candidates for exact results from doubles, timed on the same items by the same generic "
-                       "formulas (the direct shadow; the division-free mirror matrix and rank-one image), all of them in each of " + R +
-                       " rounds, best of the rounds, one thread"},
-              {"candidates", candidates_}}},
-            {"verification", verification_},
-            {"rows", rows}};
+    r.rows = std::move(rows_);
+    return r;
   }
 
  private:
@@ -1131,7 +1050,7 @@ class BenchRun {
 
   /// The candidates for exact arithmetic on doubles (WideInt<10>, CGAL::Mpzf, GMP rationals), on the same
   /// first items, one thread, all of them in every round (a shared machine: each round samples the same
-  /// moments for all): the document's exact_arithmetic.candidates.
+  /// moments for all): the report's exact_arithmetic.
   void exact_candidates(WideExact& w) {
     const Eigen::Index m = std::min<Eigen::Index>(nx_, kCandidateItems);
     say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
@@ -1145,10 +1064,8 @@ class BenchRun {
     const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
                            "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
     for (int c = 0; c < 3; ++c)
-      candidates_.push_back({{"arithmetic", names[c]},
-                             {"note", notes[c]},
-                             {"shadow_ns_per_item", 1e9 * best_of(tc[2 * c]) / static_cast<double>(m)},
-                             {"reflection_ns_per_item", 1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)}});
+      candidates_.push_back({names[c], notes[c], 1e9 * best_of(tc[2 * c]) / static_cast<double>(m),
+                             1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)});
   }
 
   /// The four verification jobs, interleaved over the rounds: the filtered checks (ps and pr passes over the
@@ -1204,61 +1121,6 @@ class BenchRun {
     return vt;
   }
 
-  /// The document's "verification" section: the items, the sampling and what the rows check.
-  json verification_section(int K, const VerifyItems& v) const {
-    return {
-        {"inputs", kind_name(Kind::double_valued)},
-        {"items_drawn", K},
-        {"shadow_items", v.S.size()},
-        {"reflection_items", v.Rf.size()},
-        {"samples_per_item", kVerifySamples},
-        {"accuracy", kVerifyAccuracy},
-        {"sampling_s", {{"shadow", v.sample_shadow_s}, {"reflection", v.sample_reflection_s}}},
-        {"sampling_note",
-         "sampling the exact points (terminator points A ∩ {(A L).x = 0}, points of A reflected exactly, in Q(sqrt d), "
-         "accuracy.hpp) and preparing them (enclosures, denominators cleared) is not part of the timed checks; "
-         "sampling_s is its wall time on the same threads"},
-        {"candidates",
-         "precision double: the exact results correctly rounded to double (P, polar plane, R; B), checked by the "
-         "filter (point_filter.hpp: certified interval evaluation of the verifier's distance rule against T * object "
-         "size; the pairs it cannot decide, exact_fallbacks, are decided on exact integers with MPFR enclosures and, "
-         "within about 1e-15 of the boundary, by the verifier's 80-digit measure: exact_fallbacks_measured); "
-         "precision exact: the exact results "
-         "(rationals), proof mode (x^T Q x == 0 exactly, on GMP integers)"},
-        {"points_note",
-         "points counts the (point, result) pairs checked per run, the sets `verify` measures (accuracy.hpp): P, the "
-         "polar plane and R at each terminator point, P at points of the cone's generator lines, R at rational points of "
-         "the polar plane (verify-shadow); B at each reflected point (verify-reflection); passes: the filtered rows check "
-         "every pair that many times per run (about 4 10^6 checks), the exact rows once"}};
-  }
-
-  /// The document's "inputs" section: how each kind of input is drawn and converted.
-  json inputs_section() const {
-    return {{"small-rational", "random rationals p/q, |p| <= 20, 1 <= q <= 9 (doubles: rounded once; intervals: the "
-                               "enclosure of p/q; exact: as p and q): quadrics A, and lights (x, y, z, 1) with z != 0 "
-                               "that are also the mirror planes x X + y Y + z Z + 1 = 0"},
-            {"double-valued", "random doubles with full 53-bit mantissas, |x| in [2^e, 2^(e+1)) with e uniform in "
-                              "-30..30 for every entry independently, random signs (A's ten entries; the light's x, y, "
-                              "z, w = 1); intervals: the points; exact: the doubles' values"},
-            {"decimal-17", "decimal text with 17 significant digits, |x| in [10^k, 10^(k+1)) with k uniform in -9..8 "
-                           "(about 2^-30..2^30), random signs; doubles: the nearest double (std::from_chars); "
-                           "intervals: that double +- one ulp (an enclosure of the text's value); exact: the text's "
-                           "value m 10^e"},
-            {"generation_s", generation_s_}};
-  }
-
-  /// The document's "timing": the order of the phases and what each row's numbers are.
-  std::string timing_note() const {
-    const std::string R = std::to_string(rounds_);
-    return "best of " + R + " rounds; each round runs the copy, then for each kind of input (converted into "
-           "the same buffers, untimed) the four double and interval direct rows once, and the copy again (so that "
-           "rows and bandwidth sample the same moments of a shared machine, whose noise only adds time); then the "
-           "paper rows of each kind, best of " + R + " rounds; then the exact rows of each kind, best of " + R +
-           " runs (small-rational: all n items; double-valued and decimal-17: the first " + std::to_string(nx_) +
-           " items, the row's n); then the verification rows, best of " + R + " rounds. Outputs pre-allocated; "
-           "ns_per_item_runs lists every run, ns_per_item_median is the median";
-  }
-
   const BenchOptions& opt_;
   const Eigen::Index n_;   ///< items of the double, interval, paper and small-rational exact rows
   const int T_;            ///< threads
@@ -1268,19 +1130,19 @@ class BenchRun {
   std::vector<double> copy_times_;
   double generation_s_ = 0;  ///< converting the inputs, untimed by the rows
   std::vector<BenchRow> rows_;
-  json candidates_ = json::array();  ///< the exact arithmetic candidates
-  json verification_;                ///< the verification section
+  std::vector<ExactArithmeticCandidate> candidates_;
+  BenchVerification verification_;
 };
 
 }  // namespace
 
-json run_bench(const BenchOptions& opt) {
+BenchReport run_bench(const BenchOptions& opt) {
   BenchRun run(opt);
   run.float_rows();
   run.small_rational_exact_rows();
   for (Kind kind : {Kind::double_valued, Kind::decimal17}) run.wide_exact_rows(kind);
   run.verification_rows();
-  return run.document();
+  return run.report();
 }
 
 }  // namespace qverify

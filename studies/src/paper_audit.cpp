@@ -1,7 +1,7 @@
 #include <qverify/core/core.hpp>
 #include <qverify/exact/polynomial.hpp>
 #include <qverify/studies/paper_audit.hpp>
-#include <qverify/eval/scalar_json.hpp>
+#include <qverify/eval/number.hpp>
 
 #include <sstream>
 
@@ -331,25 +331,6 @@ AuditEntry eq11() {
 
 std::vector<AuditEntry> audit_paper() {
   return {eq1(), eq2(), eq3(), eq4(), eq5(), eq6(), eq7(), eq8(), eq9(), eq10(), eq11()};
-}
-
-nlohmann::ordered_json audit_json(const std::vector<AuditEntry>& entries) {
-  nlohmann::ordered_json doc;
-  doc["format"] = "qverify-paper/1";
-  doc["paper"] = "Hashimoto & Suenaga, A study on the transformation of quadric surfaces (NTT, 2T-7)";
-  doc["equations"] = nlohmann::ordered_json::array();
-  for (const AuditEntry& e : entries) {
-    nlohmann::ordered_json j;
-    j["id"] = e.id;
-    j["claim"] = e.claim;
-    j["reading"] = e.reading;
-    j["verdict"] = e.verdict;
-    if (!e.factor.empty()) j["factor"] = e.factor;
-    j["evidence"] = e.evidence;
-    if (!e.corrected.empty()) j["corrected"] = e.corrected;
-    doc["equations"].push_back(j);
-  }
-  return doc;
 }
 
 }  // namespace qverify

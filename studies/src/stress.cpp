@@ -8,12 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <filesystem>
+#include <limits>
+#include <optional>
+#include <utility>
 
 namespace qverify {
 
-using json = nlohmann::ordered_json;
 using Q = Rational;
 
 namespace {
@@ -165,23 +166,25 @@ std::vector<StressFamily> make_families() {
   return f;
 }
 
+/// One of qverify's own runs at every point: a precision, a method and, for the naive run, the world frame.
 struct RunSpec {
-  const char* precision;
+  Precision precision;
   Method method;
   std::optional<Frame> frame;
   std::string label;
 };
 
 std::vector<RunSpec> run_specs() {
-  return {{"float", Method::direct, std::nullopt, "float/direct"},
-          {"float", Method::paper, std::nullopt, "float/paper"},
-          {"double", Method::direct, Frame::world, "double/direct/world (naive)"},
-          {"double", Method::direct, std::nullopt, "double/direct (default, robust)"},
-          {"double", Method::paper, std::nullopt, "double/paper"},
-          {"long-double", Method::direct, std::nullopt, "long-double/direct"},
-          {"long-double", Method::paper, std::nullopt, "long-double/paper"},
-          {"float128", Method::direct, std::nullopt, "float128/direct"},
-          {"float128", Method::paper, std::nullopt, "float128/paper"}};
+  const auto p = [](const char* name) { return *parse_precision(name); };
+  return {{p("float"), Method::direct, std::nullopt, "float/direct"},
+          {p("float"), Method::paper, std::nullopt, "float/paper"},
+          {p("double"), Method::direct, Frame::world, "double/direct/world (naive)"},
+          {p("double"), Method::direct, std::nullopt, "double/direct (default, robust)"},
+          {p("double"), Method::paper, std::nullopt, "double/paper"},
+          {p("long-double"), Method::direct, std::nullopt, "long-double/direct"},
+          {p("long-double"), Method::paper, std::nullopt, "long-double/paper"},
+          {p("float128"), Method::direct, std::nullopt, "float128/direct"},
+          {p("float128"), Method::paper, std::nullopt, "float128/paper"}};
 }
 
 /// Positions in run_specs() of the naive world-frame double run and of the default (robust) double run.
@@ -222,8 +225,8 @@ RunMeasure measure_run(const StressFamily& fam, const ResultSet& rs, const ItemP
   return m;
 }
 
-/// Least-squares slope of log10(y) against log10(x) over finite, positive points.
-json slope(const std::vector<double>& x, const std::vector<double>& y) {
+/// Least-squares slope of log10(y) against log10(x) over finite, positive points; none with fewer than two.
+std::optional<double> slope(const std::vector<double>& x, const std::vector<double>& y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (std::size_t i = 0; i < x.size(); ++i)
@@ -231,11 +234,9 @@ json slope(const std::vector<double>& x, const std::vector<double>& y) {
       const double a = std::log10(x[i]), b = std::log10(y[i]);
       sx += a, sy += b, sxx += a * a, sxy += a * b, ++n;
     }
-  if (n < 2 || n * sxx - sx * sx == 0) return nullptr;
+  if (n < 2 || n * sxx - sx * sx == 0) return std::nullopt;
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
-
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 const char* const kCandidateColor = "#e377c2";
 
@@ -256,22 +257,21 @@ Measure condition_estimate(const StressFamily& fam, const Evaluation<Q>& ref, co
   return nB != 0 ? to_measure(Q(max_abs(Mat4<Q>(aM.transpose() * A.cwiseAbs() * aM)) / nB)) : Measure(1);
 }
 
-/// The candidate's totals over every family (the document's "candidate" section).
-struct CandidateTotals {
-  json reproducers = json::array();
-  std::vector<double> call_seconds;
-  int failed_calls = 0, beyond_calls = 0;
-};
-
 /// One family's sweep: every parameter value run in every precision (and by the candidate), measured against
 /// exact on the same points; then the family's summary (slopes, breakdowns, the flag's self-check) and figure.
 class FamilySweep {
  public:
   FamilySweep(const StressFamily& fam, const StressOptions& opt, const std::vector<RunSpec>& specs,
-              const std::filesystem::path& failures_dir, CandidateTotals& totals)
+              const std::filesystem::path& failures_dir, std::optional<StressCandidateSummary>& totals)
       : fam_(fam), opt_(opt), specs_(specs), cand_(opt.candidate ? &*opt.candidate : nullptr),
         failures_dir_(failures_dir), totals_(totals), geo_(specs.size() + (cand_ ? 1 : 0)), mat_(geo_.size()),
-        flags_(specs.size()) {}
+        flags_(specs.size()) {
+    result_.name = fam.name;
+    result_.description = fam.description;
+    result_.parameter = fam.parameter;
+    result_.reflection = fam.reflection;
+    if (cand_) result_.candidate = StressCandidateFamily{cand_->name, std::nullopt, std::nullopt, 0, 0};
+  }
 
   /// The family's point K (parameter value fam.values[K]).
   void point(std::size_t K) {
@@ -286,80 +286,52 @@ class FamilySweep {
     const ItemPoints pts = fam_.reflection ? reflected_points(A, Mw, opt_.samples, 11)
                                            : terminator_points(A, ref.scene.L[0], opt_.samples, 11);
     const Measure kappa = condition_estimate(fam_, ref, Mw);
-    const double pred = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
-    json runs = json::array();
+    StressPoint p;
+    p.param = v;
+    p.exact_status = fam_.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status();
+    p.sample_points = pts.points.size();
+    p.kappa = kappa.convert_to<double>();
+    p.predicted_double_error = (kappa * std::numeric_limits<double>::epsilon()).convert_to<double>();
     std::optional<Vec3<Q>> robust_origin;  // the frame of the default double run
-    for (std::size_t r = 0; r < specs_.size(); ++r) runs.push_back(own_run(r, v, sc, pts, ref, robust_origin));
-    if (cand_) runs.push_back(candidate_run(K, v, text, sc, pts, ref));
-    const double floor_err = rounded_floor(ref, pts, robust_origin);
-    const double target = std::max(1e-9, 10 * floor_err);
+    for (std::size_t r = 0; r < specs_.size(); ++r) p.runs.push_back(own_run(r, v, sc, pts, ref, robust_origin));
+    if (cand_) p.runs.push_back(candidate_run(K, v, text, sc, pts, ref));
+    p.rounded_exact_error = rounded_floor(ref, pts, robust_origin);
+    p.target = std::max(1e-9, 10 * p.rounded_exact_error);
     params_.push_back(v);
-    predicted_.push_back(pred);
-    floors_.push_back(floor_err);
-    const double robust = geo_[kDefaultRun].back();
-    const bool meets = robust <= target;
-    all_meet_ = all_meet_ && meets;
-    points_.push_back({{"param", v},
-                       {"exact_status", fam_.reflection ? ref.reflections[0].result.status() : ref.shadows[0].result.status()},
-                       {"points", pts.points.size()},
-                       {"kappa", kappa.convert_to<double>()},
-                       {"predicted_double_error", pred},
-                       {"rounded_exact_error", num(floor_err)},
-                       {"target", target},
-                       {"default_meets_target", meets},
-                       {"runs", runs}});
+    predicted_.push_back(p.predicted_double_error);
+    floors_.push_back(p.rounded_exact_error);
+    p.default_meets_target = geo_[kDefaultRun].back() <= p.target;
+    result_.default_meets_target = result_.default_meets_target && p.default_meets_target;
+    result_.points.push_back(std::move(p));
   }
 
-  /// The family's entry of the document, after every point.
-  json summary() {
-    totals_.failed_calls += fam_failed_;
-    totals_.beyond_calls += fam_beyond_;
-    json slopes;
-    slopes["predicted_double_error (eps * kappa)"] = slope(params_, predicted_);
+  /// The family's summary, after every point: slopes and breakdowns per run, the candidate's totals.
+  void summarize() {
+    result_.predicted_slope = slope(params_, predicted_);
     for (std::size_t r = 0; r < specs_.size(); ++r) {
-      slopes[specs_[r].label] = {{"matrix_error", slope(params_, mat_[r])}, {"geometric_error", slope(params_, geo_[r])}};
-      json at = nullptr;
+      StressRunSummary s{specs_[r].label, slope(params_, mat_[r]), slope(params_, geo_[r]), std::nullopt};
       for (std::size_t i = 0; i < params_.size(); ++i)
         if (!(geo_[r][i] <= 1e-9)) {
-          at = params_[i];
+          s.breakdown = params_[i];
           break;
         }
-      breakdown_[specs_[r].label] = at;
+      result_.runs.push_back(std::move(s));
     }
     if (cand_) {
       const std::size_t c = specs_.size();
-      slopes[cand_->name] = {{"matrix_error", slope(params_, mat_[c])}, {"geometric_error", slope(params_, geo_[c])}};
+      StressCandidateFamily& fc = *result_.candidate;
       for (std::size_t i = 0; i < params_.size(); ++i)
         if (cand_bad_[i]) {
-          cand_at_ = params_[i];
+          fc.breakdown = params_[i];
           break;
         }
-      breakdown_[cand_->name] = cand_at_;
+      result_.runs.push_back({cand_->name, slope(params_, mat_[c]), slope(params_, geo_[c]), fc.breakdown});
+      totals_->failed_calls += fc.failed_calls;
+      totals_->beyond_accuracy += fc.beyond_accuracy;
     }
-    json famj{{"name", fam_.name},     {"description", fam_.description}, {"parameter", fam_.parameter},
-              {"item", fam_.reflection ? "reflection B" : "shadow P"},
-              {"geometric_target", "max(1e-9, 10 x rounded_exact_error): the default double path must be within 1e-9 "
-                                   "of the object's size, or within 10x of a correctly rounded matrix in its own frame"},
-              {"default_meets_target", all_meet_},
-              {"flag_check",
-               {{"rule", "every run whose item geometric error (P, polar plane and R, or B) measured on these exact "
-                         "points (seed 11) exceeds the accuracy target 1e-9 carries the flag inaccurate (from eval's "
-                         "error bound on other points); flagged_below lists flagged runs measured below 1e-11 here "
-                         "(information: a sample bounds the true error only from below)"},
-                {"ok", missed_.empty()}, {"missed", missed_}, {"flagged_below", flagged_below_}}},
-              {"points", points_}, {"slopes", slopes},
-              {"breakdown", breakdown_}};
-    if (cand_)
-      famj["candidate"] = {{"name", cand_->name},
-                           {"breakdown", cand_at_},
-                           {"breakdown_reason", cand_first_reason_},
-                           {"failed_calls", fam_failed_},
-                           {"beyond_accuracy", fam_beyond_},
-                           {"reproducers", fam_failed_ + fam_beyond_}};
-    return famj;
   }
 
-  /// The family's figure (after summary()): geometric error against the parameter for every run.
+  /// The family's figure (after summarize()): geometric error against the parameter for every run.
   Plot plot() const {
     Plot plot;
     plot.title = fam_.name + ": geometric error of " + (fam_.reflection ? "B" : "P") + " relative to the object size";
@@ -398,10 +370,9 @@ class FamilySweep {
     PlotSeries pred_series{"eps_double * kappa (first-order estimate)", "#7f7f7f", {}, true, false, true, {}};
     for (std::size_t i = 0; i < params_.size(); ++i) pred_series.points.emplace_back(params_[i], predicted_[i]);
     plot.series.push_back(pred_series);
-    const json& naive_at = breakdown_[specs_[kNaiveRun].label];
-    if (!naive_at.is_null()) plot.x_marks.emplace_back(naive_at.get<double>(), "naive double > 1e-9");
-    if (!cand_at_.is_null()) {
-      const double x = cand_at_.get<double>();
+    if (const auto naive_at = result_.runs[kNaiveRun].breakdown) plot.x_marks.emplace_back(*naive_at, "naive double > 1e-9");
+    if (cand_ && result_.candidate->breakdown) {
+      const double x = *result_.candidate->breakdown;
       auto same = std::find_if(plot.x_marks.begin(), plot.x_marks.end(), [&](const auto& m) { return m.first == x; });
       if (same != plot.x_marks.end()) same->second += "; " + cand_->name + " breaks";  // one label per line
       else plot.x_marks.emplace_back(x, cand_->name + " breaks");
@@ -411,78 +382,79 @@ class FamilySweep {
     return plot;
   }
 
+  /// The family's result (after summarize()), moved out.
+  StressFamilyResult take_result() { return std::move(result_); }
+
  private:
   /// qverify's own run r at the point: computed as eval computes it, measured, and its flag self-checked.
-  json own_run(std::size_t r, double v, const Scene& sc, const ItemPoints& pts, const Evaluation<Q>& ref,
-               std::optional<Vec3<Q>>& robust_origin) {
+  StressRun own_run(std::size_t r, double v, const Scene& sc, const ItemPoints& pts, const Evaluation<Q>& ref,
+                    std::optional<Vec3<Q>>& robust_origin) {
     const RunSpec& spec = specs_[r];
-    json run{{"run", spec.label}, {"source", "qverify"}, {"precision", spec.precision}, {"method", method_name(spec.method)}};
+    StressRun run;
+    run.run = spec.label;
+    run.precision = spec.precision;
+    run.method = spec.method;
     RunMeasure m;
-    bool flagged = false, returned = false;  // returned: the run gave a result (not refused)
-    std::string status;
     try {
-      const ResultSet rs = computed_results(sc, *parse_precision(spec.precision), spec.method, spec.frame);
-      status = fam_.reflection ? rs.reflections[0].status : rs.shadows[0].status;
+      const ResultSet rs = computed_results(sc, spec.precision, spec.method, spec.frame);
+      run.status = fam_.reflection ? rs.reflections[0].status : rs.shadows[0].status;
       const auto& acc = fam_.reflection ? rs.reflections[0].accuracy : rs.shadows[0].accuracy;
       if (acc) {  // also for a non-finite result, which eval flags
-        returned = true;
-        flagged = acc->inaccurate;
-        run["error_bound"] = acc->bound ? json(*acc->bound) : json(nullptr);
+        run.returned = true;
+        run.inaccurate = acc->inaccurate;
+        run.error_bound = acc->bound;
       }
       m = measure_run(fam_, rs, pts, ref);
       if (m.present) {
-        run["frame"] = m.origin ? "local" : "world";
+        run.frame = m.origin ? Frame::local : Frame::world;
         if (r == kDefaultRun) robust_origin = m.origin;
       }
     } catch (const InputError& e) {
-      status = std::string("refused: ") + e.problem;
+      run.status = std::string("refused: ") + e.problem;
     }
-    run["status"] = status;
-    run["matrix_error"] = num(m.matrix);
-    run["geometric_error"] = num(m.geometric);
-    run["item_geometric_error"] = num(m.item_geometric);
-    run["flags"] = flagged ? json::array({"inaccurate"}) : json::array();
+    run.matrix_error = m.matrix;
+    run.geometric_error = m.geometric;
+    run.item_geometric_error = m.item_geometric;
     // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
     // below: an error above the target here proves the flag missing; a flag where these points show less
     // than target / 100 proves nothing (the error may sit between them) and is listed as information.
-    const json at{{"param", v}, {"run", spec.label}, {"item_geometric_error", num(m.item_geometric)}};
-    if (returned && !(m.item_geometric <= kDefaultAccuracy) && !flagged) missed_.push_back(at);
-    if (m.item_geometric < kDefaultAccuracy / 100 && flagged) flagged_below_.push_back(at);
+    const FlaggedRun at{v, spec.label, m.item_geometric};
+    if (run.returned && !(m.item_geometric <= kDefaultAccuracy) && !run.inaccurate) result_.flag_check.missed.push_back(at);
+    if (m.item_geometric < kDefaultAccuracy / 100 && run.inaccurate) result_.flag_check.flagged_below.push_back(at);
     geo_[r].push_back(m.geometric);
-    flags_[r].push_back(flagged);
+    flags_[r].push_back(run.inaccurate);
     mat_[r].push_back(m.matrix);
     return run;
   }
 
   /// The candidate at point K, on the very scene text, measured by the same code as qverify's runs; a failed
   /// call or a result beyond the accuracy target leaves a reproducer.
-  json candidate_run(std::size_t K, double v, const std::string& text, const Scene& sc, const ItemPoints& pts,
-                     const Evaluation<Q>& ref) {
+  StressRun candidate_run(std::size_t K, double v, const std::string& text, const Scene& sc, const ItemPoints& pts,
+                          const Evaluation<Q>& ref) {
     const CandidateCall call = call_candidate(*cand_, sc, text, fam_.name + "-" + std::to_string(K));
-    json run{{"run", cand_->name}, {"source", "candidate"}};
+    StressRun run;
+    run.run = cand_->name;
+    run.candidate = true;
     RunMeasure m;
     if (call.ok) {
-      run["precision"] = call.results.precision.name();
-      run["method"] = method_name(call.results.method);
+      run.precision = call.results.precision;
+      run.method = call.results.method;
       m = measure_run(fam_, call.results, pts, ref);
-      run["frame"] = m.origin ? "local" : "world";
+      run.frame = m.origin ? Frame::local : Frame::world;
       const std::string& claimed = fam_.reflection ? call.results.reflections[0].status : call.results.shadows[0].status;
-      run["status"] = claimed.empty() ? std::string("unstated") : claimed;
+      run.status = claimed.empty() ? std::string("unstated") : claimed;
     } else {
-      run["precision"] = nullptr;
-      run["method"] = nullptr;
-      run["status"] = "candidate-failed";
-      run["error"] = call.error;
+      run.status = "candidate-failed";
+      run.failed_call = true;
+      run.error = call.error;
     }
-    run["seconds"] = call.seconds;
-    run["matrix_error"] = num(m.matrix);
-    run["geometric_error"] = num(m.geometric);
-    run["item_geometric_error"] = num(m.item_geometric);
-    run["flags"] = json::array();
-    const bool beyond = call.ok && !(m.item_geometric <= opt_.accuracy);
-    run["beyond_accuracy"] = beyond;
-    totals_.call_seconds.push_back(call.seconds);
-    if (!call.ok || beyond) {
+    run.seconds = call.seconds;
+    run.matrix_error = m.matrix;
+    run.geometric_error = m.geometric;
+    run.item_geometric_error = m.item_geometric;
+    run.beyond_accuracy = call.ok && !(m.item_geometric <= opt_.accuracy);
+    totals_->call_seconds.push_back(call.seconds);
+    if (!call.ok || run.beyond_accuracy) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.3g", m.item_geometric);
       char tbuf[32];
@@ -491,16 +463,16 @@ class FamilySweep {
           !call.ok ? "candidate-failed: " + call.error
                    : std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
                          " of the object size exceeds the accuracy target " + tbuf;
-      json rep = write_candidate_reproducer(failures_dir_, cand_->name, fam_.name, K, v, text, call, reason);
-      run["reproducer"] = rep["scene"];
-      rep["status"] = call.ok ? "beyond-accuracy" : "candidate-failed";
-      rep["item_geometric_error"] = num(m.item_geometric);
-      totals_.reproducers.push_back(rep);
-      if (cand_first_reason_.is_null()) cand_first_reason_ = reason;
-      (call.ok ? fam_beyond_ : fam_failed_) += 1;
+      StressReproducer rep{write_reproducer(failures_dir_, cand_->name, fam_.name, K, v, text, call, reason), !call.ok,
+                           m.item_geometric};
+      run.reproducer = rep.written.scene;
+      totals_->reproducers.push_back(std::move(rep));
+      StressCandidateFamily& fc = *result_.candidate;
+      if (!fc.breakdown_reason) fc.breakdown_reason = reason;
+      (call.ok ? fc.beyond_accuracy : fc.failed_calls) += 1;
     }
     cand_failed_.push_back(!call.ok);
-    cand_bad_.push_back(!call.ok || beyond);
+    cand_bad_.push_back(!call.ok || run.beyond_accuracy);
     geo_[specs_.size()].push_back(m.geometric);
     mat_[specs_.size()].push_back(m.matrix);
     return run;
@@ -521,36 +493,13 @@ class FamilySweep {
   const std::vector<RunSpec>& specs_;
   const Candidate* cand_;
   std::filesystem::path failures_dir_;
-  CandidateTotals& totals_;
-  json points_ = json::array();
+  std::optional<StressCandidateSummary>& totals_;  ///< the candidate's totals over every family (set with a candidate)
+  StressFamilyResult result_;
   std::vector<std::vector<double>> geo_, mat_;  ///< per run (the candidate's last), per point
   std::vector<std::vector<bool>> flags_;        ///< per own run, per point: flagged inaccurate by eval
   std::vector<bool> cand_failed_, cand_bad_;    ///< per point: the call failed; failed or beyond the accuracy target
-  json cand_first_reason_ = nullptr, cand_at_ = nullptr, breakdown_;
-  int fam_failed_ = 0, fam_beyond_ = 0;
-  json missed_ = json::array(), flagged_below_ = json::array();
   std::vector<double> params_, predicted_, floors_;
-  bool all_meet_ = true;
 };
-
-/// The document's "candidate" section.
-json candidate_section(const Candidate& cand, const StressOptions& opt, const CandidateTotals& t) {
-  std::vector<double> sorted = t.call_seconds;
-  std::sort(sorted.begin(), sorted.end());
-  json c = candidate_section_head(cand, opt.accuracy);
-  c["rule"] = "the candidate is given each point's scene (the file of its reproducer) and must return a qverify-eval/1 "
-              "document with the family's item; its results are measured like every run (matrix and geometric error "
-              "against exact on the same points); a point is a reproducer when the call failed (status "
-              "candidate-failed, with error) or the item's geometric error over all its results (P, polar plane and R, "
-              "or B) exceeds accuracy; breakdown is the first such parameter value";
-  c["calls"] = t.call_seconds.size();
-  c["failed_calls"] = t.failed_calls;
-  c["beyond_accuracy"] = t.beyond_calls;
-  c["median_seconds_per_call"] = sorted.empty() ? json(nullptr) : json(sorted[sorted.size() / 2]);
-  c["failures_dir"] = t.reproducers.empty() ? json(nullptr) : json("failures");
-  c["reproducers"] = t.reproducers;
-  return c;
-}
 
 }  // namespace
 
@@ -563,28 +512,24 @@ StressReport run_stress(const StressOptions& opt) {
   create_output_directory(opt.out_dir);  // before the sweeps: a bad --out fails at once
   const auto specs = run_specs();
   const std::filesystem::path failures_dir = std::filesystem::path(opt.out_dir) / "failures";
-  if (opt.candidate) remove_candidate_reproducers(failures_dir, opt.candidate->name);
-  CandidateTotals totals;
-  json families = json::array();
-  std::vector<std::pair<std::string, Plot>> plots;
+  StressReport report;
+  if (opt.candidate) {
+    remove_candidate_reproducers(failures_dir, opt.candidate->name);
+    // who it was, without its function (which may hold another language's objects: they stay with the caller)
+    const Candidate& c = *opt.candidate;
+    report.candidate = StressCandidateSummary{Candidate{c.name, c.description, c.timeout_seconds, {}}, opt.accuracy, {}, 0, 0, {}};
+  }
   for (const StressFamily& fam : stress_families()) {
     if (!opt.families.empty() && std::find(opt.families.begin(), opt.families.end(), fam.name) == opt.families.end())
       continue;
     if (opt.progress) opt.progress("stress: " + fam.name);
-    FamilySweep sweep(fam, opt, specs, failures_dir, totals);
+    FamilySweep sweep(fam, opt, specs, failures_dir, report.candidate);
     for (std::size_t K = opt.worst_only ? fam.values.size() - 1 : 0; K < fam.values.size(); ++K) sweep.point(K);
-    families.push_back(sweep.summary());
-    plots.emplace_back(fam.name, sweep.plot());
+    sweep.summarize();
+    report.plots.emplace_back(fam.name, sweep.plot());
+    report.families.push_back(sweep.take_result());
   }
-  json doc{{"format", "qverify-stress/1"},
-           {"reference", "exact"},
-           {"geometric_error", "max over exact sample points (terminator points for P, reflected points of A for B, "
-                               "sampled in Q(sqrt d)) of the first-order distance |x^T Q x| / |grad|, in the result's own "
-                               "frame, divided by the object's size"},
-           {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"}};
-  if (opt.candidate) doc["candidate"] = candidate_section(*opt.candidate, opt, totals);
-  doc["families"] = families;
-  return {std::move(doc), std::move(plots)};
+  return report;
 }
 
 }  // namespace qverify

@@ -6,6 +6,7 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/sampling.hpp>
 #include <qverify/eval/eval.hpp>
+#include <qverify/report/eval_document.hpp>
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/studies/paper_audit.hpp>
 
@@ -178,13 +179,13 @@ TEST_CASE("interval results enclose the exact results of the same formula", "[ex
 }
 
 TEST_CASE("adaptive mode: every item is within its certified bound of the exact result", "[exact][adaptive]") {
-  CHECK_THROWS(adaptive_eval_document(load_scene(std::string(QVERIFY_SCENES) + "/egg-sun-wall.json"), Method::direct, 1e-18));
+  CHECK_THROWS(eval_json(adaptive_eval_report(load_scene(std::string(QVERIFY_SCENES) + "/egg-sun-wall.json"), Method::direct, 1e-18)));
   std::map<std::string, int> stages;
   for (const char* file : {"mixed-requests.json", "egg-sun-wall.json", "far-ball-lamp-floor.json"})
     for (double tol : {1e-9, 1e-15, 2e-16, std::ldexp(1.0, -53)}) {
       INFO(file << " " << tol);
       const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + file);
-      const auto doc = adaptive_eval_document(sc, Method::direct, tol);
+      const auto doc = eval_json(adaptive_eval_report(sc, Method::direct, tol));
       const Evaluation<Q> ex = evaluate<Q>(sc, Method::direct, Frame::world);
       auto check = [&](const nlohmann::ordered_json& got, const auto& want, double bound) {
         Q scale = max_abs(want);

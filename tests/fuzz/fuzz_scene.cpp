@@ -1,7 +1,8 @@
 // libFuzzer target: the scene parser and loader, then evaluation in double and
-// (for small inputs) exact arithmetic. A rejected scene must be an InputError;
-// any other exception, crash, leak or sanitizer report is a finding.
-#include <qverify/eval/eval.hpp>
+// (for small inputs) exact arithmetic, written as the eval document. A rejected
+// scene must be an InputError; any other exception, crash, leak or sanitizer
+// report is a finding.
+#include <qverify/report/eval_document.hpp>
 
 #include <cstdint>
 #include <string>
@@ -18,12 +19,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const qverify::AccuracyOptions few{qverify::kDefaultAccuracy, 4, 1};  // error bounds on 4 points: fuzzing wants speed
   for (const char* p : {"double", "float"}) {
     try {
-      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::direct, std::nullopt, few);
-      (void)qverify::eval_document(sc, *qverify::parse_precision(p), qverify::Method::paper, std::nullopt, few);
+      (void)qverify::eval_json(qverify::eval_report(sc, *qverify::parse_precision(p), qverify::Method::direct, std::nullopt, few)).dump();
+      (void)qverify::eval_json(qverify::eval_report(sc, *qverify::parse_precision(p), qverify::Method::paper, std::nullopt, few)).dump();
     } catch (const qverify::InputError&) {  // a value out of range for the precision
     }
   }
   if (size < 1024)
-    (void)qverify::eval_document(sc, *qverify::parse_precision("exact"), qverify::Method::paper, std::nullopt, few);
+    (void)qverify::eval_json(qverify::eval_report(sc, *qverify::parse_precision("exact"), qverify::Method::paper, std::nullopt, few)).dump();
   return 0;
 }

@@ -1,12 +1,16 @@
 // The stability families at their worst case, and the local frames of the robust path.
 #include <qverify/report/report.hpp>
+#include <qverify/report/stress.hpp>
 #include <qverify/studies/audit.hpp>
 #include <qverify/studies/stress.hpp>
+#include <qverify/report/audit_document.hpp>
+#include <qverify/report/eval_document.hpp>
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -23,19 +27,20 @@ TEST_CASE("every stress family at its worst case: the default double path meets 
     opt.out_dir = (std::filesystem::temp_directory_path() / ("qverify-stress-" + std::to_string(::getpid()))).string();
     opt.families = {fam.name};
     opt.worst_only = true;
-    const auto doc = run_stress(opt).document;
-    REQUIRE(doc["families"].size() == 1);
-    const auto& f = doc["families"][0];
-    const auto& p = f["points"][0];
-    INFO("param " << p["param"].get<double>() << " target " << p["target"].get<double>());
-    CHECK(f["default_meets_target"].get<bool>());
-    INFO(f["flag_check"].dump());
-    CHECK(f["flag_check"]["ok"].get<bool>());  // every run beyond the target was flagged
+    const StressReport report = run_stress(opt);
+    REQUIRE(report.families.size() == 1);
+    const StressFamilyResult& f = report.families[0];
+    REQUIRE(f.points.size() == 1);
+    const StressPoint& p = f.points[0];
+    INFO("param " << p.param << " target " << p.target);
+    CHECK(f.default_meets_target);
+    INFO(stress_json(report)["families"][0]["flag_check"].dump());
+    CHECK(f.flag_check.ok());  // every run beyond the target was flagged
     // every point is run in at least 4 precisions and both methods
     std::set<std::string> precisions, methods;
-    for (const auto& r : p["runs"]) {
-      precisions.insert(r["precision"].get<std::string>());
-      methods.insert(r["method"].get<std::string>());
+    for (const StressRun& r : p.runs) {
+      precisions.insert(r.precision->name());
+      methods.insert(method_name(*r.method));
     }
     CHECK(precisions.size() >= 4);
     CHECK(methods.size() == 2);
@@ -47,13 +52,14 @@ TEST_CASE("the sweeps separate the naive and the robust double paths where they 
   opt.out_dir = (std::filesystem::temp_directory_path() / ("qverify-stress2-" + std::to_string(::getpid()))).string();
   opt.families = {"far-from-origin", "mirror-far", "decimal-inputs"};
   opt.worst_only = true;
-  const auto doc = run_stress(opt).document;
-  for (const auto& f : doc["families"]) {
-    INFO(f["name"].get<std::string>());
-    double naive = 0, robust = 1;
-    for (const auto& r : f["points"][0]["runs"]) {
-      if (r["run"] == "double/direct/world (naive)") naive = r["geometric_error"].is_null() ? 1e300 : r["geometric_error"].get<double>();
-      if (r["run"] == "double/direct (default, robust)") robust = r["geometric_error"].get<double>();
+  const StressReport report = run_stress(opt);
+  REQUIRE(report.families.size() == 3);
+  for (const StressFamilyResult& f : report.families) {
+    INFO(f.name);
+    double naive = 0, robust = 1;  // errors are infinite where a run gave no finite item
+    for (const StressRun& r : f.points[0].runs) {
+      if (r.run == "double/direct/world (naive)") naive = r.geometric_error;
+      if (r.run == "double/direct (default, robust)") robust = r.geometric_error;
     }
     CHECK(naive > 1e-3);   // the naive world-frame double result is geometrically wrong here
     CHECK(robust < 1e-9);  // the default one is not
@@ -102,16 +108,15 @@ Candidate eval_candidate(const std::string& name, std::optional<Frame> frame) {
   c.name = name;
   c.call = [frame](const CandidateInput& in) {
     CandidateOutput o;
-    o.document = eval_document(in.scene, *parse_precision("double"), Method::direct, frame).dump();
+    o.document = eval_json(eval_report(in.scene, *parse_precision("double"), Method::direct, frame)).dump();
     return o;
   };
   return c;
 }
 
-const nlohmann::ordered_json& candidate_run(const nlohmann::ordered_json& point) {
-  const auto& runs = point["runs"];
-  REQUIRE(runs.back()["source"] == "candidate");
-  return runs.back();
+const StressRun& candidate_run(const StressPoint& point) {
+  REQUIRE(point.runs.back().candidate);
+  return point.runs.back();
 }
 
 }  // namespace
@@ -124,37 +129,46 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
   opt.worst_only = true;
   SECTION("qverify's default path as the candidate: the same numbers, no reproducer") {
     opt.candidate = eval_candidate("robust", std::nullopt);
-    const auto doc = run_stress(opt).document;
-    const auto& p = doc["families"][0]["points"][0];
-    const auto& c = candidate_run(p);
-    CHECK(c["run"] == "robust");
-    CHECK(c["status"] == "ok");
-    CHECK(c["frame"] == "local");
-    CHECK(c["seconds"].get<double>() >= 0);
-    for (const auto& r : p["runs"])
-      if (r["run"] == "double/direct (default, robust)") {
-        CHECK(c["geometric_error"] == r["geometric_error"]);  // the same measurement of the same matrices
-        CHECK(c["matrix_error"] == r["matrix_error"]);
+    const StressReport report = run_stress(opt);
+    const StressPoint& p = report.families[0].points[0];
+    const StressRun& c = candidate_run(p);
+    CHECK(c.run == "robust");
+    CHECK(c.status == "ok");
+    CHECK(c.frame == Frame::local);
+    CHECK(c.seconds >= 0);
+    for (const StressRun& r : p.runs)
+      if (r.run == "double/direct (default, robust)") {
+        CHECK(c.geometric_error == r.geometric_error);  // the same measurement of the same matrices
+        CHECK(c.matrix_error == r.matrix_error);
       }
-    CHECK(doc["families"][0]["candidate"]["breakdown"].is_null());
-    CHECK(doc["candidate"]["reproducers"].empty());
+    CHECK_FALSE(report.families[0].candidate->breakdown);
+    CHECK(report.candidate->reproducers.empty());
+    CHECK(report.candidate->call_seconds.size() == 1);
+    const auto doc = stress_json(report);  // the candidate's run in the document, beside qverify's
+    CHECK(doc["families"][0]["points"][0]["runs"].back()["source"] == "candidate");
+    CHECK(doc["families"][0]["points"][0]["runs"].back()["frame"] == "local");
     CHECK(doc["candidate"]["calls"] == 1);
     CHECK_FALSE(std::filesystem::exists(dir / "failures"));
   }
   SECTION("the world frame as the candidate: beyond the target, a reproducer with what it returned") {
     opt.candidate = eval_candidate("world", Frame::world);
-    const auto doc = run_stress(opt).document;
-    const auto& f = doc["families"][0];
-    const auto& c = candidate_run(f["points"][0]);
-    CHECK(c["status"] == "ok");
-    CHECK(c["beyond_accuracy"] == true);
-    CHECK(c["item_geometric_error"].get<double>() > 1e-3);
-    CHECK(f["candidate"]["breakdown"] == f["points"][0]["param"]);
-    CHECK(f["breakdown"]["world"] == f["points"][0]["param"]);
-    REQUIRE(doc["candidate"]["reproducers"].size() == 1);
-    const auto& rep = doc["candidate"]["reproducers"][0];
-    CHECK(rep["scene"] == "failures/world-far-from-origin-12.json");
-    CHECK(rep["status"] == "beyond-accuracy");
+    const StressReport report = run_stress(opt);
+    const StressFamilyResult& f = report.families[0];
+    const StressRun& c = candidate_run(f.points[0]);
+    CHECK(c.status == "ok");
+    CHECK(c.beyond_accuracy);
+    CHECK(c.item_geometric_error > 1e-3);
+    CHECK(f.candidate->breakdown == f.points[0].param);
+    CHECK(f.runs.back().run == "world");
+    CHECK(f.runs.back().breakdown == f.points[0].param);
+    REQUIRE(report.candidate->reproducers.size() == 1);
+    const StressReproducer& rep = report.candidate->reproducers[0];
+    CHECK(rep.written.scene == "failures/world-far-from-origin-12.json");
+    CHECK_FALSE(rep.failed_call);
+    const auto doc = stress_json(report);
+    CHECK(doc["families"][0]["breakdown"]["world"] == doc["families"][0]["points"][0]["param"]);
+    CHECK(doc["candidate"]["reproducers"][0]["scene"] == "failures/world-far-from-origin-12.json");
+    CHECK(doc["candidate"]["reproducers"][0]["status"] == "beyond-accuracy");
     // the reproducer is the very scene, and loads; beside it what the candidate returned
     const Scene sc = load_scene((dir / "failures/world-far-from-origin-12.json").string());
     CHECK(sc.name == "far-from-origin");
@@ -164,8 +178,8 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
     CHECK(std::filesystem::exists(dir / "failures/world-far-from-origin-12.log"));
     // a second run removes the reproducers of the first
     opt.candidate = eval_candidate("world", std::nullopt);
-    const auto again = run_stress(opt).document;
-    CHECK(again["candidate"]["reproducers"].empty());
+    const StressReport again = run_stress(opt);
+    CHECK(again.candidate->reproducers.empty());
     CHECK_FALSE(std::filesystem::exists(dir / "failures/world-far-from-origin-12.json"));
   }
   SECTION("typed results instead of a document") {
@@ -177,10 +191,10 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
       return o;
     };
     opt.candidate = c;
-    const auto doc = run_stress(opt).document;
-    const auto& r = candidate_run(doc["families"][0]["points"][0]);
-    CHECK(r["precision"] == "float128");
-    CHECK(r["item_geometric_error"].get<double>() < 1e-9);
+    const StressReport report = run_stress(opt);
+    const StressRun& r = candidate_run(report.families[0].points[0]);
+    CHECK(r.precision->name() == "float128");
+    CHECK(r.item_geometric_error < 1e-9);
   }
   std::filesystem::remove_all(dir);
 }
@@ -197,7 +211,7 @@ TEST_CASE("failing candidate calls are recorded at their point and the sweep goe
     if (k == "1") throw std::runtime_error("out of coffee");
     if (k == "2") o.document = "garbage {";
     else if (k == "3") o.document = R"({"format": "qverify-eval/1", "shadows": []})";
-    else o.document = eval_document(in.scene, *parse_precision("double"), Method::direct).dump();
+    else o.document = eval_json(eval_report(in.scene, *parse_precision("double"), Method::direct)).dump();
     return o;
   };
   StressOptions opt;
@@ -206,32 +220,42 @@ TEST_CASE("failing candidate calls are recorded at their point and the sweep goe
   opt.candidate = c;
   const StressReport report = run_stress(opt);
   write_stress_report(dir, report);  // the HTML below
-  const auto& doc = report.document;
-  const auto& f = doc["families"][0];
-  const auto& pts = f["points"];
+  const StressFamilyResult& f = report.families[0];
+  const std::vector<StressPoint>& pts = f.points;
   REQUIRE(pts.size() == 13);
   const char* reasons[] = {"exit status 1; stderr: boom", "the call threw: out of coffee", "unreadable output: flaky output",
                            "incomplete output: shadow (obj, light): requested item missing"};
   for (std::size_t k = 0; k < 4; ++k) {
     INFO("point " << k);
-    const auto& r = candidate_run(pts[k]);
-    CHECK(r["status"] == "candidate-failed");
-    CHECK(r["error"].get<std::string>().rfind(reasons[k], 0) == 0);
-    CHECK(r["geometric_error"].is_null());
-    CHECK(r["reproducer"] == "failures/flaky-far-from-origin-" + std::to_string(k) + ".json");
+    const StressRun& r = candidate_run(pts[k]);
+    CHECK(r.status == "candidate-failed");
+    CHECK(r.failed_call);
+    CHECK(r.error.rfind(reasons[k], 0) == 0);
+    CHECK(std::isinf(r.geometric_error));
+    CHECK(r.reproducer == "failures/flaky-far-from-origin-" + std::to_string(k) + ".json");
     // nothing else is lost: qverify's own runs at the point are all there
-    CHECK(pts[k]["runs"].size() == 10);
-    CHECK(pts[k]["runs"][3]["geometric_error"].get<double>() < 1e-9);
+    CHECK(pts[k].runs.size() == 10);
+    CHECK(pts[k].runs[3].geometric_error < 1e-9);
   }
-  CHECK(candidate_run(pts[0])["seconds"] == 0.5);  // the call's own time
-  for (std::size_t k = 4; k < pts.size(); ++k) CHECK(candidate_run(pts[k])["status"] == "ok");
-  CHECK(f["candidate"]["breakdown"] == pts[0]["param"]);
-  CHECK(f["candidate"]["failed_calls"] == 4);
-  CHECK(doc["candidate"]["failed_calls"] == 4);
+  CHECK(candidate_run(pts[0]).seconds == 0.5);  // the call's own time
+  for (std::size_t k = 4; k < pts.size(); ++k) CHECK(candidate_run(pts[k]).status == "ok");
+  CHECK(f.candidate->breakdown == pts[0].param);
+  CHECK(f.candidate->failed_calls == 4);
+  REQUIRE(report.candidate);
+  CHECK(report.candidate->failed_calls == 4);
+  CHECK(report.candidate->call_seconds.size() == 13);
+  REQUIRE(report.candidate->reproducers.size() == 4);
+  CHECK(report.candidate->reproducers[0].written.returned == "failures/flaky-far-from-origin-0.out.json");  // what it returned
+  CHECK_FALSE(report.candidate->reproducers[1].written.returned);
+  // in the document: a failed call has no precision and no errors, its reproducer returned nothing
+  const auto doc = stress_json(report);
+  const auto& failed = doc["families"][0]["points"][0]["runs"].back();
+  CHECK(failed["precision"].is_null());
+  CHECK(failed["geometric_error"].is_null());
+  CHECK(failed["error"].get<std::string>().rfind(reasons[0], 0) == 0);
   CHECK(doc["candidate"]["calls"] == 13);
-  REQUIRE(doc["candidate"]["reproducers"].size() == 4);
-  CHECK(doc["candidate"]["reproducers"][0]["returned"] == "failures/flaky-far-from-origin-0.out.json");  // what it returned
   CHECK(doc["candidate"]["reproducers"][1]["returned"].is_null());
+  CHECK(doc["candidate"]["reproducers"][1]["status"] == "candidate-failed");
   CHECK(std::filesystem::exists(dir / "failures/flaky-far-from-origin-0.out.json"));
   // the HTML report has the candidate's section
   std::ifstream html(dir / "report.html");
@@ -256,7 +280,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
   opt.scene_text = "{}";  // what the candidate is given (not parsed by these callables)
   SECTION("right") {
     opt.candidate = eval_candidate("robust", std::nullopt);
-    const auto doc = run_audit(sc, opt).document;
+    const auto doc = audit_json(run_audit(sc, opt));
     const auto& row = doc["rows"].back();
     CHECK(row["source"] == "candidate");
     CHECK(row["run"] == "robust");
@@ -267,7 +291,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
   }
   SECTION("wrong") {
     opt.candidate = eval_candidate("world", Frame::world);
-    const auto doc = run_audit(sc, opt).document;
+    const auto doc = audit_json(run_audit(sc, opt));
     const auto& row = doc["rows"].back();
     CHECK(row["status"] == "fail");
     CHECK(row["max_geometric_error"].get<double>() > 1e-3);
@@ -280,7 +304,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
     c.name = "broken";
     c.call = [](const CandidateInput&) -> CandidateOutput { throw CandidateFailure("timed out after 1 s"); };
     opt.candidate = c;
-    const auto doc = run_audit(sc, opt).document;
+    const auto doc = audit_json(run_audit(sc, opt));
     const auto& row = doc["rows"].back();
     CHECK(row["status"] == "candidate-failed");
     CHECK(row["error"] == "timed out after 1 s");
@@ -298,19 +322,20 @@ TEST_CASE("the inaccurate flag sees errors between the samples: mixed magnitudes
   StressOptions opt;
   opt.out_dir = fresh_dir("mixed").string();
   opt.families = {"mixed-magnitudes"};
-  const auto doc = run_stress(opt).document;
-  const auto& f = doc["families"][0];
-  INFO(f["flag_check"].dump());
-  CHECK(f["flag_check"]["ok"].get<bool>());
+  const StressReport report = run_stress(opt);
+  const StressFamilyResult& f = report.families[0];
+  INFO(stress_json(report)["families"][0]["flag_check"].dump());
+  CHECK(f.flag_check.ok());
   bool seen = false;  // a flagged run at s = 1e8 that these samples measure below the target
-  for (const auto& p : f["points"])
-    if (p["param"].get<double>() == 1e8)
-      for (const auto& r : p["runs"])
-        if (r["run"] == "double/paper") {
+  for (const StressPoint& p : f.points)
+    if (p.param == 1e8)
+      for (const StressRun& r : p.runs)
+        if (r.run == "double/paper") {
           seen = true;
-          CHECK(r["flags"].dump() == "[\"inaccurate\"]");
-          CHECK(r["error_bound"].get<double>() > 1e-6);
-          CHECK(r["item_geometric_error"].get<double>() < 1e-9);
+          CHECK(r.inaccurate);
+          REQUIRE(r.error_bound);
+          CHECK(*r.error_bound > 1e-6);
+          CHECK(r.item_geometric_error < 1e-9);
         }
   CHECK(seen);
   std::filesystem::remove_all(opt.out_dir);

@@ -40,15 +40,11 @@ ReflectionCandidate<double> core_reflection(const Mat4<double>& A, const Vec4<do
   return c;
 }
 
-const nlohmann::ordered_json& run_named(const nlohmann::ordered_json& point, const std::string& run) {
-  for (const auto& r : point["runs"])
-    if (r["run"] == run) return r;
+const StressRun& run_named(const StressPoint& point, const std::string& run) {
+  for (const StressRun& r : point.runs)
+    if (r.run == run) return r;
   FAIL("no run " << run);
   throw std::logic_error("unreachable");
-}
-
-double item_error(const nlohmann::ordered_json& run) {
-  return run["item_geometric_error"].is_null() ? INFINITY : run["item_geometric_error"].get<double>();
 }
 
 }  // namespace
@@ -61,31 +57,33 @@ TEST_CASE("a correct function passes far from the origin except where the world 
   opt.families = {"far-from-origin"};
   opt.samples = 4;
   opt.candidate = item_candidate("core", core_shadow, nullptr);
-  const auto doc = run_stress(opt).document;
-  const auto& f = doc["families"][0];
-  const auto& pts = f["points"];
+  const StressReport report = run_stress(opt);
+  const StressFamilyResult& f = report.families[0];
+  const std::vector<StressPoint>& pts = f.points;
   REQUIRE(pts.size() == 13);
   int passed = 0;
-  for (const auto& p : pts) {
-    const double d = p["param"].get<double>();
+  for (const StressPoint& p : pts) {
+    const double d = p.param;
     INFO("d = " << d);
-    const auto& c = p["runs"].back();
-    REQUIRE(c["source"] == "candidate");
-    CHECK(c["status"] == "unstated");
-    CHECK(c["precision"] == "double");
-    CHECK(c["frame"] == "world");
-    const double naive = item_error(run_named(p, "double/direct/world (naive)"));
-    const double mine = item_error(c);
+    const StressRun& c = p.runs.back();
+    REQUIRE(c.candidate);
+    CHECK(c.status == "unstated");
+    CHECK(c.precision->name() == "double");
+    CHECK(c.frame == Frame::world);
+    // item geometric errors, infinite where a run gave no finite item
+    const double naive = run_named(p, "double/direct/world (naive)").item_geometric_error;
+    const double mine = c.item_geometric_error;
     INFO("candidate " << mine << ", qverify's naive world-frame double " << naive);
     // within the accuracy target wherever a world-frame double computation can be (the naive run meets it)
     if (naive <= 1e-9) CHECK(mine <= 1e-9);
     if (mine <= 1e-9) ++passed;
-    CHECK(c["beyond_accuracy"] == !(mine <= 1e-9));
+    CHECK(c.beyond_accuracy == !(mine <= 1e-9));
   }
   CHECK(passed >= 8);  // d = 1 .. 1e7 at least: the world frame holds up to there
   // where it fails, it is the world frame's breakdown (1e8, README), not a failed call
-  CHECK(f["candidate"]["failed_calls"] == 0);
-  CHECK(f["candidate"]["breakdown"].get<double>() >= 1e8);
+  CHECK(f.candidate->failed_calls == 0);
+  REQUIRE(f.candidate->breakdown);
+  CHECK(*f.candidate->breakdown >= 1e8);
   std::filesystem::remove_all(dir);
 }
 
@@ -105,25 +103,25 @@ TEST_CASE("a function that throws gives candidate-failed points and the sweep go
       nullptr);
   const StressReport report = run_stress(opt);
   write_stress_report(dir, report);
-  const auto& f = report.document["families"][0];
-  const auto& pts = f["points"];
+  const StressFamilyResult& f = report.families[0];
+  const std::vector<StressPoint>& pts = f.points;
   REQUIRE(pts.size() == 13);
   CHECK(calls == 13);
   for (std::size_t k = 0; k < pts.size(); ++k) {
     INFO("point " << k);
-    const auto& c = pts[k]["runs"].back();
+    const StressRun& c = pts[k].runs.back();
     if (k % 2 == 0) {
-      CHECK(c["status"] == "candidate-failed");
-      CHECK(c["error"] == "shadow (obj, light): no shadow today");
-      CHECK(c["reproducer"] == "failures/thrower-far-from-origin-" + std::to_string(k) + ".json");
+      CHECK(c.status == "candidate-failed");
+      CHECK(c.error == "shadow (obj, light): no shadow today");
+      CHECK(c.reproducer == "failures/thrower-far-from-origin-" + std::to_string(k) + ".json");
       CHECK(std::filesystem::exists(dir / ("failures/thrower-far-from-origin-" + std::to_string(k) + ".log")));
     } else {
-      CHECK(c["status"] == "unstated");
+      CHECK(c.status == "unstated");
     }
-    CHECK(pts[k]["runs"].size() == 10);  // qverify's nine runs are all there, and the candidate's
+    CHECK(pts[k].runs.size() == 10);  // qverify's nine runs are all there, and the candidate's
   }
-  CHECK(f["candidate"]["failed_calls"] == 7);
-  CHECK(f["candidate"]["breakdown"] == 1.0);
+  CHECK(f.candidate->failed_calls == 7);
+  CHECK(f.candidate->breakdown == 1.0);
   CHECK(std::filesystem::exists(dir / "report.html"));
   CHECK(std::filesystem::exists(dir / "far-from-origin.svg"));
   std::filesystem::remove_all(dir);

@@ -5,6 +5,7 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/scene/json_tree.hpp>
+#include <qverify/report/eval_document.hpp>
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
@@ -285,7 +286,7 @@ TEST_CASE("eval --tolerance: every item has an error_bound, and its flag agrees 
   int flagged = 0;
   for (const std::string& text : {std::string(far), read_text_file(std::string(QVERIFY_SCENES) + "/mixed-requests.json", 1 << 20)}) {
     const Scene sc = parse_scene(text, "scene.json");
-    const auto doc = adaptive_eval_document(sc, Method::direct, 1e-12);
+    const auto doc = eval_json(adaptive_eval_report(sc, Method::direct, 1e-12));
     const ResultSet rs = candidate_results_text(sc, doc.dump(), "adaptive.json", *parse_precision("double"));
     const auto checks = verify_document(sc, verify_results(sc, rs, VerifyOptions{}))["checks"];
     std::size_t k = 0;
@@ -310,7 +311,7 @@ TEST_CASE("qverify's own eval document, read back as a candidate, passes: far or
       "sphere": {"center": ["1/2", "1/4", 0], "radius": 1}}], "lights": [{"id": "lamp", "position": [3, 4, 8]}],
       "mirrors": [{"id": "m", "plane": [2, 3, 6, "-7000000000000"]}]})",
                                "far-mirror.json");
-  const auto doc = eval_document(sc, *parse_precision("double"), Method::direct, std::nullopt, AccuracyOptions{});
+  const auto doc = eval_json(eval_report(sc, *parse_precision("double"), Method::direct, std::nullopt, AccuracyOptions{}));
   REQUIRE(doc["reflections"][0].contains("origin"));
   const ResultSet rs = candidate_results_text(sc, doc.dump(), "eval.json", *parse_precision("double"));
   const VerifyReport v = verify_results(sc, rs, VerifyOptions{});

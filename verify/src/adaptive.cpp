@@ -11,7 +11,6 @@
 
 namespace qverify {
 
-using json = nlohmann::ordered_json;
 using Q = Rational;
 
 namespace {
@@ -24,18 +23,12 @@ using MpfiMatrix = Eigen::Matrix<Mpfi, Eigen::Dynamic, Eigen::Dynamic>;
 using ExactMatrix = Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>;
 
 /// A certified enclosure [lo_i, hi_i] of every entry of an exact result, as rationals.
-struct Enclosure {
+struct EntryEnclosure {
   std::vector<Q> lo, hi;
 };
 
-Q mpfr_to_q(const mpfr_t x) {
-  Q r;
-  mpfr_get_q(r.backend().data(), x);
-  return r;
-}
-
-Enclosure enclosure(const IntervalMatrix& m) {
-  Enclosure e;
+EntryEnclosure enclosure(const IntervalMatrix& m) {
+  EntryEnclosure e;
   for (Eigen::Index i = 0; i < m.size(); ++i) {
     e.lo.push_back(to_rational(m(i).inf()));
     e.hi.push_back(to_rational(m(i).sup()));
@@ -43,17 +36,17 @@ Enclosure enclosure(const IntervalMatrix& m) {
   return e;
 }
 
-Enclosure enclosure(const MpfiMatrix& m) {
-  Enclosure e;
+EntryEnclosure enclosure(const MpfiMatrix& m) {
+  EntryEnclosure e;
   for (Eigen::Index i = 0; i < m.size(); ++i) {
-    e.lo.push_back(mpfr_to_q(mpfi_lower(m(i)).backend().data()));
-    e.hi.push_back(mpfr_to_q(mpfi_upper(m(i)).backend().data()));
+    e.lo.push_back(to_rational(mpfi_lower(m(i))));
+    e.hi.push_back(to_rational(mpfi_upper(m(i))));
   }
   return e;
 }
 
-Enclosure enclosure(const ExactMatrix& m) {
-  Enclosure e;
+EntryEnclosure enclosure(const ExactMatrix& m) {
+  EntryEnclosure e;
   for (Eigen::Index i = 0; i < m.size(); ++i) {
     e.lo.push_back(m(i));
     e.hi.push_back(m(i));
@@ -62,7 +55,7 @@ Enclosure enclosure(const ExactMatrix& m) {
 }
 
 /// A lower bound of the largest |entry| of the exact result.
-Q scale_lower_bound(const Enclosure& e) {
+Q scale_lower_bound(const EntryEnclosure& e) {
   Q s = 0;
   for (std::size_t i = 0; i < e.lo.size(); ++i) {
     if (e.lo[i] > 0) s = std::max(s, e.lo[i]);
@@ -72,7 +65,7 @@ Q scale_lower_bound(const Enclosure& e) {
 }
 
 /// A certified bound of max_i |x_i - exact_i| / max_i |exact_i| (infinite when unknown).
-double certified_error(const Eigen::MatrixXd& x, const Enclosure& e) {
+double certified_error(const Eigen::MatrixXd& x, const EntryEnclosure& e) {
   Q worst = 0;
   for (std::size_t i = 0; i < e.lo.size(); ++i) {
     const double v = x(static_cast<Eigen::Index>(i));
@@ -126,10 +119,10 @@ struct Part {
 /// enclosure of the exact result; the stage certifies when every candidate entry is within
 /// tol x (largest |exact entry|) of every point of the enclosure. Stages: the double result
 /// (enclosure: interval), the interval midpoints, the MPFI midpoints (256 bits), the exact result
-/// rounded. Writes the parts and `certified` into j, the values written into `chosen`, and
-/// returns the stage.
-std::string certify(json& j, const std::vector<Part>& parts, double tol, std::vector<Eigen::MatrixXd>& chosen) {
-  using Candidate = std::function<std::pair<Eigen::MatrixXd, Enclosure>(const Part&)>;
+/// rounded. Writes the parts' values into the item's results and into `chosen`, and the stage and
+/// its bound into `certified`.
+void certify(EvalItem& item, const std::vector<Part>& parts, double tol, std::vector<Eigen::MatrixXd>& chosen) {
+  using Candidate = std::function<std::pair<Eigen::MatrixXd, EntryEnclosure>(const Part&)>;
   const std::vector<std::pair<std::string, Candidate>> stages = {
       {"double", [](const Part& p) { return std::make_pair(p.dbl, enclosure(p.enc)); }},
       {"interval", [](const Part& p) { return std::make_pair(midpoints(p.enc), enclosure(p.enc)); }},
@@ -150,26 +143,27 @@ std::string certify(json& j, const std::vector<Part>& parts, double tol, std::ve
       values.push_back(std::move(x));
     }
     if (bound <= tol || name == "exact") {
-      for (std::size_t k = 0; k < parts.size(); ++k) j[parts[k].key] = matrix_json(values[k]);
-      j["certified"] = {{"by", name}, {"relative_error_bound", bound}};
+      for (std::size_t k = 0; k < parts.size(); ++k)
+        for (auto& [key, m] : item.results)
+          if (key == parts[k].key) m = numbers_of(values[k]);
+      item.certified = StageCertificate{name, bound};
       chosen = std::move(values);
-      return name;
+      return;
     }
   }
-  return "exact";  // not reached
 }
 
 /// The item's error_bound (its geometric error on exact points, eval's rule) and `inaccurate` flag.
-void accuracy_of(json& j, const ItemAccuracy& acc) {
-  if (acc.inaccurate) j["flags"].push_back("inaccurate");
-  accuracy_json(j, &acc);
+void accuracy_of(EvalItem& item, const ItemAccuracy& acc) {
+  if (acc.inaccurate) item.flags.emplace_back("inaccurate");
+  item.accuracy = acc;
 }
 
 Mat4<Q> exact4(const Eigen::MatrixXd& m) { return exact_matrix(Mat4<double>(m)); }
 
 }  // namespace
 
-json adaptive_eval_document(const Scene& sc, Method method, double tol, const AccuracyOptions& accuracy) {
+EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, const AccuracyOptions& accuracy) {
   if (!(tol >= std::ldexp(1.0, -53))) throw std::invalid_argument("adaptive tolerance below 2^-53 cannot be certified in double");
   // Every stage in world coordinates and without rescaling, so that the stages are comparable.
   const Evaluation<double> d = evaluate<double>(sc, method, Frame::world);
@@ -187,67 +181,53 @@ json adaptive_eval_document(const Scene& sc, Method method, double tol, const Ac
     }
     return *mp;
   };
-  json doc;
-  doc["format"] = "qverify-eval/1";
-  doc["scene"] = sc.name;
-  doc["precision"] = "double";
-  doc["method"] = method_name(method);
-  doc["frame"] = "world";
-  doc["adaptive"] = {{"tolerance", tol},
-                     {"ladder", "double -> interval -> mpfr (MPFI intervals, 256 bits) -> exact"},
-                     {"rule", "an item is certified when every output entry is within tolerance x (largest |entry|) "
-                              "of the exact result of the same formula, for every point of a certified enclosure of "
-                              "that result: the double result (against the interval enclosure), else the interval "
-                              "midpoints, else the MPFI midpoints rounded to double, else the exact result rounded "
-                              "to double; relative_error_bound is the certified bound"}};
-  doc["accuracy"] = accuracy.target;
-  doc["error_bound_rule"] = error_bound_rule(accuracy);
+  EvalReport rep;
+  rep.scene = sc.name;
+  rep.precision = Precision{Precision::Kind::f64};
+  rep.method = method;
+  rep.frame = Frame::world;
+  rep.adaptive = AdaptiveFacts{tol, {}};
+  rep.accuracy = accuracy;
   const TypedScene<Q> exs = typed_scene<Q>(sc);
-  json shadows = json::array();
-  std::map<std::string, int> count;
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
     const ShadowItem<double>& dd = d.shadows[k];
     const ShadowResult<Interval>& ii = iv.shadows[k].result;
-    json j = shadow_json(sc, dd);
-    j["status"] = exact().shadows[k].result.status();  // statuses: exact
+    EvalItem item = shadow_item(sc, dd);
+    item.status = exact().shadows[k].result.status();  // statuses: exact
     std::vector<Eigen::MatrixXd> v;
-    ++count[certify(j,
-                    {{"P", dd.result.P, ii.P, [&] { return MpfiMatrix(mpfi().shadows[k].result.P); },
-                      [&] { return ExactMatrix(exact().shadows[k].result.P); }},
-                     {"polar_plane", dd.result.polar_plane, ii.polar_plane,
-                      [&] { return MpfiMatrix(mpfi().shadows[k].result.polar_plane); },
-                      [&] { return ExactMatrix(exact().shadows[k].result.polar_plane); }},
-                     {"R", dd.result.R, ii.R, [&] { return MpfiMatrix(mpfi().shadows[k].result.R); },
-                      [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
-                    tol, v)];
+    certify(item,
+            {{"P", dd.result.P, ii.P, [&] { return MpfiMatrix(mpfi().shadows[k].result.P); },
+              [&] { return ExactMatrix(exact().shadows[k].result.P); }},
+             {"polar_plane", dd.result.polar_plane, ii.polar_plane,
+              [&] { return MpfiMatrix(mpfi().shadows[k].result.polar_plane); },
+              [&] { return ExactMatrix(exact().shadows[k].result.polar_plane); }},
+             {"R", dd.result.R, ii.R, [&] { return MpfiMatrix(mpfi().shadows[k].result.R); },
+              [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
+            tol, v);
+    ++rep.adaptive->items_by_stage[item.certified->by];
     ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy, k);
-    accuracy_of(j, meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2])));
-    shadows.push_back(j);
+    accuracy_of(item, meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2])));
+    rep.shadows.push_back(std::move(item));
   }
-  json reflections = json::array();
   for (std::size_t k = 0; k < sc.reflections.size(); ++k) {
     const ReflectionItem<double>& dd = d.reflections[k];
     const ReflectionItem<Interval>& ii = iv.reflections[k];
-    json j = reflection_json(sc, dd);
-    j["status"] = exact().reflections[k].result.status();
+    EvalItem item = reflection_item(sc, dd);
+    item.status = exact().reflections[k].result.status();
     std::vector<Eigen::MatrixXd> v;
-    ++count[certify(j,
-                    {{"M", dd.M, ii.M, [&] { return MpfiMatrix(mpfi().reflections[k].M); },
-                      [&] { return ExactMatrix(exact().reflections[k].M); }},
-                     {"B", dd.result.B, ii.result.B, [&] { return MpfiMatrix(mpfi().reflections[k].result.B); },
-                      [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
-                    tol, v)];
+    certify(item,
+            {{"M", dd.M, ii.M, [&] { return MpfiMatrix(mpfi().reflections[k].M); },
+              [&] { return ExactMatrix(exact().reflections[k].M); }},
+             {"B", dd.result.B, ii.result.B, [&] { return MpfiMatrix(mpfi().reflections[k].result.B); },
+              [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
+            tol, v);
+    ++rep.adaptive->items_by_stage[item.certified->by];
     ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy, k);
-    accuracy_of(j, meter(std::nullopt, exact4(v[1])));
-    reflections.push_back(j);
+    accuracy_of(item, meter(std::nullopt, exact4(v[1])));
+    rep.reflections.push_back(std::move(item));
   }
-  doc["shadows"] = shadows;
-  doc["reflections"] = reflections;
-  doc["skipped"] = skipped_json(sc);
-  json esc;
-  for (const auto& [k, v] : count) esc[k] = v;
-  doc["adaptive"]["items_by_stage"] = esc;
-  return doc;
+  rep.skipped = skipped_pairs(sc);
+  return rep;
 }
 
 }  // namespace qverify

@@ -317,35 +317,23 @@ Candidate process_candidate(const std::string& name, const std::string& command,
   return c;
 }
 
-nlohmann::ordered_json write_candidate_reproducer(const std::filesystem::path& failures_dir, const std::string& name,
-                                                  const std::string& family, std::size_t k, double param,
-                                                  const std::string& scene_text, const CandidateCall& call,
-                                                  const std::string& reason) {
+Reproducer write_reproducer(const std::filesystem::path& failures_dir, const std::string& name,
+                            const std::string& family, std::size_t k, double param, const std::string& scene_text,
+                            const CandidateCall& call, const std::string& reason) {
   create_output_directory(failures_dir);
   const std::string base = safe_label(name + "-" + family + "-" + std::to_string(k));
   const std::string rel = failures_dir.filename().string() + "/";
-  nlohmann::ordered_json e{{"family", family}, {"k", k}, {"param", param}, {"reason", reason}};
+  Reproducer r{family, k, param, reason, rel + base + ".json", std::nullopt, rel + base + ".log"};
   write_file(failures_dir / (base + ".json"), scene_text);
-  e["scene"] = rel + base + ".json";
   if (!call.returned.empty()) {
     write_file(failures_dir / (base + ".out.json"), call.returned);
-    e["returned"] = rel + base + ".out.json";
-  } else e["returned"] = nullptr;
+    r.returned = rel + base + ".out.json";
+  }
   std::string log = "candidate: " + name + "\ncase: " + family + " point " + std::to_string(k) + "\nreason: " + reason +
                     "\nwall time: " + std::to_string(call.seconds) + " s\n";
   if (!call.log.empty()) log += call.log;
   write_file(failures_dir / (base + ".log"), log);
-  e["log"] = rel + base + ".log";
-  return e;
-}
-
-nlohmann::ordered_json candidate_section_head(const Candidate& c, double accuracy) {
-  using json = nlohmann::ordered_json;
-  return {{"name", c.name},
-          {"source", "candidate"},
-          {"command", c.description},
-          {"timeout_seconds", c.timeout_seconds > 0 ? json(c.timeout_seconds) : json(nullptr)},
-          {"accuracy", accuracy}};
+  return r;
 }
 
 void remove_candidate_reproducers(const std::filesystem::path& failures_dir, const std::string& name) {

@@ -1,6 +1,6 @@
 #include <qverify/verify/item_candidate.hpp>
 
-#include <qverify/eval/scalar_json.hpp>
+#include <qverify/eval/number.hpp>
 #include <qverify/exact/rounding.hpp>
 
 #include <cmath>

@@ -7,11 +7,9 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/precision.hpp>
-#include <qverify/eval/scalar_json.hpp>
+#include <qverify/eval/number.hpp>
 #include <qverify/eval/frames.hpp>
 #include <qverify/scene/scene.hpp>
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <optional>
@@ -370,109 +368,5 @@ Evaluation<S> evaluate_checked(const Scene& sc, Method method, std::optional<Fra
 }
 
 inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
-
-/// An origin (exact doubles) as three JSON numbers.
-inline nlohmann::ordered_json origin_json(const Vec3<Rational>& o) {
-  return {o(0).convert_to<double>(), o(1).convert_to<double>(), o(2).convert_to<double>()};
-}
-
-/// error_bound of an item (or null, with the reason in `reason`), and
-/// `certified_for`: the results bounded over every point of their geometry.
-inline void accuracy_json(nlohmann::ordered_json& j, const ItemAccuracy* acc) {
-  if (!acc) return;
-  j["error_bound"] = acc->bound ? nlohmann::ordered_json(*acc->bound) : nlohmann::ordered_json(nullptr);
-  j["certified_for"] = acc->certified;  // the results whose part of the bound holds at every point
-  if (!acc->reason.empty()) j["reason"] = acc->reason;
-}
-
-/// JSON of one shadow item (cli.md `shadows[]`), plus extra keys: `flags`
-/// (every special case that applies, and `inaccurate`), `error_bound`,
-/// `fallback` and the paper route's intermediates (`paper`: M, T, C, D, S).
-template <class S>
-nlohmann::ordered_json shadow_json(const Scene& sc, const ShadowItem<S>& it, const ItemAccuracy* acc = nullptr) {
-  nlohmann::ordered_json j;
-  j["quadric"] = sc.quadrics[it.pair.quadric].id;
-  j["light"] = sc.lights[it.pair.other].id;
-  const ShadowResult<S>& r = it.result;
-  bool finite = all_finite(r.P) && all_finite(r.polar_plane) && all_finite(r.R);
-  j["status"] = finite ? r.status() : "non-finite";
-  if (it.origin) j["origin"] = origin_json(*it.origin);
-  if (it.escalated) j["escalated"] = it.escalated;
-  j["P"] = matrix_json(r.P);
-  j["polar_plane"] = matrix_json(r.polar_plane);
-  j["R"] = matrix_json(r.R);
-  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
-  for (ShadowFlag f : kFlagOrder)
-    if (r.has(f)) flags.push_back(flag_word(f));
-  if (!finite) flags.push_back("non-finite");
-  if (acc && acc->inaccurate) flags.push_back("inaccurate");
-  j["flags"] = flags;
-  accuracy_json(j, acc);
-  if (r.direct_fallback) j["fallback"] = "direct formulas (the paper's frame does not exist for this light)";
-  if (r.has_paper) {
-    j["paper"] = {{"M", matrix_json(r.paper.frame.M)},
-                  {"T", matrix_json(r.paper.frame.T)},
-                  {"C", matrix_json(r.paper.C)},
-                  {"D", matrix_json(r.paper.D)},
-                  {"S", matrix_json(r.paper.S_plane)}};
-  }
-  return j;
-}
-
-template <class S>
-nlohmann::ordered_json reflection_json(const Scene& sc, const ReflectionItem<S>& it, const ItemAccuracy* acc = nullptr) {
-  nlohmann::ordered_json j;
-  j["quadric"] = sc.quadrics[it.pair.quadric].id;
-  j["mirror"] = sc.mirrors[it.pair.other].id;
-  const bool finite = all_finite(it.M) && all_finite(it.result.B);
-  j["status"] = finite ? it.result.status() : "non-finite";
-  if (it.origin) j["origin"] = origin_json(*it.origin);
-  if (it.escalated) j["escalated"] = it.escalated;
-  j["M"] = matrix_json(it.M);
-  j["B"] = matrix_json(it.result.B);
-  nlohmann::ordered_json flags = nlohmann::ordered_json::array();
-  if (it.result.degenerate) flags.push_back("degenerate-quadric");
-  if (!finite) flags.push_back("non-finite");
-  if (acc && acc->inaccurate) flags.push_back("inaccurate");
-  j["flags"] = flags;
-  accuracy_json(j, acc);
-  return j;
-}
-
-/// The `skipped` list: every pair that was not requested, with the reason.
-nlohmann::ordered_json skipped_json(const Scene& sc);
-
-/// The whole `qverify-eval/1` document.
-template <class S>
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method, std::optional<Frame> frame,
-                                     const AccuracyOptions& accuracy) {
-  const Evaluation<S> ev = evaluate_checked<S>(sc, method, frame, accuracy);
-  nlohmann::ordered_json doc;
-  doc["format"] = "qverify-eval/1";
-  doc["scene"] = sc.name;
-  doc["precision"] = prec.name();
-  doc["method"] = method_name(method);
-  doc["frame"] = ev.frame == Frame::local ? "local" : "world";
-  if (prec.kind == Precision::Kind::mpfr) doc["working_bits"] = mpfr_working_bits();
-  if (prec.kind == Precision::Kind::interval)
-    doc["certified"] = "every entry is an enclosure {lo, hi} of the exact result of the same formula; statuses "
-                       "decided in exact arithmetic";
-  doc["accuracy"] = accuracy.target;
-  doc["error_bound_rule"] = error_bound_rule(accuracy);
-  doc["shadows"] = nlohmann::ordered_json::array();
-  for (std::size_t k = 0; k < ev.shadows.size(); ++k)
-    doc["shadows"].push_back(shadow_json(sc, ev.shadows[k], &ev.shadow_accuracy[k]));
-  doc["reflections"] = nlohmann::ordered_json::array();
-  for (std::size_t k = 0; k < ev.reflections.size(); ++k)
-    doc["reflections"].push_back(reflection_json(sc, ev.reflections[k], &ev.reflection_accuracy[k]));
-  doc["skipped"] = skipped_json(sc);
-  doc["inputs_rounded"] = ev.scene.rounded_inputs;
-  return doc;
-}
-
-/// eval_document for a run-time precision (one explicit instantiation per
-/// scalar type, each in its own translation unit).
-nlohmann::ordered_json eval_document(const Scene& sc, const Precision& prec, Method method,
-                                     std::optional<Frame> frame = std::nullopt, const AccuracyOptions& accuracy = {});
 
 }  // namespace qverify

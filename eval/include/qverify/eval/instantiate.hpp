@@ -3,13 +3,14 @@
 /// Explicit instantiation (QVERIFY_INSTANTIATE) and suppression of implicit
 /// instantiation (QVERIFY_EXTERN) of the generic pipeline for a scalar type.
 #include <qverify/eval/eval.hpp>
+#include <qverify/eval/eval_report.hpp>
 #include <qverify/eval/timed.hpp>
 #include <qverify/exact/scalar_list.hpp>
 
 #define QVERIFY_INSTANTIATE(T)                                                                                       \
-  template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,          \
-                                                            qverify::Method, std::optional<qverify::Frame>,          \
-                                                            const qverify::AccuracyOptions&);                        \
+  template qverify::EvalReport qverify::eval_report<T>(const qverify::Scene&, const qverify::Precision&,             \
+                                                      qverify::Method, std::optional<qverify::Frame>,                \
+                                                      const qverify::AccuracyOptions&);                              \
   template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,          \
                                                           qverify::Method, std::optional<qverify::Frame>,            \
                                                           const std::optional<qverify::AccuracyOptions>&);           \
@@ -17,9 +18,9 @@
                                                           qverify::Method, double, int);
 
 #define QVERIFY_EXTERN(T)                                                                                            \
-  extern template nlohmann::ordered_json qverify::eval_document<T>(const qverify::Scene&, const qverify::Precision&,   \
-                                                                   qverify::Method, std::optional<qverify::Frame>,   \
-                                                                   const qverify::AccuracyOptions&);                 \
+  extern template qverify::EvalReport qverify::eval_report<T>(const qverify::Scene&, const qverify::Precision&,      \
+                                                             qverify::Method, std::optional<qverify::Frame>,         \
+                                                             const qverify::AccuracyOptions&);                       \
   extern template qverify::ResultSet qverify::computed_results<T>(const qverify::Scene&, const qverify::Precision&,   \
                                                                   qverify::Method, std::optional<qverify::Frame>,    \
                                                                   const std::optional<qverify::AccuracyOptions>&);   \

@@ -126,6 +126,63 @@ struct Comparison {
 /// disagreeing pixels.
 Comparison compare_methods(const Renderer& r, int repeat = 3, long max_checked = 2000);
 
+/// What `qverify render` says of one image: the typed report that
+/// report/render_document.hpp writes as the `qverify-render/1` document and
+/// as text.
+struct RenderReport {
+  std::string out;  ///< the PNG written
+  RenderMethod method = RenderMethod::transforms;
+  int width = 0, height = 0, threads = 0;
+  long pixels = 0;
+  double seconds = 0;
+  std::vector<std::string> left_out;  ///< requests the renderer cannot draw, in words
+};
+
+RenderReport render_report(const Renderer& r, const Image& img, RenderMethod method, const std::string& out);
+
+/// One pixel's reading by one procedure: its id and what it means in words (Renderer::describe).
+struct PixelReading {
+  PixelId id;
+  std::string reads;
+};
+
+/// A disagreeing pixel, read by both methods and (when decided) certified.
+struct DisagreeingPixel {
+  int x = 0, y = 0;
+  PixelReading transforms, raytrace;
+  std::optional<PixelReading> certified;  ///< the certified reading, when decided
+  unsigned bits = 0;                      ///< the precision that decided it
+  std::string right;                      ///< "transforms", "raytrace" or "neither" (when decided)
+};
+
+/// How many disagreeing pixels read as what, by each method and certified ("undecided" when not).
+struct DisagreementKind {
+  long pixels = 0;
+  std::string transforms, raytrace, certified;
+};
+
+/// What `qverify render --compare` says: the comparison's counts, the kinds of
+/// disagreement (most frequent first), the first disagreeing pixels read in
+/// words, and the verdict against the agreement asked for.
+struct CompareReport {
+  std::string scene_file;
+  int width = 0, height = 0, threads = 0, repeat = 1;
+  long pixels = 0, disagreeing = 0;
+  double agreement = 1, min_agreement = 1;
+  double seconds_transforms = 0, seconds_raytrace = 0;
+  long checked = 0, transforms_right = 0, raytrace_right = 0, neither = 0, undecided = 0, unchecked = 0;
+  long methods_differ_exactly = 0;
+  std::vector<DisagreementKind> kinds;
+  std::vector<DisagreeingPixel> disagreements;  ///< at most kListedDisagreements
+  std::vector<std::string> left_out;
+  bool pass() const { return agreement >= min_agreement; }
+};
+
+/// The disagreeing pixels a CompareReport lists one by one.
+inline constexpr std::size_t kListedDisagreements = 50;
+
+CompareReport compare_report(const Scene& sc, const Renderer& r, const Comparison& c, int repeat, double min_agreement);
+
 /// The ID buffer as an RGB image (Renderer::id_colour).
 std::vector<std::uint8_t> id_image(const Image& img);
 

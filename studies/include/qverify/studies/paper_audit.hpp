@@ -2,12 +2,10 @@
 /// \file paper_audit.hpp
 /// `qverify paper`: every printed formula of the paper, (1) to (11), taken as
 /// printed in the transcription and checked against its own definition, in
-/// exact arithmetic. Evidence is symbolic wherever possible: the formula is run
+/// exact arithmetic (report/paper_document.hpp writes it as a document and as text). Evidence is symbolic wherever possible: the formula is run
 /// through the generic core with the symbolic scalar `Poly` and the claim is
 /// decided as a polynomial identity. A failing formula gets an exact
 /// counterexample and a corrected form, itself proved symbolically.
-
-#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -26,7 +24,5 @@ struct AuditEntry {
 
 /// Runs the whole audit (a fraction of a second).
 std::vector<AuditEntry> audit_paper();
-
-nlohmann::ordered_json audit_json(const std::vector<AuditEntry>& entries);
 
 }  // namespace qverify

@@ -9,11 +9,12 @@
 /// item of eval, its error_bound (the geometric error of the matrices written,
 /// on exact points) with `inaccurate` when that may exceed the accuracy target.
 
-#include <qverify/eval/eval.hpp>
+#include <qverify/eval/eval_report.hpp>
 
 namespace qverify {
 
-nlohmann::ordered_json adaptive_eval_document(const Scene& sc, Method method, double tolerance,
-                                              const AccuracyOptions& accuracy = AccuracyOptions{});
+/// The adaptive evaluation of `sc` (its `adaptive` facts and every item's `certified` stage set).
+EvalReport adaptive_eval_report(const Scene& sc, Method method, double tolerance,
+                                const AccuracyOptions& accuracy = AccuracyOptions{});
 
 }  // namespace qverify

@@ -83,22 +83,26 @@ std::string candidate_name_problem(const std::string& name);
 /// both {scene} and {out}. Otherwise the problem, in words.
 std::string candidate_command_problem(const std::string& command);
 
+/// A reproducer of one failing case, as written: the case, why, and its files'
+/// paths relative to the report's directory ("failures/...").
+struct Reproducer {
+  std::string family;  ///< the stress family, or "audit"
+  std::size_t k = 0;   ///< the point's index in the family
+  double param = 0;    ///< the family's parameter at the point
+  std::string reason;
+  std::string scene;                    ///< the scene exactly as the candidate was given it
+  std::optional<std::string> returned;  ///< what it returned (none when it returned nothing)
+  std::string log;                      ///< the reason and the candidate's other output
+};
+
 /// Writes a reproducer of one failing case into `failures_dir` (created when
 /// missing): BASE.json, the scene exactly as the candidate was given it;
 /// BASE.out.json, what it returned (when it returned anything); BASE.log,
-/// `reason` and its other output. BASE is NAME-FAMILY-K. Returns the entry
-/// for report.json: family, k, param, reason, and the three files' paths
-/// relative to the report's directory ("failures/..."; returned null when
-/// nothing was returned). Checked writes (FileWriteError).
-nlohmann::ordered_json write_candidate_reproducer(const std::filesystem::path& failures_dir, const std::string& name,
-                                                  const std::string& family, std::size_t k, double param,
-                                                  const std::string& scene_text, const CandidateCall& call,
-                                                  const std::string& reason);
-
-/// The head of a report's "candidate" section (audit and stress): name,
-/// source, command, timeout_seconds (null: none) and the accuracy target; each
-/// study appends its rule and its counts.
-nlohmann::ordered_json candidate_section_head(const Candidate& c, double accuracy);
+/// `reason` and its other output. BASE is NAME-FAMILY-K. Checked writes
+/// (FileWriteError).
+Reproducer write_reproducer(const std::filesystem::path& failures_dir, const std::string& name,
+                            const std::string& family, std::size_t k, double param, const std::string& scene_text,
+                            const CandidateCall& call, const std::string& reason);
 
 /// Removes the reproducers NAME-* left in `failures_dir` by an earlier run.
 void remove_candidate_reproducers(const std::filesystem::path& failures_dir, const std::string& name);

@@ -13,8 +13,6 @@
 #include <qverify/eval/results.hpp>
 #include <qverify/verify/check.hpp>
 
-#include <nlohmann/json.hpp>
-
 namespace qverify {
 
 /// Reads a `qverify-eval/1` document made by any program. Numbers are read
