@@ -241,6 +241,7 @@ ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double tar
   } else {
     acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
     acc.inaccurate = *acc.bound > target;
+    acc.attained = geometric.convert_to<double>();
   }
   return acc;
 }
@@ -286,6 +287,7 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
                            "point (" + sampled_covered.str(6) + "): a bug in the bound");
   ItemAccuracy acc;
   acc.certified = std::move(certified);
+  acc.attained = std::max({Measure(cb.attained), sampled_covered, sampled_other}).convert_to<double>();
   const Measure bound = std::max(Measure(cb.upper), Measure(sampled_other * kBoundMargin));
   if (!(bound < std::numeric_limits<Measure>::infinity())) {
     std::ostringstream r;

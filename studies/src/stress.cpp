@@ -405,6 +405,9 @@ class FamilySweep {
         run.error_bound = acc->bound;
       }
       m = measure_run(fam_, rs, pts, ref);
+      // what eval itself proved the item reaches (its certified branch and bound sees the whole terminator,
+      // these points only a few of it): the item's error is at least that
+      if (acc && m.present) m.item_geometric = std::max(m.item_geometric, acc->attained);
       if (m.present) {
         run.frame = m.origin ? Frame::local : Frame::world;
         if (r == kDefaultRun) robust_origin = m.origin;
@@ -416,8 +419,9 @@ class FamilySweep {
     run.geometric_error = m.geometric;
     run.item_geometric_error = m.item_geometric;
     // The flag's self-check. These points are not eval's, and a sample only bounds the true error from
-    // below: an error above the target here proves the flag missing; a flag where these points show less
-    // than target / 100 proves nothing (the error may sit between them) and is listed as information.
+    // below (as does eval's attained error, taken in above): an error above the target here proves the
+    // flag missing; a flag where the item is known to reach less than target / 100 proves nothing (the
+    // error may sit elsewhere) and is listed as information.
     const FlaggedRun at{v, spec.label, m.item_geometric};
     if (run.returned && !(m.item_geometric <= kDefaultAccuracy) && !run.inaccurate) result_.flag_check.missed.push_back(at);
     if (m.item_geometric < kDefaultAccuracy / 100 && run.inaccurate) result_.flag_check.flagged_below.push_back(at);

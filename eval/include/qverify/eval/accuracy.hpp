@@ -134,6 +134,11 @@ struct ItemAccuracy {
   /// The results whose part of the bound is certified over every point of their geometry
   /// (certified_bound.hpp: "P", "polar_plane", "B"); the other parts are measured on samples.
   std::vector<std::string> certified;
+  /// A geometric error the result is known to reach (a lower bound of its true error, at most
+  /// `bound`): the largest measured on the exact sample points, or, where the bound is certified,
+  /// the distance the branch and bound certifies as attained, whichever is larger. The studies
+  /// judge a result by it (a sample alone may miss where the error is).
+  double attained = 0;
 };
 
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).

@@ -76,7 +76,8 @@ struct StressRun {
   double matrix_error = std::numeric_limits<double>::infinity();     ///< projective error of P (B) against exact
   double geometric_error = std::numeric_limits<double>::infinity();  ///< geometric error of P (B)
   /// Geometric error over every result of the item (P, polar plane and R, or B): what eval's flag and the
-  /// candidate's accuracy target are about.
+  /// candidate's accuracy target are about. Measured on the sweep's points; for qverify's runs at least
+  /// the error eval found the item to reach (ItemAccuracy::attained: certified where its bound is).
   double item_geometric_error = std::numeric_limits<double>::infinity();
   bool inaccurate = false;       ///< qverify's runs: eval flagged the item inaccurate
   bool beyond_accuracy = false;  ///< the candidate's call returned an item beyond the accuracy target
