@@ -4,7 +4,7 @@
 #
 # The widest instruction set is not always the fastest: on AMD Zen 4 (this project's machine) the
 # AVX-512 build of the batch kernel measured 2-3x slower than the AVX2 one before the store order
-# of core/batch.hpp was fixed (README, "bench"). So when this machine runs both x86-64-v4 (AVX-512)
+# of batch/batch.hpp was fixed (README, "bench"). So when this machine runs both x86-64-v4 (AVX-512)
 # and x86-64-v3 (AVX2), the choice is made by measurement: cmake/arch_probe.cpp, which times the
 # double direct shadow batch, is built with each -march and the two are run in turn, seven times
 # each (best of each; a run takes 0.4 s); x86-64-v4 is taken only when it is more than 10% faster.
@@ -40,7 +40,7 @@ set(QVERIFY_ARCH_NOTE "")
 if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   # Both run here: measure (or take the cached measurement of the same compiler and kernel).
   set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
-      ${PROJECT_SOURCE_DIR}/core/include/qverify/core/batch.hpp ${PROJECT_SOURCE_DIR}/core/include/qverify/core/pack.hpp)
+      ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/batch.hpp ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/pack.hpp)
   set(_qv_key "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_COMPILER}")
   foreach(_qv_file IN LISTS _qv_probe_sources)
     file(SHA256 ${_qv_file} _qv_hash)
@@ -66,7 +66,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         set(_qv_exe ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level})
         try_compile(_qv_compiled ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/v${_qv_level}
                     SOURCES ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
-                    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${PROJECT_SOURCE_DIR}/core/include"
+                    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${PROJECT_SOURCE_DIR}/core/include;${PROJECT_SOURCE_DIR}/batch/include"
                     COMPILE_DEFINITIONS -O3 -DNDEBUG -march=x86-64-v${_qv_level} -ffp-contract=off
                     LINK_LIBRARIES Eigen3::Eigen
                     CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON

@@ -1,11 +1,11 @@
 // The configure-time probe of QVERIFY_ARCH=auto (cmake/ChooseArch.cmake): times the real batch
-// kernel, qverify::shadow_batch of double direct items (core/batch.hpp), built with the -march
+// kernel, qverify::shadow_batch of double direct items (batch/batch.hpp), built with the -march
 // under test. 2^20 items in row-major batches (about 320 MB, far beyond the caches, as in
 // `qverify bench`), one thread, best of several runs of the thread's CPU time (a shared machine
 // preempting the probe does not count against either instruction set). Prints the ns per item;
 // exits non-zero when a result is not finite (a kernel that does not work is not timed).
 //   arch_probe [items] [runs]
-#include <qverify/core/batch.hpp>
+#include <qverify/batch/batch.hpp>
 
 #include <algorithm>
 #include <cmath>

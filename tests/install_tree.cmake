@@ -6,7 +6,8 @@ execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${PREF
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cmake --install failed (${rc}):\n${out}\n${err}")
 endif()
-foreach(f lib/cmake/qverify/qverifyConfig.cmake lib/cmake/qverify/qverifyTargets.cmake include/qverify/core/core.hpp)
+foreach(f lib/cmake/qverify/qverifyConfig.cmake lib/cmake/qverify/qverifyTargets.cmake include/qverify/core/core.hpp
+         include/qverify/batch/batch.hpp include/qverify/eval/eval_report.hpp include/qverify/report/eval_document.hpp)
   if(NOT EXISTS "${PREFIX}/${f}")
     message(FATAL_ERROR "the installed tree lacks ${f}")
   endif()

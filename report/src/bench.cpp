@@ -152,7 +152,7 @@ json bench_json(const BenchReport& b) {
           {"timing", timing_note(b)},
           {"simd", {{"lanes", b.processor.lanes},
                     {"instruction_set", b.processor.instruction_set},
-                    {"note", "double and interval batches run W items per instruction (core/pack.hpp)"}}},
+                    {"note", "double and interval batches run W items per instruction (batch/pack.hpp)"}}},
           {"exact_arithmetic", exact_arithmetic_json(b)},
           {"verification", verification_json(b.verification)},
           {"rows", rows}};

@@ -1,4 +1,4 @@
-#include <qverify/core/batch.hpp>
+#include <qverify/batch/batch.hpp>
 #include <qverify/core/mirror_division_free.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/rounding.hpp>

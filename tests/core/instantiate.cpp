@@ -1,6 +1,6 @@
 // Explicit instantiation of every core template for double and for the exact
 // rational: every member must compile for both (the generic code has one body).
-#include <qverify/core/batch.hpp>
+#include <qverify/batch/batch.hpp>
 #include <qverify/core/core.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/scalars.hpp>
@@ -78,7 +78,7 @@
 QVERIFY_INSTANTIATE_CORE(double)
 QVERIFY_INSTANTIATE_CORE(qverify::Rational)
 
-// The formulas the batch runs on SIMD packs (core/pack.hpp, exact/interval_pack.hpp): the
+// The formulas the batch runs on SIMD packs (batch/pack.hpp, exact/interval_pack.hpp): the
 // direct route, instantiated for every pack type.
 #define QVERIFY_INSTANTIATE_PACKED(S)                                                                        \
   namespace qverify {                                                                                        \

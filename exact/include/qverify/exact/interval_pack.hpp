@@ -1,6 +1,6 @@
 #pragma once
 /// \file interval_pack.hpp
-/// Certified intervals W items at a time: the batch API (core/batch.hpp) runs
+/// Certified intervals W items at a time: the batch API (batch/batch.hpp) runs
 /// the generic direct formulas on IntervalPack, W = DoublePack::size()
 /// intervals per operation, for batches of CGAL::Interval_nt.
 ///
@@ -34,7 +34,7 @@
 /// valid enclosures. tests/core/test_batch.cpp (the "[pack]" cases) checks packs
 /// against CGAL bound for bound and against exact results.
 
-#include <qverify/core/batch.hpp>
+#include <qverify/batch/batch.hpp>
 #include <qverify/exact/interval.hpp>
 
 #include <cfenv>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file bench.hpp
-/// `qverify bench`: the batch API (core/batch.hpp) at scale: items per second
+/// `qverify bench`: the batch API (batch/batch.hpp) at scale: items per second
 /// per op, precision, method and kind of inputs (small rationals, doubles with
 /// full mantissas and spread exponents, 17-digit decimal text), bytes moved per
 /// item, the memory bandwidth measured in the same run and the fraction of the
@@ -42,7 +42,7 @@ struct ProcessorInfo {
   std::optional<std::string> vendor, model_name;  ///< /proc/cpuinfo's vendor_id and model name (first processor)
   std::optional<int> family, model;               ///< its cpu family and model
   std::string instruction_set;                    ///< the widest x86 vector extension this build was compiled for
-  int lanes = 1;                                  ///< doubles per instruction of the batches (core/pack.hpp)
+  int lanes = 1;                                  ///< doubles per instruction of the batches (batch/pack.hpp)
   std::vector<std::string> supports;  ///< of SSE2, AVX2, AVX-512 and AVX-512 IFMA, those the processor has
   unsigned logical_cpus = 0;
 };

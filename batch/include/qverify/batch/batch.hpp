@@ -25,7 +25,7 @@
 /// computed when wanted.
 
 #include <qverify/core/mirror.hpp>
-#include <qverify/core/pack.hpp>
+#include <qverify/batch/pack.hpp>
 #include <qverify/core/shadow.hpp>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The batch API computes exactly what the single-item functions compute.
 #include "laws.hpp"
 
-#include <qverify/core/batch.hpp>
+#include <qverify/batch/batch.hpp>
 #include <qverify/exact/interval.hpp>
 
 #include <cfenv>
@@ -96,7 +96,7 @@ TEST_CASE("the exact integer path: cleared denominators give the same quadrics u
 }
 
 // ------------------------------------------------------------------------------------------
-// SIMD packs: the batch runs the same formulas W items at a time (core/pack.hpp,
+// SIMD packs: the batch runs the same formulas W items at a time (batch/pack.hpp,
 // exact/interval_pack.hpp).
 
 TEST_CASE("a pack decides only when all its lanes agree", "[batch][pack]") {
