@@ -1,7 +1,7 @@
 # One golden test: runs the CLI QV with ARGS (a ;-list) in the source tree SRC and compares its
 # stdout byte for byte with GOLDEN (tests/golden/NAME.json, written by scripts/update-golden).
-# @WORK@ in ARGS is a scratch directory of the build tree (the --out of a study).
-string(REPLACE "@WORK@" "${WORK}" ARGS "${ARGS}")
+# {work} in ARGS is a scratch directory of the build tree (the --out of a study).
+string(REPLACE "{work}" "${WORK}" ARGS "${ARGS}")
 execute_process(COMMAND ${QV} ${ARGS} WORKING_DIRECTORY ${SRC} RESULT_VARIABLE rc OUTPUT_FILE ${OUT} ERROR_VARIABLE err)
 if(NOT (rc EQUAL 0 OR rc EQUAL 1))
   message(FATAL_ERROR "qverify ${ARGS}: exit ${rc}\n${err}")
