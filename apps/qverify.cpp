@@ -36,7 +36,6 @@
 
 namespace {
 
-using json = nlohmann::ordered_json;
 using namespace qverify;
 
 constexpr int kOk = 0, kUsage = 2, kInternal = 3;
