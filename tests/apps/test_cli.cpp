@@ -389,7 +389,7 @@ TEST_CASE("a report that cannot be written is exit 2 naming it, and nothing clai
     const auto dir = fresh_dir(cmd + "-blocked");
     std::filesystem::create_directories(dir / "report.json");  // a directory where the report goes
     const std::string args = cmd == "audit" ? "audit " + scene("ball-lamp-floor.json") + " --batch-ms 1 --out " + dir.string()
-                                            : "stress --family far-from-origin --out " + dir.string();
+                                            : "stress --family mirror-far --out " + dir.string();
     for (const std::string& json : {std::string(""), std::string(" --json")}) {
       INFO(args + json);
       const RunBoth r = run_both(args + json);
