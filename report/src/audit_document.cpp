@@ -12,8 +12,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
 /// max_rel_error, median_rel_error, correct_bits (= -log2(error); null for an exact zero) and exact_match.
 void error_fields(json& r, const ErrorStats& stats) {
   r["max_rel_error"] = number_or_null(stats.max);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace qverify {
 namespace {
@@ -94,6 +95,8 @@ json number_json(const Number& x) {
       },
       x);
 }
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json matrix_json(const NumberMatrix& m) {
   json out = json::array();

@@ -14,8 +14,6 @@ using json = nlohmann::ordered_json;
 
 double to_d(const Measure& m) { return m.convert_to<double>(); }
 
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
 json metric_json(const QuadricCheck& c) {
   const Metric& m = c.metric;
   json j{{"max_residual", to_d(m.residual)}, {"max_distance", m.singular ? json(nullptr) : json(to_d(m.distance))}};

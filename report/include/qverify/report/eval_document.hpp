@@ -17,6 +17,8 @@ namespace qverify {
 
 /// A number as JSON: a number, a string (decimal or rational text), {"lo", "hi"}, or null.
 nlohmann::ordered_json number_json(const Number& x);
+/// A finite double as a JSON number, anything else as null.
+nlohmann::ordered_json number_or_null(double v);
 /// A matrix as rows of numbers; a column vector (a plane) as one flat array.
 nlohmann::ordered_json matrix_json(const NumberMatrix& m);
 /// An origin (exact doubles) as three JSON numbers.
