@@ -1,4 +1,6 @@
 #include <qverify/eval/accuracy.hpp>
+#include <qverify/exact/integer_point.hpp>
+#include <qverify/exact/interval.hpp>
 
 #include <algorithm>
 #include <iomanip>
@@ -16,20 +18,13 @@ namespace {
 
 Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
 
-Measure norm2(const RootPoint& x) {
-  Measure s = 0;
-  for (const RootNumber& c : x.coords()) {
-    const Measure v = to_measure(c);
-    s += v * v;
-  }
-  return s;
-}
-
 /// Cartesian coordinates of x to 80 digits (w != 0 for every sampled point).
 Vec3<Measure> cartesian(const RootPoint& x) {
-  const auto c = x.coords();
-  const Measure w = to_measure(c[3]);
-  return Vec3<Measure>(to_measure(c[0]) / w, to_measure(c[1]) / w, to_measure(c[2]) / w);
+  const IntegerPoint n(x);  // on integers: no gcd per operation
+  const BigInt den = n.Dp * n.Dv;
+  Measure c[4];
+  for (std::size_t i = 0; i < 4; ++i) c[i] = root_value(BigInt(n.P[i] * n.Dv), BigInt(n.V[i] * n.Dp), n.d, den);
+  return Vec3<Measure>(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
 }
 
 /// Largest distance of the points from A's centre (centroid where K is singular).
@@ -158,40 +153,170 @@ void add_distance(Metric& m, std::size_t k, const std::optional<Measure>& d) {
   }
 }
 
+namespace {
+
+using FI = FilterInterval;
+
+FI enclosed(const Q& q) {
+  const Interval e = enclose(q);
+  return FI(e.inf(), e.sup());
+}
+
+bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
+
+/// The filter of measure_quadric / measure_plane. For each point, either
+/// nothing is certain (`exact`: it is measured exactly) or its distance and
+/// residual lie in the enclosures `dist` and `res` (and it is certainly off
+/// the result, with a non-zero gradient and w). `measure(k)` is the exact
+/// measurement of point k; it is called, in increasing k, for the points
+/// that could be the worst by distance or by residual and the uncertain ones.
+struct PointFilter {
+  std::vector<char> exact;
+  std::vector<FI> dist, res;
+  double dist_floor = -1, res_floor = -1;  ///< largest lower bounds over the certain points
+
+  explicit PointFilter(std::size_t n) : exact(n, 1), dist(n), res(n) {}
+
+  /// Point k is certainly off the result: f != 0 and the denominators positive.
+  void certain(std::size_t k, const FI& d, const FI& r, bool with_residual) {
+    if (!positive(d) || (with_residual && !positive(r))) return;
+    exact[k] = 0;
+    dist[k] = d, res[k] = r;
+    dist_floor = std::max(dist_floor, d.inf());
+    if (with_residual) res_floor = std::max(res_floor, r.inf());
+  }
+
+  template <class F> void finish(Metric& m, bool with_residual, F&& measure) const {
+    for (std::size_t k = 0; k < exact.size(); ++k) {
+      if (exact[k] || dist[k].sup() >= dist_floor || (with_residual && res[k].sup() >= res_floor)) {
+        measure(k);
+        continue;
+      }
+      m.all_zero = false;  // certainly off the result, and certainly not the worst
+    }
+  }
+};
+
+/// |x_i| and |x|^2 of an exact point, to 80 digits, from its integers.
+Measure coordinate(const IntegerPoint& x, int i) {
+  const auto u = static_cast<std::size_t>(i);
+  return root_magnitude(BigInt(x.P[u] * x.Dv), BigInt(x.V[u] * x.Dp), x.d, BigInt(x.Dp * x.Dv));
+}
+Measure norm2(const IntegerPoint& x) {
+  Measure s = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Measure c = coordinate(x, i);
+    s += c * c;
+  }
+  return s;
+}
+
+FI norm2(const PointEnclosure& X) {
+  return CGAL::square(X[0]) + CGAL::square(X[1]) + CGAL::square(X[2]) + CGAL::square(X[3]);
+}
+
+}  // namespace
+
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   Metric m;
   const Measure qnorm = frobenius(Qm);
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    const RootPoint& x = pts[k];
-    const RootNumber f = x.form(Qm);
-    if (CGAL::is_zero(f)) continue;
+  const bool with_residual = qnorm > 0;
+  FI Qe[4][4];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) Qe[i][j] = enclosed(Qm(i, j));
+  PointFilter filter(pts.size());
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    FI q2(0);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) q2 += CGAL::square(Qe[i][j]);
+    const FI qn = CGAL::sqrt(q2);
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const PointEnclosure& X = pts[k].enclosure();
+      FI y[4];
+      for (int i = 0; i < 4; ++i) y[i] = Qe[i][0] * X[0] + Qe[i][1] * X[1] + Qe[i][2] * X[2] + Qe[i][3] * X[3];
+      const FI f = CGAL::abs(X[0] * y[0] + X[1] * y[1] + X[2] * y[2] + X[3] * y[3]);
+      const FI g = CGAL::sqrt(CGAL::square(y[0]) + CGAL::square(y[1]) + CGAL::square(y[2]));
+      const FI w = CGAL::abs(X[3]);
+      if (!positive(f) || !positive(g) || !positive(w)) continue;
+      const FI nx = norm2(X);
+      filter.certain(k, f / (w * g * 2), with_residual && positive(nx) ? f / (qn * nx) : FI(0), with_residual);
+    }
+  }
+  std::array<BigInt, 16> Qi;
+  BigInt DQ;
+  clear_denominators(Qm, Qi, DQ);
+  filter.finish(m, with_residual, [&](std::size_t k) {
+    const IntegerPoint x(pts[k]);
+    BigInt y[4], z[4], a, b, c;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        const BigInt& q = Qi[static_cast<std::size_t>(4 * i + j)];
+        y[i] += q * x.P[static_cast<std::size_t>(j)];
+        if (!x.rational) z[i] += q * x.V[static_cast<std::size_t>(j)];
+      }
+    }
+    for (int i = 0; i < 4; ++i) {  // c = P^T Q V + V^T Q P (Q need not be symmetric)
+      const auto u = static_cast<std::size_t>(i);
+      a += x.P[u] * y[i];
+      if (!x.rational) b += x.V[u] * z[i], c += x.P[u] * z[i] + x.V[u] * y[i];
+    }
+    const BigInt Dp2 = x.Dp * x.Dp, Dv2 = x.Dv * x.Dv, DpDv = x.Dp * x.Dv;
+    const BigInt f0 = a * Dv2 + x.d * b * Dp2, f1 = c * DpDv;
+    if (root_is_zero(f0, f1, x.d, x.square)) return;
     m.all_zero = false;
-    const Measure fm = abs(to_measure(f));
-    if (qnorm > 0) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
+    const Measure fm = root_magnitude(f0, f1, x.d, BigInt(Dp2 * Dv2 * DQ));
+    if (with_residual) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
+    const BigInt den = DpDv * DQ;
     Measure g = 0;
     for (int i = 0; i < 3; ++i) {
-      const Measure gi = to_measure(x.linear(Qm.row(i).transpose()));
+      const Measure gi = root_magnitude(BigInt(y[i] * x.Dv), BigInt(z[i] * x.Dp), x.d, den);
       g += gi * gi;
     }
-    const Measure w = abs(to_measure(x.coords()[3]));
+    const Measure w = coordinate(x, 3);
     add_distance(m, k, g > 0 && w > 0 ? std::optional<Measure>(fm / (w * 2 * sqrt(g))) : std::nullopt);
-  }
+  });
   return m;
 }
 
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
   Metric m;
   const Measure pn = frobenius(pi), pxyz = frobenius(Vec3<Q>(pi.head<3>()));
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    const RootPoint& x = pts[k];
-    const RootNumber f = x.linear(pi);
-    if (CGAL::is_zero(f)) continue;
-    m.all_zero = false;
-    const Measure fm = abs(to_measure(f));
-    if (pn > 0) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
-    const Measure w = abs(to_measure(x.coords()[3]));
-    add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);
+  const bool with_residual = pn > 0;
+  FI pe[4];
+  for (int i = 0; i < 4; ++i) pe[i] = enclosed(pi(i));
+  PointFilter filter(pts.size());
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    const FI nxyz = CGAL::sqrt(CGAL::square(pe[0]) + CGAL::square(pe[1]) + CGAL::square(pe[2]));
+    const FI n = CGAL::sqrt(CGAL::square(pe[0]) + CGAL::square(pe[1]) + CGAL::square(pe[2]) + CGAL::square(pe[3]));
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const PointEnclosure& X = pts[k].enclosure();
+      const FI f = CGAL::abs(pe[0] * X[0] + pe[1] * X[1] + pe[2] * X[2] + pe[3] * X[3]);
+      const FI w = CGAL::abs(X[3]);
+      if (!positive(f) || !positive(nxyz) || !positive(w)) continue;
+      const FI nx = CGAL::sqrt(norm2(X));
+      filter.certain(k, f / (w * nxyz), with_residual && positive(nx) ? f / (n * nx) : FI(0), with_residual);
+    }
   }
+  std::array<BigInt, 4> Pi;
+  BigInt Dpi;
+  clear_denominators(pi, Pi, Dpi);
+  filter.finish(m, with_residual, [&](std::size_t k) {
+    const IntegerPoint x(pts[k]);
+    BigInt a, b;
+    for (int i = 0; i < 4; ++i) {
+      a += Pi[static_cast<std::size_t>(i)] * x.P[static_cast<std::size_t>(i)];
+      if (!x.rational) b += Pi[static_cast<std::size_t>(i)] * x.V[static_cast<std::size_t>(i)];
+    }
+    const BigInt f0 = a * x.Dv, f1 = b * x.Dp;
+    if (root_is_zero(f0, f1, x.d, x.square)) return;
+    m.all_zero = false;
+    const Measure fm = root_magnitude(f0, f1, x.d, BigInt(x.Dp * x.Dv * Dpi));
+    if (with_residual) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
+    const Measure w = coordinate(x, 3);
+    add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);
+  });
   return m;
 }
 

@@ -1,3 +1,5 @@
+#include <qverify/exact/interval.hpp>
+#include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/root_point.hpp>
 
 namespace qverify {
@@ -29,6 +31,57 @@ RootPoint::RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rat
   delta_ = n * d;
   q_ = q / d;
   if (delta_ == 0) q_.setZero();
+  enclose_coordinates();
+}
+
+void RootPoint::enclose_coordinates() {
+  // sqrt(delta) |q_i| from the enclosures of delta and q_i; where delta is beyond
+  // the range of a double, from the rational delta q_i^2 (then a huge delta with a
+  // small q_i is no harder than a small one).
+  const Interval ed = enclose(delta_);
+  const bool small_root = std::isfinite(ed.sup());
+  FilterInterval p[4], s[4];
+  bool root[4];
+  for (int i = 0; i < 4; ++i) {
+    const Interval e = enclose(p_(i));
+    p[i] = FilterInterval(e.inf(), e.sup());
+    root[i] = q_(i) != 0 && delta_ != 0;
+    if (!root[i]) continue;
+    const Interval r = small_root ? enclose(q_(i) > 0 ? q_(i) : Rational(-q_(i))) : enclose(Rational(delta_ * q_(i) * q_(i)));
+    s[i] = FilterInterval(r.inf(), r.sup());
+  }
+  CGAL::Protect_FPU_rounding<true> guard;
+  const FilterInterval sd = CGAL::sqrt(FilterInterval(ed.inf(), ed.sup()));
+  for (int i = 0; i < 4; ++i) {
+    if (!root[i]) {
+      enclosure_[static_cast<std::size_t>(i)] = p[i];
+      continue;
+    }
+    const FilterInterval r = small_root ? sd * s[i] : CGAL::sqrt(s[i]);
+    enclosure_[static_cast<std::size_t>(i)] = q_(i) > 0 ? p[i] + r : p[i] - r;
+  }
+}
+
+RootPoint RootPoint::mapped(const Mat4<Rational>& M) const {
+  // On integers, one canonical fraction per coordinate at the end (Eigen's
+  // rational product takes a gcd per operation).
+  std::array<BigInt, 16> Mi;
+  BigInt DM;
+  clear_denominators(M, Mi, DM);
+  auto apply = [&](const Vec4<Rational>& v) {
+    std::array<BigInt, 4> V;
+    BigInt Dv;
+    clear_denominators(v, V, Dv);
+    const BigInt den = DM * Dv;
+    Vec4<Rational> out;
+    for (int i = 0; i < 4; ++i) {
+      BigInt num;
+      for (int j = 0; j < 4; ++j) num += Mi[static_cast<std::size_t>(4 * i + j)] * V[static_cast<std::size_t>(j)];
+      out(i) = Rational(num, den);
+    }
+    return out;
+  };
+  return RootPoint(apply(p_), apply(q_), delta_, normalised{});
 }
 
 std::array<RootNumber, 4> RootPoint::coords() const {
@@ -72,6 +125,103 @@ Vec3<double> RootPoint::approx_cartesian() const {
   Vec3<double> c;
   for (int i = 0; i < 3; ++i) c(i) = static_cast<double>(to_measure(x[static_cast<std::size_t>(i)]) / w);
   return c;
+}
+
+}  // namespace qverify
+
+// ------------------------------------------------------------ integer_point.hpp
+
+namespace qverify {
+
+namespace {
+mpz_ptr z(BigInt& x) { return x.backend().data(); }
+mpz_srcptr z(const BigInt& x) { return x.backend().data(); }
+
+/// D = lcm of the denominators of n rationals (equal ones, the common case, without a gcd).
+void common_denominator(const Rational* v, int n, BigInt& D) {
+  D = 1;
+  for (int i = 0; i < n; ++i) {
+    mpz_srcptr den = mpq_denref(v[i].backend().data());
+    if (mpz_cmp_ui(den, 1) == 0 || mpz_cmp(den, z(D)) == 0) continue;
+    if (mpz_cmp_ui(z(D), 1) == 0) mpz_set(z(D), den);
+    else mpz_lcm(z(D), z(D), den);
+  }
+}
+
+void scale_to(const Rational* v, int n, const BigInt& D, BigInt* out) {
+  for (int i = 0; i < n; ++i) {
+    const auto* e = v[i].backend().data();
+    mpz_divexact(z(out[i]), z(D), mpq_denref(e));
+    mpz_mul(z(out[i]), z(out[i]), mpq_numref(e));
+  }
+}
+}  // namespace
+
+void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, BigInt& D) {
+  common_denominator(v.data(), 4, D);
+  scale_to(v.data(), 4, D, out.data());
+}
+
+void clear_denominators(const Mat4<Rational>& Q, std::array<BigInt, 16>& out, BigInt& D) {
+  const Eigen::Matrix<Rational, 4, 4, Eigen::RowMajor> R = Q;
+  common_denominator(R.data(), 16, D);
+  scale_to(R.data(), 16, D, out.data());
+}
+
+IntegerPoint::IntegerPoint(const RootPoint& x) {
+  clear_denominators(x.p(), P, Dp);
+  clear_denominators(x.q(), V, Dv);
+  d = numerator(x.delta());  // RootPoint keeps an integer radicand
+  rational = d == 0 || x.q().isZero();
+  square = !rational && mpz_perfect_square_p(z(d)) != 0;
+}
+
+bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square) {
+  if (mpz_sgn(z(v)) == 0 || mpz_sgn(z(d)) == 0) return mpz_sgn(z(u)) == 0;
+  if (!square) return mpz_sgn(z(u)) == 0;  // v != 0 and sqrt(d) irrational
+  // u + v r == 0 with r = sqrt(d): signs opposite (or u = 0, impossible here) and u^2 = v^2 d
+  if (mpz_sgn(z(u)) == mpz_sgn(z(v)) || mpz_sgn(z(u)) == 0) return false;
+  BigInt l, r;
+  mpz_mul(z(l), z(u), z(u));
+  mpz_mul(z(r), z(v), z(v));
+  mpz_mul(z(r), z(r), z(d));
+  return mpz_cmp(z(l), z(r)) == 0;
+}
+
+Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
+  Measure mu, mv, md;
+  mpfr_set_z(mu.backend().data(), z(u), MPFR_RNDN);
+  mpfr_set_z(md.backend().data(), z(den), MPFR_RNDN);
+  if (mpz_sgn(z(v)) == 0 || mpz_sgn(z(d)) == 0) return abs(mu) / md;
+  mpfr_set_z(mv.backend().data(), z(v), MPFR_RNDN);
+  Measure s;
+  mpfr_set_z(s.backend().data(), z(d), MPFR_RNDN);
+  s = sqrt(s);
+  const Measure sum = abs(mu) + abs(mv) * s;
+  if (mpz_sgn(z(u)) == 0 || mpz_sgn(z(u)) == mpz_sgn(z(v))) return sum / md;
+  BigInt c, t;  // |u^2 - v^2 d|, exact: no cancellation left
+  mpz_mul(z(c), z(u), z(u));
+  mpz_mul(z(t), z(v), z(v));
+  mpz_submul(z(c), z(t), z(d));
+  mpz_abs(z(c), z(c));
+  Measure mc;
+  mpfr_set_z(mc.backend().data(), z(c), MPFR_RNDN);
+  return mc / (sum * md);
+}
+
+Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
+  const Measure m = root_magnitude(u, v, d, den);
+  const int su = mpz_sgn(z(u)), sv = mpz_sgn(z(d)) == 0 ? 0 : mpz_sgn(z(v));
+  int sign = su;
+  if (sv != 0 && (su == 0 || su == sv)) sign = sv;
+  else if (sv != 0) {  // opposite signs: the larger of u^2 and v^2 d wins
+    BigInt l, r;
+    mpz_mul(z(l), z(u), z(u));
+    mpz_mul(z(r), z(v), z(v));
+    mpz_mul(z(r), z(r), z(d));
+    sign = su * mpz_cmp(z(l), z(r));
+  }
+  return sign < 0 ? Measure(-m) : sign == 0 ? Measure(0) : m;
 }
 
 }  // namespace qverify

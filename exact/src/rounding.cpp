@@ -8,6 +8,7 @@
 #include <qverify/exact/rounding.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace qverify {
 namespace {
@@ -84,6 +85,24 @@ template <> Float128 round_rational<Float128>(const Rational& q, RoundingReport&
 }
 
 Interval enclose(const Rational& q) {
+  // Fast path, well inside the normal range of a double: mpq_get_d truncates
+  // towards zero (GMP's documented rounding), so q lies between it and the next
+  // double away from zero, or is it exactly.
+  const auto* v = q.backend().data();
+  if (mpq_sgn(v) == 0) return Interval(0);
+  const long bits = static_cast<long>(mpz_sizeinbase(mpq_numref(v), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(v), 2));
+  if (bits > -1000 && bits < 1000) {
+    const double t = mpq_get_d(v);
+    mpq_t back;
+    mpq_init(back);
+    mpq_set_d(back, t);
+    const bool exact = mpq_equal(back, v) != 0;
+    mpq_clear(back);
+    if (exact) return Interval(t);
+    const double away = std::nextafter(t, mpq_sgn(v) > 0 ? std::numeric_limits<double>::infinity()
+                                                          : -std::numeric_limits<double>::infinity());
+    return mpq_sgn(v) > 0 ? Interval(t, away) : Interval(away, t);
+  }
   RoundingReport rep;
   mpfr_t lo, hi;
   round_in_format(lo, q, 53, -1073, 1024, rep, MPFR_RNDD);

@@ -24,9 +24,19 @@ struct Draw {
   }
 };
 
+/// The base point b of the lines drawn, with A b and b^T A b: computed once per
+/// base point, not per line (b has large denominators; u is small).
+struct Base {
+  Base(const Mat4<Q>& A, const Vec4<Q>& b_) : b(b_), Ab(A * b_), c(b_.dot(Ab)) {}
+  Vec4<Q> b, Ab;
+  Q c;
+};
+
 /// Adds the points where the line b + t u meets A (b finite, u at infinity).
-bool intersect_line(const Mat4<Q>& A, const Vec4<Q>& b, const Vec4<Q>& u, std::vector<RootPoint>& out, int want) {
-  const Q alpha = u.dot(A * u), beta = u.dot(A * b), c = b.dot(A * b);
+bool intersect_line(const Mat4<Q>& A, const Base& base, const Vec4<Q>& u, std::vector<RootPoint>& out, int want) {
+  const Vec4<Q>& b = base.b;
+  const Q& c = base.c;
+  const Q alpha = u.dot(A * u), beta = u.dot(base.Ab);
   if (alpha == 0) {
     if (beta == 0) return false;
     out.emplace_back(Vec4<Q>(b - (c / (2 * beta)) * u), Vec4<Q>::Zero(), Q(0));  // the one finite root
@@ -87,14 +97,16 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     b = finite(Vec3<Q>(-(pi(3) / normal.squaredNorm()) * normal));
   }
   const int max_attempts = 50 * n + 50;
+  Base base(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = normal.cross(draw.vec3());  // a direction inside the plane
     if (d.isZero()) continue;
-    intersect_line(A, b, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+    intersect_line(A, base, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {  // move the base point within the plane
       const Vec3<Q> shift = normal.cross(draw.vec3());
       b.head<3>() += shift;
+      base = Base(A, b);
     }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;
@@ -110,11 +122,15 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed) {
   Vec4<Q> b = finite(Vec3<Q>::Zero());
   if (K.determinant() != 0) b = finite(Vec3<Q>(-(K.inverse() * k)));  // centre
   const int max_attempts = 50 * n + 50;
+  Base base(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = draw.vec3();
-    intersect_line(A, b, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
-    if (rep.attempts % 8 == 0 && rep.points.empty()) b.head<3>() += draw.vec3();
+    intersect_line(A, base, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+    if (rep.attempts % 8 == 0 && rep.points.empty()) {
+      b.head<3>() += draw.vec3();
+      base = Base(A, b);
+    }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;
   return rep;

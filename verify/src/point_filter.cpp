@@ -9,7 +9,6 @@ namespace {
 
 using I = FilterInterval;
 
-I unprotected(const Interval& x) { return I(x.inf(), x.sup()); }
 
 /// pass when all of |f|^2 is at most all of the bound, fail when all of it is
 /// beyond; a NaN anywhere compares false both ways: undecided.
@@ -24,27 +23,6 @@ I norm2(const EnclosedPoint& x) {
 }
 
 }  // namespace
-
-EnclosedPoint enclose_point(const RootPoint& x) {
-  I p[4], s[4];
-  bool root[4];
-  for (int i = 0; i < 4; ++i) {
-    p[i] = unprotected(enclose(x.p()(i)));
-    root[i] = x.q()(i) != 0 && x.delta() != 0;
-    if (root[i]) s[i] = unprotected(enclose(Rational(x.delta() * x.q()(i) * x.q()(i))));
-  }
-  FilterRounding guard;
-  EnclosedPoint e;
-  for (int i = 0; i < 4; ++i) {
-    if (!root[i]) {
-      e.x[i] = p[i];
-      continue;
-    }
-    const I r = CGAL::sqrt(s[i]);
-    e.x[i] = x.q()(i) > 0 ? p[i] + r : p[i] - r;
-  }
-  return e;
-}
 
 FilterTarget::FilterTarget(double accuracy_, const Measure& size_)
     : accuracy(accuracy_), T(accuracy_), size(size_), residual_rule(!(size_ > 0)) {
@@ -109,16 +87,6 @@ bool exact_plane_passes(const RootPoint& x, const Vec4<Rational>& pi, const Filt
 // --------------------------------------------------- exact integers (stage 2, proof mode)
 
 namespace {
-
-/// The integer vector v * D with D the lcm of v's denominators (D > 0).
-void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, BigInt& D) {
-  D = 1;
-  for (int i = 0; i < 4; ++i) mpz_lcm(D.backend().data(), D.backend().data(), mpq_denref(v(i).backend().data()));
-  for (int i = 0; i < 4; ++i) {
-    mpz_divexact(out[i].backend().data(), D.backend().data(), mpq_denref(v(i).backend().data()));
-    mpz_mul(out[i].backend().data(), out[i].backend().data(), mpq_numref(v(i).backend().data()));
-  }
-}
 
 /// out = sum_j row[j] * x[j] (zero entries skipped).
 void dot4(mpz_t out, const BigInt* row, const std::array<BigInt, 4>& x) {
@@ -232,14 +200,8 @@ void bound_mp(Scratch& s, const FilterTarget& t, double k) {
 }  // namespace
 
 IntegerQuadric::IntegerQuadric(const Mat4<Rational>& Q) {
-  BigInt D = 1;
-  for (int k = 0; k < 16; ++k) mpz_lcm(z(D), z(D), mpq_denref(Q(k / 4, k % 4).backend().data()));
-  for (int k = 0; k < 16; ++k) {
-    const auto* e = Q(k / 4, k % 4).backend().data();
-    BigInt& out = q[static_cast<std::size_t>(k)];
-    mpz_divexact(z(out), z(D), mpq_denref(e));
-    mpz_mul(z(out), z(out), mpq_numref(e));
-  }
+  BigInt D;
+  clear_denominators(Q, q, D);
 }
 
 IntegerQuadric::IntegerQuadric(const Mat4<double>& Q)
@@ -256,24 +218,22 @@ IntegerPlane::IntegerPlane(const Vec4<double>& p)
 ClearedPoints::ClearedPoints(const std::vector<RootPoint>& points) {
   pts_.reserve(points.size());
   for (const RootPoint& x : points) {
+    IntegerPoint ip(x);
     Point pt;
-    clear_denominators(x.p(), pt.P, pt.Dp);
-    clear_denominators(x.q(), pt.V, pt.Dv);
-    pt.d = numerator(x.delta());  // RootPoint keeps an integer radicand
-    pt.rational = pt.d == 0 || x.q().isZero();
+    pt.P = std::move(ip.P), pt.V = std::move(ip.V);
+    pt.Dp = std::move(ip.Dp), pt.Dv = std::move(ip.Dv), pt.d = std::move(ip.d);
+    pt.rational = ip.rational;
+    pt.square = ip.square;
     pt.ka = pt.Dv * pt.Dv;
     pt.kb = pt.d * pt.Dp * pt.Dp;
     pt.m = 2 * pt.Dp * pt.Dv;
     pt.w0 = pt.P[3] * pt.Dv;
     pt.w1 = pt.V[3] * pt.Dp;
-    if (!pt.rational) {
-      pt.square = mpz_perfect_square_p(z(pt.d)) != 0;
-      if (pt.square) {
-        const BigInt r = sqrt(pt.d);
-        pt.kc = r * pt.m;
-        pt.la = pt.Dv;
-        pt.lb = r * pt.Dp;
-      }
+    if (pt.square) {
+      const BigInt r = sqrt(pt.d);
+      pt.kc = r * pt.m;
+      pt.la = pt.Dv;
+      pt.lb = r * pt.Dp;
     }
     pts_.push_back(std::move(pt));
   }

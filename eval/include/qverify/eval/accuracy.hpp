@@ -83,7 +83,20 @@ double size_down(const Measure& size);
 /// The points moved exactly into the frame with origin o (x_local = x - o).
 std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Rational>>& origin);
 
-/// Metric of a quadric / a plane over points already in its frame.
+/// Metric of a quadric / a plane over points already in its frame: the
+/// largest relative residual |x^T Q x| / (|Q|_F |x|^2) and the largest
+/// first-order distance |x^T Q x| / (|w| 2 |(Q x)_xyz|) (plane:
+/// |pi.x| / (|w| |pi_xyz|)) over the points, both to 80 digits, the worst point,
+/// and whether every point is exactly on Q.
+///
+/// Filtered, with the same result as measuring every point exactly: each
+/// point's residual and distance are first enclosed in interval arithmetic
+/// (from the point's RootPoint::enclosure and Q's entries enclosed). Only the
+/// points that can still matter are measured exactly in Q(sqrt delta): those
+/// whose enclosures could reach the largest lower bound of the others
+/// (usually one or two), and those the intervals cannot separate from zero or
+/// from a vanishing gradient or w. The others are certainly off Q and
+/// certainly not the worst, which is all the metric says about them.
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Rational>& Q);
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Rational>& pi);
 

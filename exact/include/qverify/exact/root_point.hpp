@@ -16,7 +16,10 @@
 #include <qverify/exact/scalars.hpp>
 
 #include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/Sqrt_extension.h>
+
+#include <array>
 
 #include <stdexcept>
 
@@ -38,6 +41,12 @@ Measure to_measure(const Rational& q);
 /// where a0 and a1 sqrt(r) have opposite signs it is (a0^2 - a1^2 r) / (a0 - a1 sqrt(r)).
 Measure to_measure(const RootNumber& v);
 
+/// Unprotected CGAL intervals: the caller holds the FPU in round-upward mode
+/// (CGAL::Protect_FPU_rounding<true>) for a whole loop of operations.
+using FilterInterval = CGAL::Interval_nt<false>;
+/// A certified enclosure of the four homogeneous coordinates of an exact point.
+using PointEnclosure = std::array<FilterInterval, 4>;
+
 class RootPoint {
  public:
   /// x = p + sqrt(delta) q, delta >= 0 (normalised to an integer: sqrt(n/d) = sqrt(n d)/d).
@@ -49,21 +58,32 @@ class RootPoint {
   /// Coordinates as field elements (all with root delta, or rational).
   std::array<RootNumber, 4> coords() const;
   /// The point M x (a rational linear map keeps the field).
-  RootPoint mapped(const Mat4<Rational>& M) const { return RootPoint(M * p_, M * q_, delta_, normalised{}); }
+  RootPoint mapped(const Mat4<Rational>& M) const;
   /// x^T Q x, computed in Q(sqrt(delta)) with CGAL's arithmetic.
   RootNumber form(const Mat4<Rational>& Q) const;
   /// pi . x.
   RootNumber linear(const Vec4<Rational>& pi) const;
   /// Approximate Cartesian coordinates (x/w), to 80 digits; requires w != 0.
   Vec3<double> approx_cartesian() const;
+  /// Certified enclosures of the coordinates, made once with the point: p_i
+  /// enclosed, plus sign(q_i) times the square root of the enclosure of the
+  /// rational delta q_i^2 (so a huge delta with a small q is no harder than a
+  /// small one). The floating filters in front of exact evaluations
+  /// (measure_quadric, the verifier's point filter) start from it; an entry
+  /// beyond the range of a double is an infinite bound, never a wrong one.
+  const PointEnclosure& enclosure() const { return enclosure_; }
 
  private:
   struct normalised {};
   RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta, normalised)
-      : p_(p), q_(q), delta_(delta) {}
+      : p_(p), q_(q), delta_(delta) {
+    enclose_coordinates();
+  }
   void check_root(const RootNumber& v) const;
+  void enclose_coordinates();
   Vec4<Rational> p_, q_;
   Rational delta_;
+  PointEnclosure enclosure_;
 };
 
 }  // namespace qverify

@@ -41,6 +41,7 @@
 /// (a + d b = 0 and c = 0 for a + d b + 2 sqrt(d) c, or the rational root when
 /// d is a square), without the gcds of rational arithmetic.
 
+#include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/eval/accuracy.hpp>
 
@@ -54,21 +55,16 @@
 
 namespace qverify {
 
-/// Unprotected CGAL intervals: the caller holds the FPU in round-upward mode
-/// (FilterRounding) for a whole loop of checks.
-using FilterInterval = CGAL::Interval_nt<false>;
 /// Sets the FPU to round upward for its lifetime (and restores the mode).
 using FilterRounding = CGAL::Protect_FPU_rounding<true>;
 
 /// A certified enclosure of the homogeneous coordinates of an exact point.
 struct EnclosedPoint {
-  std::array<FilterInterval, 4> x;
+  PointEnclosure x;
 };
 
-/// The enclosure of x = p + sqrt(d) q: p_i enclosed, plus sign(q_i) times the
-/// square root of the enclosure of the rational d q_i^2 (so a huge d with a
-/// small q is no harder than a small one). Sets its own rounding mode.
-EnclosedPoint enclose_point(const RootPoint& x);
+/// The enclosure of x = p + sqrt(d) q that the point carries (RootPoint::enclosure).
+inline EnclosedPoint enclose_point(const RootPoint& x) { return EnclosedPoint{x.enclosure()}; }
 
 /// The accuracy target of one item's points: the distance bound T * size, or
 /// the relative residual rule where the size is not positive.
@@ -108,8 +104,6 @@ struct FilterCounts {
 
 // --------------------------------------------------- exact integers (stage 2, proof mode)
 
-using BigInt = boost::multiprecision::mpz_int;
-
 /// A candidate with its denominators cleared (a positive factor: neither the
 /// zero test nor the distance rule sees it). A double candidate is exactly
 /// integers times a power of two.
@@ -126,7 +120,8 @@ struct IntegerPlane {
 
 /// Exact points with denominators cleared once: x = P / Dp + sqrt(d) V / Dv
 /// with integer vectors P, V (d the point's integer radicand). With
-/// a = P^T Q P, b = V^T Q V, c = P^T Q V:
+/// a = P^T Q P, b = V^T Q V, c = P^T Q V (Q symmetric, as every candidate the
+/// verifier accepts; measure_quadric also takes non-symmetric forms):
 ///   (Dp Dv)^2 x^T Q x = (a Dv^2 + b d Dp^2) + sqrt(d) (2 c Dp Dv),
 ///   Dp Dv (Q x)_i = (Q P)_i Dv + sqrt(d) (Q V)_i Dp,  Dp Dv w = P_3 Dv + sqrt(d) V_3 Dp;
 /// x^T Q x = 0 exactly when a Dv^2 + b d Dp^2 = 0 and c = 0 (d not a square),

@@ -1,0 +1,48 @@
+#pragma once
+/// \file integer_point.hpp
+/// Exact points of Q(sqrt delta) with their denominators cleared, for
+/// evaluating forms on integers (no gcd per operation, as rational
+/// arithmetic has) and rounding only the final values.
+///
+/// x = p + sqrt(delta) q (RootPoint, delta a non-negative integer) is
+///   x = (P Dv + sqrt(delta) V Dp) / (Dp Dv),   P = p Dp, V = q Dv integers,
+/// Dp, Dv > 0 the least common denominators of p and q. For an integer
+/// matrix Qi (Q = Qi / DQ) with y = Qi P, z = Qi V, a = P.y, b = V.z, c = P.z + V.y:
+///   x^T Q x = ((a Dv^2 + delta b Dp^2) + sqrt(delta) c Dp Dv) / (Dp^2 Dv^2 DQ),
+///   (Q x)_i = (y_i Dv + sqrt(delta) z_i Dp) / (Dp Dv DQ).
+/// Every value is u + v sqrt(delta) over a positive integer; root_magnitude
+/// rounds its absolute value to 80 digits without cancellation.
+
+#include <qverify/exact/root_point.hpp>
+
+#include <boost/multiprecision/gmp.hpp>
+
+#include <array>
+
+namespace qverify {
+
+using BigInt = boost::multiprecision::mpz_int;
+
+/// The integer vector v D with D > 0 the least common multiple of v's denominators.
+void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, BigInt& D);
+/// The integer matrix Q D with D > 0 the least common multiple of Q's denominators (row-major).
+void clear_denominators(const Mat4<Rational>& Q, std::array<BigInt, 16>& out, BigInt& D);
+
+/// A RootPoint on integers (see the file comment).
+struct IntegerPoint {
+  explicit IntegerPoint(const RootPoint& x);
+  std::array<BigInt, 4> P, V;
+  BigInt Dp, Dv, d;
+  bool rational = true;  ///< V = 0 (or delta = 0): x = P / Dp
+  bool square = false;   ///< delta = r^2 for an integer r (then x is rational too, in another form)
+};
+
+/// u + v sqrt(d) == 0 exactly (d >= 0; `square`: d is a perfect square).
+bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square);
+/// |u + v sqrt(d)| / den to 80 digits (den > 0, d >= 0), without cancellation: where u and
+/// v sqrt(d) have opposite signs, |u^2 - v^2 d| / ((|u| + |v| sqrt(d)) den).
+Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den);
+/// (u + v sqrt(d)) / den to 80 digits, with its exact sign (root_magnitude signed).
+Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den);
+
+}  // namespace qverify
