@@ -32,7 +32,10 @@
 #include <iostream>
 #include <sstream>
 #include <map>
+#include <memory>
 #include <tuple>
+
+#include <unistd.h>  // isatty
 
 namespace {
 
@@ -83,6 +86,29 @@ std::function<void(const std::string&)> progress_after_two_seconds() {
   const auto start = std::chrono::steady_clock::now();
   return [start](const std::string& line) {
     if (std::chrono::steady_clock::now() - start > std::chrono::seconds(2)) std::cerr << line << "\n";
+  };
+}
+
+/// A progress bar on stderr for runs longer than a second: redrawn in place on
+/// a terminal, a line per tenth otherwise (a log stays short).
+std::function<void(std::size_t, std::size_t)> progress_bar(std::string what) {
+  struct State {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    bool shown = false;
+    std::size_t last_tenth = 0;
+  };
+  auto st = std::make_shared<State>();
+  const bool tty = isatty(2) != 0;
+  return [st, tty, what = std::move(what)](std::size_t done, std::size_t total) {
+    if (!st->shown && std::chrono::steady_clock::now() - st->start < std::chrono::seconds(1)) return;
+    const std::size_t tenth = total ? done * 10 / total : 10;
+    if (!tty && st->shown && tenth == st->last_tenth && done != total) return;
+    st->shown = true;
+    st->last_tenth = tenth;
+    const int width = 30, filled = static_cast<int>(total ? done * width / total : width);
+    std::cerr << (tty ? "\r" : "") << "qverify " << what << ": [" << std::string(static_cast<std::size_t>(filled), '#')
+              << std::string(static_cast<std::size_t>(width - filled), '.') << "] " << done << "/" << total << " items"
+              << (tty && done != total ? "" : "\n") << std::flush;
   };
 }
 
@@ -343,7 +369,9 @@ int run_verify(const Options& o) {
   const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text),
                                                               AccuracyOptions{o.accuracy, o.samples, o.seed})
                                            : candidate_results(sc, o.candidate, prec);
-  const VerifyReport v = verify_results(sc, rs, VerifyOptions{o.samples, o.seed, o.accuracy});
+  VerifyOptions vopt{o.samples, o.seed, o.accuracy};
+  vopt.progress = progress_bar("verify");
+  const VerifyReport v = verify_results(sc, rs, vopt);
   if (o.as_json) std::cout << verify_document(sc, v).dump(2) << "\n";
   else std::cout << verify_text(sc, v);
   return v.failed > 0 ? 1 : kOk;

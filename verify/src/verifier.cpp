@@ -7,7 +7,11 @@
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/statuses.hpp>
 
+#include <qverify/batch/items.hpp>
+
+#include <atomic>
 #include <limits>
+#include <mutex>
 
 namespace qverify {
 namespace {
@@ -32,13 +36,12 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
   out.source = rs.source;
   out.options = opt;
   out.notes = rs.notes;
-  auto add = [&](VerifyCheck c) {
-    (c.skipped() ? out.skipped : c.passed() ? out.passed : out.failed)++;
-    out.checks.push_back(std::move(c));
-  };
-  for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
+  const std::size_t ns = sc.shadows.size(), n = ns + sc.reflections.size();
+  std::vector<VerifyCheck> checks(n);
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  auto check_shadow_item = [&](std::size_t k, VerifyCheck& c) {
     const Pair& pr = sc.shadows[k];
-    VerifyCheck c;
     c.kind = "shadow";
     c.quadric = sc.quadrics[pr.quadric].id;
     c.other = sc.lights[pr.other].id;
@@ -48,8 +51,7 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     if (!got.present) {
       c.exact_status = exact_shadow_word(Aw, Lw, rs.method);
       c.missing = got.problem.empty() ? "missing" : got.problem;
-      add(std::move(c));
-      continue;
+      return;
     }
     ExactShadowCandidate cand;
     cand.P = got.P;
@@ -62,11 +64,9 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     c.exact_status = c.report->exact_status;
     c.inaccurate = got.accuracy && got.accuracy->inaccurate;
     c.origin = got.origin;
-    add(std::move(c));
-  }
-  for (std::size_t k = 0; k < sc.reflections.size(); ++k) {
+  };
+  auto check_reflection_item = [&](std::size_t k, VerifyCheck& c) {
     const Pair& pr = sc.reflections[k];
-    VerifyCheck c;
     c.kind = "reflection";
     c.quadric = sc.quadrics[pr.quadric].id;
     c.other = sc.mirrors[pr.other].id;
@@ -77,8 +77,7 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     if (!got.present) {
       c.exact_status = exact_reflection_word(Aw);
       c.missing = got.problem.empty() ? "missing" : got.problem;
-      add(std::move(c));
-      continue;
+      return;
     }
     ExactReflectionCandidate cand;
     cand.M = got.M;
@@ -89,7 +88,21 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     c.exact_status = c.report->exact_status;
     c.inaccurate = got.accuracy && got.accuracy->inaccurate;
     c.origin = got.origin;
-    add(std::move(c));
+  };
+  // Items are independent (item k's points come from its own seed): threads over them,
+  // the checks kept in the scene's order.
+  for_each_item(n, opt.threads, [&](std::size_t i) {
+    if (i < ns) check_shadow_item(i, checks[i]);
+    else check_reflection_item(i - ns, checks[i]);
+    const std::size_t d = ++done;
+    if (opt.progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      opt.progress(d, n);
+    }
+  });
+  for (VerifyCheck& c : checks) {
+    (c.skipped() ? out.skipped : c.passed() ? out.passed : out.failed)++;
+    out.checks.push_back(std::move(c));
   }
   return out;
 }

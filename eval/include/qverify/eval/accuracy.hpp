@@ -159,6 +159,8 @@ struct AccuracyOptions {
   double target = kDefaultAccuracy;
   int samples = kDefaultSamples;
   std::uint64_t seed = 1;
+  /// Threads over the items (0: one per logical processor); the results do not depend on it.
+  int threads = 0;
 };
 
 /// error_bound of an item from its geometric error measured on the sampled

@@ -4,6 +4,7 @@
 /// (quadric, light) and (quadric, mirror) pairs are computed; a mirror matrix
 /// is built only when some reflection needs it.
 
+#include <qverify/batch/items.hpp>
 #include <qverify/exact/statuses.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/precision.hpp>
@@ -314,7 +315,8 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     for (auto& a : ev.reflection_accuracy) a.bound = 0;
     return;
   } else {
-    for (std::size_t k = 0; k < ev.shadows.size(); ++k) {
+    // Items are independent (item k's points come from its own seed): threads over them.
+    for_each_item(ev.shadows.size(), opt.threads, [&](std::size_t k) {
       ShadowMeter meter(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other], opt, k);
       auto measure = [&](const ShadowItem<S>& it) {
         const ShadowResult<S>& r = it.result;
@@ -329,8 +331,8 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
           ev.shadow_accuracy[k] = measure(ev.shadows[k]);
         }
       }
-    }
-    for (std::size_t k = 0; k < ev.reflections.size(); ++k) {
+    });
+    for_each_item(ev.reflections.size(), opt.threads, [&](std::size_t k) {
       const Pair& p = ev.reflections[k].pair;
       ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt, k);
       auto measure = [&](const ReflectionItem<S>& it) {
@@ -345,7 +347,7 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
           ev.reflection_accuracy[k] = measure(ev.reflections[k]);
         }
       }
-    }
+    });
   }
 }
 

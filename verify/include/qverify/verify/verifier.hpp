@@ -11,6 +11,9 @@
 /// then measured, to 80 digits. In exact arithmetic a zero is a proof.
 
 #include <qverify/eval/results.hpp>
+
+#include <functional>
+
 #include <qverify/verify/check.hpp>
 
 namespace qverify {
@@ -29,6 +32,11 @@ struct VerifyOptions {
   int samples = kDefaultSamples;
   std::uint64_t seed = 1;
   double accuracy = kDefaultAccuracy;  ///< the accuracy target T (relative to the object size)
+  /// Threads over the items (0: one per logical processor); the report does not depend on it.
+  int threads = 0;
+  /// Called after each item is checked with (items done, items in all), from
+  /// one thread at a time (not necessarily the caller's).
+  std::function<void(std::size_t, std::size_t)> progress = nullptr;
 };
 
 /// The verdict on one requested item (a shadow or a reflection of the scene).
