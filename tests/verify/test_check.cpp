@@ -269,3 +269,132 @@ TEST_CASE("an error between the samples fails the check: certified over the whol
   REQUIRE(good.certified);
   CHECK(good.certified->upper <= 1e-9);
 }
+
+// ------------------------------------------------------------------ batches
+
+namespace {
+
+/// n spheres (centre (i, i/2, -i/3), radius 1 + i/7) lit from (10/3, 4 + i, 8), as batch rows.
+void sphere_rows(Eigen::Index n, SymBatch<double>& A, Vec4Batch<double>& L) {
+  A.resize(n, 10);
+  L.resize(n, 4);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double d = static_cast<double>(i);
+    scatter_sym(A, i, sphere_quadric<double>(Vec3<double>(d, d / 2, -d / 3), 1 + d / 7));
+    L.row(i) = Eigen::RowVector4d(10.0 / 3, 4 + d, 8, 1);
+  }
+}
+
+void same_report(const CheckReport& a, const CheckReport& b) {
+  CHECK(a.passed == b.passed);
+  CHECK(a.points == b.points);
+  CHECK(a.problems == b.problems);
+  CHECK(a.object_size == b.object_size);
+  CHECK(a.geometric_error == b.geometric_error);
+  REQUIRE(a.checks.size() == b.checks.size());
+  for (std::size_t k = 0; k < a.checks.size(); ++k) CHECK(a.checks[k].geometric_error == b.checks[k].geometric_error);
+}
+
+}  // namespace
+
+TEST_CASE("check_shadow_batch: each report is its item's alone, on any number of threads", "[check][batch]") {
+  const Eigen::Index n = 9;
+  SymBatch<double> A, P, R;
+  Vec4Batch<double> L, pi;
+  sphere_rows(n, A, L);
+  shadow_batch(A, L, Method::direct, P, pi, R, 2);
+  // item 4: the wrong sign of the rank-one term (P = s A + (AL)(AL)^T vanishes on the terminator too)
+  {
+    const Mat4<double> A4 = gather_sym(A, 4);
+    const Vec4<double> l = L.row(4).transpose(), p = A4 * l;
+    scatter_sym(P, 4, Mat4<double>(l.dot(p) * A4 + p * p.transpose()));
+  }
+  std::vector<std::size_t> seen;
+  BatchCheckOptions opt;
+  opt.check.samples = 16;
+  opt.progress = [&](std::size_t done, std::size_t total) {
+    CHECK(total == static_cast<std::size_t>(n));
+    seen.push_back(done);
+  };
+  const std::vector<CheckReport> two = check_shadow_batch(A, L, P, pi, R, opt);
+  opt.threads = 1;
+  opt.progress = nullptr;
+  const std::vector<CheckReport> one = check_shadow_batch(A, L, P, pi, R, opt);
+  REQUIRE(two.size() == static_cast<std::size_t>(n));
+  CHECK(seen.size() == static_cast<std::size_t>(n));
+  CHECK(std::is_sorted(seen.begin(), seen.end()));
+  CHECK(seen.back() == static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    INFO("item " << i);
+    ShadowCandidate<double> c;
+    c.P = gather_sym(P, i);
+    c.polar_plane = Vec4<double>(pi.row(i).transpose());
+    c.R = gather_sym(R, i);
+    const CheckReport alone = check_shadow<double>(gather_sym(A, i), L.row(i).transpose(), c, opt.check);
+    same_report(two[static_cast<std::size_t>(i)], alone);
+    same_report(one[static_cast<std::size_t>(i)], alone);
+    CHECK(alone.passed == (i != 4));
+  }
+  // only P given: the other arrays empty
+  const std::vector<CheckReport> onlyP = check_shadow_batch(A, L, P, Vec4Batch<double>(), SymBatch<double>(), opt);
+  CHECK(onlyP[4].find("on_P"));
+  CHECK_FALSE(onlyP[4].find("on_polar_plane"));
+  CHECK_FALSE(onlyP[4].passed);
+  CHECK(onlyP[3].passed);
+}
+
+TEST_CASE("check_reflection_batch checks reflection_batch's arrays item by item", "[check][batch]") {
+  const Eigen::Index n = 6;
+  SymBatch<double> A, B;
+  Vec4Batch<double> L, planes(n, 4);
+  AffineBatch<double> M;
+  sphere_rows(n, A, L);
+  for (Eigen::Index i = 0; i < n; ++i) planes.row(i) = Eigen::RowVector4d(1, 2 + static_cast<double>(i), -1, 3);
+  reflection_batch(A, planes, Method::direct, M, B, 2);
+  B(2, 0) *= 1 + 1e-6;  // item 2: B00 off by a millionth
+  BatchCheckOptions opt;
+  opt.check.samples = 16;
+  const std::vector<CheckReport> r = check_reflection_batch(A, planes, M, B, opt);
+  REQUIRE(r.size() == static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    INFO("item " << i << "\n" << r[static_cast<std::size_t>(i)].summary());
+    CHECK(r[static_cast<std::size_t>(i)].passed == (i != 2));
+  }
+}
+
+TEST_CASE("batch checks reject bad input before computing anything, naming the item", "[check][batch][errors]") {
+  const Eigen::Index n = 5;
+  SymBatch<double> A, P, R;
+  Vec4Batch<double> L, pi;
+  sphere_rows(n, A, L);
+  shadow_batch(A, L, Method::direct, P, pi, R, 1);
+  bool called = false;
+  BatchCheckOptions opt;
+  opt.progress = [&](std::size_t, std::size_t) { called = true; };
+  auto error_of = [&](auto&& f) -> std::string {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return e.file + " | " + e.path;
+    }
+    return "no error";
+  };
+  SymBatch<double> bad = P;
+  bad(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK(error_of([&] { check_shadow_batch(A, L, bad, pi, R, opt); }) == "check_shadows | [3].P[0][1]");
+  CHECK(error_of([&] { check_shadow_batch(A, Vec4Batch<double>(L.topRows(4)), P, pi, R, opt); }) == "check_shadow_batch | L");
+  CHECK(error_of([&] { check_shadow_batch(A, L, SymBatch<double>(), Vec4Batch<double>(), SymBatch<double>(), opt); }) ==
+        "check_shadow_batch | candidate");
+  Vec4Batch<double> dark = L;
+  dark.row(1).setZero();
+  CHECK(error_of([&] { check_shadow_batch(A, dark, P, pi, R, opt); }) == "check_shadows | [1].L");
+  std::vector<Mat4<double>> As{unit_sphere<double>()};
+  std::vector<Vec4<double>> Ls{lamp<double>(), lamp<double>()};
+  std::vector<ShadowCandidate<double>> cs(1);
+  CHECK(error_of([&] { check_shadows<double>(As, Ls, cs, opt); }) == "check_shadows | L");
+  opt.check.accuracy = -1;
+  CHECK(error_of([&] { check_shadow_batch(A, L, P, pi, R, opt); }) == "check_shadows | accuracy");
+  CHECK_FALSE(called);
+  // an empty batch is no error and no work
+  CHECK(check_shadows<double>({}, {}, {}, BatchCheckOptions{}).empty());
+}

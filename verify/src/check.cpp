@@ -1,6 +1,10 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/check.hpp>
 #include <qverify/eval/frames.hpp>
+#include <qverify/batch/items.hpp>
+
+#include <atomic>
+#include <mutex>
 
 #include <cmath>
 #include <iomanip>
@@ -508,45 +512,194 @@ void validate_options(const CheckOptions& opt, const std::string& where) {
 }
 }  // namespace
 
+namespace {
+
+/// The exact inputs of one shadow check, validated (InputError at `where`,
+/// the argument named `prefix` + its name: "A[0][1]", or "[7].A[0][1]" for
+/// item 7 of a batch).
+struct ShadowInputs {
+  Mat4<Q> A;
+  Vec4<Q> L;
+  ExactShadowCandidate c;
+};
+struct ReflectionInputs {
+  Mat4<Q> A;
+  Vec4<Q> plane;
+  ExactReflectionCandidate c;
+};
+
+template <class S>
+ShadowInputs shadow_inputs(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const std::string& where,
+                           const std::string& prefix) {
+  ShadowInputs in;
+  in.A = detail::exact_checked(A, where, prefix + "A");
+  in.L = detail::exact_checked(L, where, prefix + "L");
+  validate_quadric(in.A, where, prefix + "A");
+  validate_light(in.L, where, prefix + "L");
+  if (!c.P && !c.polar_plane && !c.R)
+    throw InputError(where, prefix + "candidate", "nothing to check: give P, polar_plane or R");
+  if (c.P) in.c.P = detail::exact_checked(*c.P, where, prefix + "P");
+  if (c.polar_plane) in.c.polar_plane = detail::exact_checked(*c.polar_plane, where, prefix + "polar_plane");
+  if (c.R) in.c.R = detail::exact_checked(*c.R, where, prefix + "R");
+  if (c.origin) in.c.origin = detail::exact_checked(*c.origin, where, prefix + "origin");
+  if (c.A) in.c.A = detail::exact_checked(*c.A, where, prefix + "candidate.A");
+  in.c.status = c.status;
+  return in;
+}
+
+template <class S>
+ReflectionInputs reflection_inputs(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c,
+                                   const std::string& where, const std::string& prefix) {
+  ReflectionInputs in;
+  in.A = detail::exact_checked(A, where, prefix + "A");
+  in.plane = detail::exact_checked(plane, where, prefix + "plane");
+  validate_quadric(in.A, where, prefix + "A");
+  validate_plane(in.plane, where, prefix + "plane");
+  if (!c.M && !c.B) throw InputError(where, prefix + "candidate", "nothing to check: give M or B");
+  if (c.M) in.c.M = detail::exact_checked(*c.M, where, prefix + "M");
+  if (c.B) in.c.B = detail::exact_checked(*c.B, where, prefix + "B");
+  if (c.origin) in.c.origin = detail::exact_checked(*c.origin, where, prefix + "origin");
+  in.c.status = c.status;
+  return in;
+}
+
+/// Every item's inputs validated before anything is computed, then the checks
+/// on threads (each item as check_shadow / check_reflection would check it alone).
+template <class Inputs, class Make, class Check>
+std::vector<CheckReport> batch_of_checks(std::size_t n, const BatchCheckOptions& opt, const std::string& where, Make make,
+                                         Check check) {
+  validate_options(opt.check, where);
+  std::vector<Inputs> in;
+  in.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) in.push_back(make(k, "[" + std::to_string(k) + "]."));
+  std::vector<CheckReport> out(n);
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  for_each_item(n, opt.threads, [&](std::size_t k) {
+    out[k] = check(in[k]);
+    const std::size_t d = ++done;
+    if (opt.progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      opt.progress(d, n);
+    }
+  });
+  return out;
+}
+
+void same_count(std::size_t n, std::size_t m, const std::string& where, const std::string& name) {
+  if (m != n)
+    throw InputError(where, name, std::to_string(m) + " items where the quadrics A give " + std::to_string(n) +
+                                      ": every argument needs one entry per item");
+}
+
+}  // namespace
+
 template <class S> CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandidate<S>& c, const CheckOptions& opt) {
   const std::string where = "check_shadow";
   validate_options(opt, where);
-  const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
-  const Vec4<Q> Le = detail::exact_checked(L, where, "L");
-  validate_quadric(Ae, where, "A");
-  validate_light(Le, where, "L");
-  if (!c.P && !c.polar_plane && !c.R) throw InputError(where, "candidate", "nothing to check: give P, polar_plane or R");
-  ExactShadowCandidate e;
-  if (c.P) e.P = detail::exact_checked(*c.P, where, "P");
-  if (c.polar_plane) e.polar_plane = detail::exact_checked(*c.polar_plane, where, "polar_plane");
-  if (c.R) e.R = detail::exact_checked(*c.R, where, "R");
-  if (c.origin) e.origin = detail::exact_checked(*c.origin, where, "origin");
-  if (c.A) e.A = detail::exact_checked(*c.A, where, "candidate.A");
-  e.status = c.status;
-  return check_shadow_exact(Ae, Le, e, opt, epsilon_of<S>());
+  const ShadowInputs in = shadow_inputs(A, L, c, where, "");
+  return check_shadow_exact(in.A, in.L, in.c, opt, epsilon_of<S>());
 }
 
 template <class S>
 CheckReport check_reflection(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c, const CheckOptions& opt) {
   const std::string where = "check_reflection";
   validate_options(opt, where);
-  const Mat4<Q> Ae = detail::exact_checked(A, where, "A");
-  const Vec4<Q> pe = detail::exact_checked(plane, where, "plane");
-  validate_quadric(Ae, where, "A");
-  validate_plane(pe, where, "plane");
-  if (!c.M && !c.B) throw InputError(where, "candidate", "nothing to check: give M or B");
-  ExactReflectionCandidate e;
-  if (c.M) e.M = detail::exact_checked(*c.M, where, "M");
-  if (c.B) e.B = detail::exact_checked(*c.B, where, "B");
-  if (c.origin) e.origin = detail::exact_checked(*c.origin, where, "origin");
-  e.status = c.status;
-  return check_reflection_exact(Ae, pe, e, opt, epsilon_of<S>());
+  const ReflectionInputs in = reflection_inputs(A, plane, c, where, "");
+  return check_reflection_exact(in.A, in.plane, in.c, opt, epsilon_of<S>());
+}
+
+template <class S>
+std::vector<CheckReport> check_shadows(const std::vector<Mat4<S>>& A, const std::vector<Vec4<S>>& L,
+                                       const std::vector<ShadowCandidate<S>>& c, const BatchCheckOptions& opt) {
+  const std::string where = "check_shadows";
+  same_count(A.size(), L.size(), where, "L");
+  same_count(A.size(), c.size(), where, "candidates");
+  return batch_of_checks<ShadowInputs>(
+      A.size(), opt, where, [&](std::size_t k, const std::string& prefix) { return shadow_inputs(A[k], L[k], c[k], where, prefix); },
+      [&](const ShadowInputs& in) { return check_shadow_exact(in.A, in.L, in.c, opt.check, epsilon_of<S>()); });
+}
+
+template <class S>
+std::vector<CheckReport> check_reflections(const std::vector<Mat4<S>>& A, const std::vector<Vec4<S>>& planes,
+                                           const std::vector<ReflectionCandidate<S>>& c, const BatchCheckOptions& opt) {
+  const std::string where = "check_reflections";
+  same_count(A.size(), planes.size(), where, "planes");
+  same_count(A.size(), c.size(), where, "candidates");
+  return batch_of_checks<ReflectionInputs>(
+      A.size(), opt, where,
+      [&](std::size_t k, const std::string& prefix) { return reflection_inputs(A[k], planes[k], c[k], where, prefix); },
+      [&](const ReflectionInputs& in) { return check_reflection_exact(in.A, in.plane, in.c, opt.check, epsilon_of<S>()); });
+}
+
+namespace {
+void same_rows(Eigen::Index n, Eigen::Index m, const std::string& where, const std::string& name) {
+  if (m != n)
+    throw InputError(where, name, std::to_string(m) + " rows where A has " + std::to_string(n) +
+                                      ": one row per item (an empty batch: that result is not checked)");
+}
+}  // namespace
+
+std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L,
+                                            const SymBatch<double>& P, const Vec4Batch<double>& polar_plane,
+                                            const SymBatch<double>& R, const BatchCheckOptions& opt) {
+  const std::string where = "check_shadow_batch";
+  const Eigen::Index n = A.rows();
+  same_rows(n, L.rows(), where, "L");
+  if (P.rows() + polar_plane.rows() + R.rows() == 0) throw InputError(where, "candidate", "nothing to check: give P, polar_plane or R");
+  if (P.rows()) same_rows(n, P.rows(), where, "P");
+  if (polar_plane.rows()) same_rows(n, polar_plane.rows(), where, "polar_plane");
+  if (R.rows()) same_rows(n, R.rows(), where, "R");
+  std::vector<Mat4<double>> As(static_cast<std::size_t>(n));
+  std::vector<Vec4<double>> Ls(static_cast<std::size_t>(n));
+  std::vector<ShadowCandidate<double>> cs(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    As[u] = gather_sym(A, i);
+    Ls[u] = L.row(i).transpose();
+    if (P.rows()) cs[u].P = gather_sym(P, i);
+    if (polar_plane.rows()) cs[u].polar_plane = Vec4<double>(polar_plane.row(i).transpose());
+    if (R.rows()) cs[u].R = gather_sym(R, i);
+  }
+  return check_shadows(As, Ls, cs, opt);
+}
+
+std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const Vec4Batch<double>& planes,
+                                                const AffineBatch<double>& M, const SymBatch<double>& B,
+                                                const BatchCheckOptions& opt) {
+  const std::string where = "check_reflection_batch";
+  const Eigen::Index n = A.rows();
+  same_rows(n, planes.rows(), where, "planes");
+  if (M.rows() + B.rows() == 0) throw InputError(where, "candidate", "nothing to check: give M or B");
+  if (M.rows()) same_rows(n, M.rows(), where, "M");
+  if (B.rows()) same_rows(n, B.rows(), where, "B");
+  std::vector<Mat4<double>> As(static_cast<std::size_t>(n));
+  std::vector<Vec4<double>> Ps(static_cast<std::size_t>(n));
+  std::vector<ReflectionCandidate<double>> cs(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    As[u] = gather_sym(A, i);
+    Ps[u] = planes.row(i).transpose();
+    if (M.rows()) {
+      Mat4<double> m = Mat4<double>::Identity();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) m(r, c) = M(i, 4 * r + c);
+      cs[u].M = m;
+    }
+    if (B.rows()) cs[u].B = gather_sym(B, i);
+  }
+  return check_reflections(As, Ps, cs, opt);
 }
 
 #define QVERIFY_CHECK_INSTANTIATE(S)                                                                              \
   template CheckReport check_shadow<S>(const Mat4<S>&, const Vec4<S>&, const ShadowCandidate<S>&, const CheckOptions&); \
   template CheckReport check_reflection<S>(const Mat4<S>&, const Vec4<S>&, const ReflectionCandidate<S>&,               \
-                                           const CheckOptions&);
+                                           const CheckOptions&);                                                        \
+  template std::vector<CheckReport> check_shadows<S>(const std::vector<Mat4<S>>&, const std::vector<Vec4<S>>&,          \
+                                                     const std::vector<ShadowCandidate<S>>&, const BatchCheckOptions&); \
+  template std::vector<CheckReport> check_reflections<S>(const std::vector<Mat4<S>>&, const std::vector<Vec4<S>>&,      \
+                                                         const std::vector<ReflectionCandidate<S>>&,                  \
+                                                         const BatchCheckOptions&);
 QVERIFY_CHECK_INSTANTIATE(float)
 QVERIFY_CHECK_INSTANTIATE(double)
 QVERIFY_CHECK_INSTANTIATE(long double)

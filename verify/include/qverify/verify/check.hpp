@@ -21,10 +21,17 @@
 ///    plane of the paper's frame, M the reflection);
 ///  - an exact candidate (rationals) passes only when every residual is
 ///    exactly zero: a proof on the sampled points.
+///
+/// Many items at once (a test suite's whole table, a renderer's frame):
+/// check_shadows / check_reflections over vectors, check_shadow_batch /
+/// check_reflection_batch over the batch API's arrays; threads over items, a
+/// progress callback, and each report the one its item would get alone.
 
+#include <qverify/batch/batch.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/precision.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -165,5 +172,42 @@ CheckReport check_shadow(const Mat4<S>& A, const Vec4<S>& L, const ShadowCandida
 template <class S>
 CheckReport check_reflection(const Mat4<S>& A, const Vec4<S>& plane, const ReflectionCandidate<S>& c,
                              const CheckOptions& opt = {});
+
+// ------------------------------------------------------------------ batches
+
+/// Options of a batch of checks.
+struct BatchCheckOptions {
+  CheckOptions check;  ///< of every item
+  /// Threads over the items (0: one per logical processor); the reports do not depend on it.
+  int threads = 0;
+  /// Called after each item is checked with (items done, items in all), from one thread at a time.
+  std::function<void(std::size_t, std::size_t)> progress = nullptr;
+};
+
+/// n items at once: report k is what check_shadow(A[k], L[k], candidates[k], opt.check)
+/// returns (the same sample points: each item is checked as if alone), computed on
+/// threads. Every item's inputs are validated before anything is computed: an
+/// InputError names the item, e.g. "check_shadows: [7].P[0][1]: not a finite number".
+template <class S>
+std::vector<CheckReport> check_shadows(const std::vector<Mat4<S>>& A, const std::vector<Vec4<S>>& L,
+                                       const std::vector<ShadowCandidate<S>>& candidates, const BatchCheckOptions& opt = {});
+/// The same for reflections: report k is check_reflection(A[k], planes[k], candidates[k], opt.check).
+template <class S>
+std::vector<CheckReport> check_reflections(const std::vector<Mat4<S>>& A, const std::vector<Vec4<S>>& planes,
+                                           const std::vector<ReflectionCandidate<S>>& candidates,
+                                           const BatchCheckOptions& opt = {});
+
+/// Checks the arrays of the batch API (batch/batch.hpp: one row per item, a symmetric
+/// matrix as its 10 entries A00 A01 A02 A03 A11 A12 A13 A22 A23 A33): what
+/// shadow_batch returns for A and L, or another program's results in that layout.
+/// An array with no rows is a result not given (not checked); any other must have
+/// one row per item (InputError naming it).
+std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L,
+                                            const SymBatch<double>& P, const Vec4Batch<double>& polar_plane,
+                                            const SymBatch<double>& R, const BatchCheckOptions& opt = {});
+/// The same for reflection_batch's results: M as its three rows (n x 12), B (n x 10).
+std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const Vec4Batch<double>& planes,
+                                                const AffineBatch<double>& M, const SymBatch<double>& B,
+                                                const BatchCheckOptions& opt = {});
 
 }  // namespace qverify
