@@ -202,13 +202,16 @@ Measure coordinate(const IntegerPoint& x, int i) {
   const auto u = static_cast<std::size_t>(i);
   return root_magnitude(BigInt(x.P[u] * x.Dv), BigInt(x.V[u] * x.Dp), x.d, BigInt(x.Dp * x.Dv));
 }
+/// |x|^2 = (Dv^2 sum P_i^2 + delta Dp^2 sum V_i^2 + sqrt(delta) 2 Dp Dv sum P_i V_i) / (Dp Dv)^2:
+/// one rounding of an exact value, not four squares of rounded coordinates.
 Measure norm2(const IntegerPoint& x) {
-  Measure s = 0;
-  for (int i = 0; i < 4; ++i) {
-    const Measure c = coordinate(x, i);
-    s += c * c;
+  BigInt pp, vv, pv;
+  for (std::size_t i = 0; i < 4; ++i) {
+    pp += x.P[i] * x.P[i];
+    if (!x.rational) vv += x.V[i] * x.V[i], pv += x.P[i] * x.V[i];
   }
-  return s;
+  const BigInt den = x.Dp * x.Dv;
+  return root_magnitude(BigInt(pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp), BigInt(2 * pv * den), x.d, BigInt(den * den));
 }
 
 FI norm2(const PointEnclosure& X) {
