@@ -366,8 +366,10 @@ int run_verify(const Options& o) {
   const Precision prec = precision_of(o.precision_text);
   const Method method = method_of(o.method_text);
   const Scene sc = load_scene(o.scene_file);
+  // Computed results are eval's (its accuracy measure with its own samples and seed decides
+  // escalation and the inaccurate flag): verify checks what `eval --accuracy T` prints.
   const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text),
-                                                              AccuracyOptions{o.accuracy, o.samples, o.seed})
+                                                              AccuracyOptions{o.accuracy})
                                            : candidate_results(sc, o.candidate, prec);
   VerifyOptions vopt{o.samples, o.seed, o.accuracy};
   vopt.progress = progress_bar("verify");

@@ -47,8 +47,8 @@ void RootPoint::enclose_coordinates() {
     p[i] = FilterInterval(e.inf(), e.sup());
     root[i] = q_(i) != 0 && delta_ != 0;
     if (!root[i]) continue;
-    const Interval r = small_root ? enclose(q_(i) > 0 ? q_(i) : Rational(-q_(i))) : enclose(Rational(delta_ * q_(i) * q_(i)));
-    s[i] = FilterInterval(r.inf(), r.sup());
+    const Interval r = small_root ? enclose(q_(i)) : enclose(Rational(delta_ * q_(i) * q_(i)));
+    s[i] = q_(i) > 0 || !small_root ? FilterInterval(r.inf(), r.sup()) : FilterInterval(-r.sup(), -r.inf());  // |q_i|
   }
   CGAL::Protect_FPU_rounding<true> guard;
   const FilterInterval sd = CGAL::sqrt(FilterInterval(ed.inf(), ed.sup()));

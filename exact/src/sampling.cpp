@@ -1,4 +1,5 @@
 #include <qverify/core/quadric.hpp>
+#include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/sampling.hpp>
 
 #include <random>
@@ -24,31 +25,77 @@ struct Draw {
   }
 };
 
-/// The base point b of the lines drawn, with A b and b^T A b: computed once per
-/// base point, not per line (b has large denominators; u is small).
-struct Base {
-  Base(const Mat4<Q>& A, const Vec4<Q>& b_) : b(b_), Ab(A * b_), c(b_.dot(Ab)) {}
-  Vec4<Q> b, Ab;
-  Q c;
-};
+/// Lines b + t u through a base point b, met with A, on integers: A is
+/// scaled to an integer matrix Ai (a positive multiple: the same quadric), b
+/// is B / Db, and each direction u is scaled to an integer vector U (a
+/// positive multiple: the same line). With alpha = U^T Ai U, beta = U^T Ai B,
+/// c = B^T Ai B (B's part computed once per base point) the line meets A at
+///   x = (alpha B - beta U) / (Db alpha) +- sqrt(beta^2 - alpha c) U / (Db alpha),
+/// the points of the rational quadratic of the line, with one gcd per
+/// coordinate at the end instead of one per rational operation (and p, q,
+/// delta written as the rational formulas write them).
+class Lines {
+ public:
+  Lines(const Mat4<Q>& A, const Vec4<Q>& b) {
+    clear_denominators(A, Ai_, DA_);
+    set_base(b);
+  }
+  void set_base(const Vec4<Q>& b) {
+    b_ = b;
+    clear_denominators(b, B_, Db_);
+    c_ = 0;
+    for (int i = 0; i < 4; ++i) {
+      AB_[i] = 0;
+      for (int j = 0; j < 4; ++j) AB_[i] += Ai_[static_cast<std::size_t>(4 * i + j)] * B_[static_cast<std::size_t>(j)];
+      c_ += B_[static_cast<std::size_t>(i)] * AB_[i];
+    }
+  }
+  const Vec4<Q>& base() const { return b_; }
 
-/// Adds the points where the line b + t u meets A (b finite, u at infinity).
-bool intersect_line(const Mat4<Q>& A, const Base& base, const Vec4<Q>& u, std::vector<RootPoint>& out, int want) {
-  const Vec4<Q>& b = base.b;
-  const Q& c = base.c;
-  const Q alpha = u.dot(A * u), beta = u.dot(base.Ab);
-  if (alpha == 0) {
-    if (beta == 0) return false;
-    out.emplace_back(Vec4<Q>(b - (c / (2 * beta)) * u), Vec4<Q>::Zero(), Q(0));  // the one finite root
+  /// Adds the points where the line b + t u meets A (u at infinity); false when it misses (or touches) A.
+  bool intersect(const Vec4<Q>& u, std::vector<RootPoint>& out, int want) const {
+    std::array<BigInt, 4> U;
+    BigInt Du;
+    clear_denominators(u, U, Du);
+    BigInt alpha, beta;
+    for (int i = 0; i < 4; ++i) {
+      BigInt ui;
+      for (int j = 0; j < 4; ++j) ui += Ai_[static_cast<std::size_t>(4 * i + j)] * U[static_cast<std::size_t>(j)];
+      alpha += U[static_cast<std::size_t>(i)] * ui;
+      beta += U[static_cast<std::size_t>(i)] * AB_[i];
+    }
+    if (alpha == 0) {  // the one finite root, x = (2 beta B - c U) / (2 beta Db)
+      if (beta == 0) return false;
+      const BigInt den = 2 * beta * Db_;
+      Vec4<Q> x;
+      for (std::size_t i = 0; i < 4; ++i) x(static_cast<Eigen::Index>(i)) = Q(BigInt(2 * beta * B_[i] - c_ * U[i]), den);
+      out.emplace_back(x, Vec4<Q>::Zero(), Q(0));
+      return true;
+    }
+    const BigInt delta = beta * beta - alpha * c_;
+    if (delta <= 0) return false;
+    // In the rational terms of the line as given (u, not U; A, not Ai): q = u / (u^T A u) =
+    // DA Du U / alpha and delta = delta_int / (Du DA Db)^2. The same p, q and delta as the
+    // rational formulas, not merely the same points: plane_points (accuracy.cpp) steps along q.
+    const BigInt den = Db_ * alpha, qscale = DA_ * Du, droot = Du * DA_ * Db_;
+    Vec4<Q> p, q;
+    for (std::size_t i = 0; i < 4; ++i) {
+      p(static_cast<Eigen::Index>(i)) = Q(BigInt(alpha * B_[i] - beta * U[i]), den);
+      q(static_cast<Eigen::Index>(i)) = Q(BigInt(qscale * U[i]), alpha);
+    }
+    const Q d(delta, BigInt(droot * droot));
+    out.emplace_back(p, q, d);
+    if (static_cast<int>(out.size()) < want) out.emplace_back(p, Vec4<Q>(-q), d);
     return true;
   }
-  const Q delta = beta * beta - alpha * c;
-  if (delta <= 0) return false;  // misses (or touches) A
-  const Vec4<Q> p = b - (beta / alpha) * u, q = u / alpha;
-  out.emplace_back(p, q, delta);
-  if (static_cast<int>(out.size()) < want) out.emplace_back(p, Vec4<Q>(-q), delta);
-  return true;
-}
+
+ private:
+  std::array<BigInt, 16> Ai_;
+  BigInt DA_;
+  Vec4<Q> b_;
+  std::array<BigInt, 4> B_;
+  BigInt Db_, AB_[4], c_;
+};
 
 Vec4<Q> finite(const Vec3<Q>& v) { return Vec4<Q>(v(0), v(1), v(2), Q(1)); }
 
@@ -97,16 +144,16 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     b = finite(Vec3<Q>(-(pi(3) / normal.squaredNorm()) * normal));
   }
   const int max_attempts = 50 * n + 50;
-  Base base(A, b);
+  Lines lines(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = normal.cross(draw.vec3());  // a direction inside the plane
     if (d.isZero()) continue;
-    intersect_line(A, base, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+    lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {  // move the base point within the plane
       const Vec3<Q> shift = normal.cross(draw.vec3());
       b.head<3>() += shift;
-      base = Base(A, b);
+      lines.set_base(b);
     }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;
@@ -122,14 +169,14 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed) {
   Vec4<Q> b = finite(Vec3<Q>::Zero());
   if (K.determinant() != 0) b = finite(Vec3<Q>(-(K.inverse() * k)));  // centre
   const int max_attempts = 50 * n + 50;
-  Base base(A, b);
+  Lines lines(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = draw.vec3();
-    intersect_line(A, base, Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+    lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {
       b.head<3>() += draw.vec3();
-      base = Base(A, b);
+      lines.set_base(b);
     }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;

@@ -269,7 +269,7 @@ py::object verify_scene_py(const py::object& path, const py::object& text, const
     auto lock = mpfr_lock(prec.kind == Precision::Kind::mpfr);
     const ResultSet rs = ctext   ? candidate_results_text(sc, *ctext, cand_name, prec)
                          : cpath ? candidate_results(sc, *cpath, prec)
-                                 : computed_results(sc, prec, method, frame, AccuracyOptions{accuracy, samples, seed});
+                                 : computed_results(sc, prec, method, frame, AccuracyOptions{accuracy});  // eval's results
     v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
   }
   return json_to_python(verify_document(sc, v));

@@ -8,7 +8,9 @@
 /// meets A where alpha t^2 + 2 beta t + c = 0, at
 ///   x = b - (beta/alpha) u +- sqrt(beta^2 - alpha c) (u/alpha),
 /// a point of Q(sqrt(delta))^4 (RootPoint). Directions with delta < 0 miss
-/// the quadric and are drawn again. A singular section (a line pair, a double
+/// the quadric and are drawn again. The arithmetic is on integers (A, b and u
+/// scaled by positive factors, which change neither the quadric nor the line;
+/// one gcd per coordinate at the end). A singular section (a line pair, a double
 /// line, a single real point) also contributes its exact rational singular
 /// point(s), so a terminator that is a single point is still sampled.
 
