@@ -1,5 +1,6 @@
 // The check API (verify/check.hpp): a user's matrices checked directly, with
 // the semantics of `qverify verify`, in every scalar type.
+#include <qverify/batch/batch.hpp>
 #include <qverify/verify/check.hpp>
 
 #include <catch2/catch.hpp>

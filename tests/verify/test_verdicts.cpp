@@ -320,6 +320,39 @@ TEST_CASE("qverify's own eval document, read back as a candidate, passes: far or
   CHECK(v.passed == 2);
 }
 
+TEST_CASE("a candidate's numbers are the values of its precision: eval's document read back is judged as computed",
+          "[verdicts][verify][candidate]") {
+  // A double document holds doubles written as the shortest text that round-trips (0.01484375 for the
+  // double nearest 19/1280); read as the decimals they spell, the results judged were other numbers
+  // than the program's (mixed-requests' pipe: on_P 0 where the doubles are 8.6e-18 off).
+  for (const char* name : {"mixed-requests", "ball-lamp-floor", "egg-sun-wall", "far-ball-lamp-floor"}) {
+    for (const char* precision : {"float", "double", "long-double", "float128"}) {
+      INFO(name << " " << precision);
+      const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + name + ".json");
+      const Precision prec = *parse_precision(precision);
+      const auto doc = eval_json(eval_report(sc, prec, Method::direct, std::nullopt, AccuracyOptions{}));
+      const VerifyReport computed = verify_results(sc, computed_results(sc, prec, Method::direct), VerifyOptions{16, 3});
+      const VerifyReport read =
+          verify_results(sc, candidate_results_text(sc, doc.dump(), "eval.json", prec), VerifyOptions{16, 3});
+      REQUIRE(read.checks.size() == computed.checks.size());
+      for (std::size_t k = 0; k < read.checks.size(); ++k) {
+        const auto& a = computed.checks[k].report;
+        const auto& b = read.checks[k].report;
+        REQUIRE(a.has_value() == b.has_value());
+        if (!a) continue;
+        CHECK(a->passed == b->passed);
+        for (const QuadricCheck& q : a->checks) {
+          if (!q.judged) continue;  // on_A: the quadric as each side holds it
+          const QuadricCheck* r = b->find(q.name);
+          REQUIRE(r);
+          CHECK(q.geometric_error == r->geometric_error);
+          CHECK(q.metric.residual == r->metric.residual);
+        }
+      }
+    }
+  }
+}
+
 namespace {
 
 ResultSet exact_results(const Scene& sc) {

@@ -1,6 +1,7 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/check.hpp>
 #include <qverify/eval/frames.hpp>
+#include <qverify/batch/batch.hpp>  // gather_sym
 #include <qverify/batch/items.hpp>
 
 #include <atomic>

@@ -1,4 +1,5 @@
 #include <qverify/exact/number_text.hpp>
+#include <qverify/exact/rounding.hpp>
 #include <qverify/exact/sampling.hpp>
 #include <qverify/scene/json_tree.hpp>
 #include <qverify/eval/frames.hpp>
@@ -116,6 +117,14 @@ class CandidateReader {
   CandidateReader(std::string file) : file_(std::move(file)) {}
   [[noreturn]] void fail(const std::string& path, const std::string& what) const { throw InputError(file_, path, what); }
 
+  /// The document's precision: its numbers are the values of that format the
+  /// writer held (the contract: float and double entries are JSON numbers that
+  /// round-trip, long double and float128 entries decimal strings that
+  /// round-trip), so each is read as the nearest value of the format, not as
+  /// the decimal it spells (0.1 in a double document is the double 0.1). "p/q"
+  /// strings, exact documents and mpfr documents are read exactly.
+  void number_format(Precision::Kind k) { format_ = k; }
+
   /// One entry: number, "p/q"/decimal string, {"lo","hi"} (midpoint); null -> nullopt.
   std::optional<Q> entry(const JsonNode& n, const std::string& path) const {
     std::string err;
@@ -133,6 +142,20 @@ class CandidateReader {
       return Q((*a + *b) / 2);
     } else fail(path, std::string("expected a number, a \"p/q\" string or an interval, found ") + n.kind_name());
     if (!v) fail(path, err);
+    using K = Precision::Kind;
+    const bool binary_number = n.kind == JsonNode::Kind::number && (format_ == K::f32 || format_ == K::f64 || format_ == K::interval);
+    const bool binary_text = n.kind == JsonNode::Kind::string && n.text.find('/') == std::string::npos &&
+                             (format_ == K::f80 || format_ == K::f128);
+    if (binary_number || binary_text) {
+      RoundingReport rep;
+      switch (format_) {
+        case K::f32: v = exact_value(round_rational<float>(*v, rep)); break;
+        case K::f80: v = exact_value(round_rational<long double>(*v, rep)); break;
+        case K::f128: v = exact_value(round_rational<Float128>(*v, rep)); break;
+        default: v = exact_value(round_rational<double>(*v, rep)); break;
+      }
+      if (rep.overflow) fail(path, "beyond the range of the document's precision (" + n.text.substr(0, 40) + ")");
+    }
     return v;
   }
 
@@ -177,6 +200,7 @@ class CandidateReader {
 
  private:
   std::string file_;
+  Precision::Kind format_ = Precision::Kind::exact;
 };
 
 }  // namespace
@@ -201,6 +225,7 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
     if (auto parsed = parse_precision(p->text)) rs.precision = *parsed;
     else r.fail("precision", "unknown precision \"" + p->text + "\"");
   }
+  r.number_format(rs.precision.kind);
   if (const JsonNode* m = root.find("method")) {
     if (m->kind != JsonNode::Kind::string || (m->text != "direct" && m->text != "paper"))
       r.fail("method", "expected \"direct\" or \"paper\"");

@@ -26,6 +26,7 @@
 
 #include <qverify/core/mirror.hpp>
 #include <qverify/batch/pack.hpp>
+#include <qverify/batch/rows.hpp>
 #include <qverify/core/shadow.hpp>
 
 #include <algorithm>
@@ -40,14 +41,7 @@
 
 namespace qverify {
 
-template <class S> using SymBatch = Eigen::Matrix<S, Eigen::Dynamic, 10, Eigen::RowMajor>;
-template <class S> using Vec4Batch = Eigen::Matrix<S, Eigen::Dynamic, 4, Eigen::RowMajor>;
-/// The three non-trivial rows of mirror matrices (row 4 is 0 0 0 1).
-template <class S> using AffineBatch = Eigen::Matrix<S, Eigen::Dynamic, 12, Eigen::RowMajor>;
-
-/// Entry order of a symmetric matrix in a SymBatch row.
-constexpr int kSymRow[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
-constexpr int kSymCol[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+// SymBatch, Vec4Batch, AffineBatch and the entry order kSymRow/kSymCol: rows.hpp.
 
 /// Plain (cached) stores of item i's symmetric matrix; gather_sym, its reverse,
 /// is load_sym_lanes with ScalarLanes (below).

@@ -27,7 +27,7 @@
 /// check_reflection_batch over the batch API's arrays; threads over items, a
 /// progress callback, and each report the one its item would get alone.
 
-#include <qverify/batch/batch.hpp>
+#include <qverify/batch/rows.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/precision.hpp>
 

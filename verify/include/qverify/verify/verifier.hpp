@@ -18,9 +18,12 @@
 
 namespace qverify {
 
-/// Reads a `qverify-eval/1` document made by any program. Numbers are read
-/// exactly from their text (JSON numbers, "p/q" or decimal strings, and
-/// {"lo", "hi"} intervals, checked at their midpoint). Malformed documents are
+/// Reads a `qverify-eval/1` document made by any program. Entries are JSON
+/// numbers, "p/q" or decimal strings, or {"lo", "hi"} intervals (checked at
+/// their midpoint). A number of a float, double or interval document (a decimal
+/// string of a long-double or float128 one) is the value of that format its
+/// text round-trips to, the value the writer held; "p/q" strings and exact and
+/// mpfr documents are read exactly. Malformed documents are
 /// InputErrors (file, JSON path); requested items it lacks are reported by the
 /// verifier as failures.
 ResultSet candidate_results(const Scene& sc, const std::string& file, const Precision& fallback);
