@@ -21,10 +21,8 @@ Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
 /// Cartesian coordinates of x to 80 digits (w != 0 for every sampled point).
 Vec3<Measure> cartesian(const RootPoint& x) {
   const IntegerPoint n(x);  // on integers: no gcd per operation
-  const BigInt den = n.Dp * n.Dv;
-  Measure c[4];
-  for (std::size_t i = 0; i < 4; ++i) c[i] = root_value(BigInt(n.P[i] * n.Dv), BigInt(n.V[i] * n.Dp), n.d, den);
-  return Vec3<Measure>(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
+  const Measure w = n.coordinate(3);
+  return Vec3<Measure>(n.coordinate(0) / w, n.coordinate(1) / w, n.coordinate(2) / w);
 }
 
 /// Largest distance of the points from A's centre (centroid where K is singular).
@@ -197,11 +195,6 @@ struct PointFilter {
   }
 };
 
-/// |x_i| and |x|^2 of an exact point, to 80 digits, from its integers.
-Measure coordinate(const IntegerPoint& x, int i) {
-  const auto u = static_cast<std::size_t>(i);
-  return root_magnitude(BigInt(x.P[u] * x.Dv), BigInt(x.V[u] * x.Dp), x.d, BigInt(x.Dp * x.Dv));
-}
 /// |x|^2 = (Dv^2 sum P_i^2 + delta Dp^2 sum V_i^2 + sqrt(delta) 2 Dp Dv sum P_i V_i) / (Dp Dv)^2:
 /// one rounding of an exact value, not four squares of rounded coordinates.
 Measure norm2(const IntegerPoint& x) {
@@ -276,7 +269,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
       const Measure gi = root_magnitude(BigInt(y[i] * x.Dv), BigInt(z[i] * x.Dp), x.d, den);
       g += gi * gi;
     }
-    const Measure w = coordinate(x, 3);
+    const Measure w = x.magnitude(3);
     add_distance(m, k, g > 0 && w > 0 ? std::optional<Measure>(fm / (w * 2 * sqrt(g))) : std::nullopt);
   });
   return m;
@@ -317,7 +310,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
     m.all_zero = false;
     const Measure fm = root_magnitude(f0, f1, x.d, BigInt(x.Dp * x.Dv * Dpi));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
-    const Measure w = coordinate(x, 3);
+    const Measure w = x.magnitude(3);
     add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);
   });
   return m;

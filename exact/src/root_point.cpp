@@ -134,25 +134,22 @@ Vec3<double> RootPoint::approx_cartesian() const {
 namespace qverify {
 
 namespace {
-mpz_ptr z(BigInt& x) { return x.backend().data(); }
-mpz_srcptr z(const BigInt& x) { return x.backend().data(); }
-
 /// D = lcm of the denominators of n rationals (equal ones, the common case, without a gcd).
 void common_denominator(const Rational* v, int n, BigInt& D) {
   D = 1;
   for (int i = 0; i < n; ++i) {
     mpz_srcptr den = mpq_denref(v[i].backend().data());
-    if (mpz_cmp_ui(den, 1) == 0 || mpz_cmp(den, z(D)) == 0) continue;
-    if (mpz_cmp_ui(z(D), 1) == 0) mpz_set(z(D), den);
-    else mpz_lcm(z(D), z(D), den);
+    if (mpz_cmp_ui(den, 1) == 0 || mpz_cmp(den, mpz(D)) == 0) continue;
+    if (mpz_cmp_ui(mpz(D), 1) == 0) mpz_set(mpz(D), den);
+    else mpz_lcm(mpz(D), mpz(D), den);
   }
 }
 
 void scale_to(const Rational* v, int n, const BigInt& D, BigInt* out) {
   for (int i = 0; i < n; ++i) {
     const auto* e = v[i].backend().data();
-    mpz_divexact(z(out[i]), z(D), mpq_denref(e));
-    mpz_mul(z(out[i]), z(out[i]), mpq_numref(e));
+    mpz_divexact(mpz(out[i]), mpz(D), mpq_denref(e));
+    mpz_mul(mpz(out[i]), mpz(out[i]), mpq_numref(e));
   }
 }
 }  // namespace
@@ -173,55 +170,57 @@ IntegerPoint::IntegerPoint(const RootPoint& x) {
   clear_denominators(x.q(), V, Dv);
   d = numerator(x.delta());  // RootPoint keeps an integer radicand
   rational = d == 0 || x.q().isZero();
-  square = !rational && mpz_perfect_square_p(z(d)) != 0;
+  square = !rational && mpz_perfect_square_p(mpz(d)) != 0;
+}
+
+void root_norm(BigInt& out, const BigInt& u, const BigInt& v, const BigInt& d, BigInt& t) {
+  mpz_mul(mpz(out), mpz(u), mpz(u));
+  mpz_mul(mpz(t), mpz(v), mpz(v));
+  mpz_submul(mpz(out), mpz(t), mpz(d));
+}
+
+int root_sign(const BigInt& u, const BigInt& v, const BigInt& d) {
+  const int su = mpz_sgn(mpz(u)), sv = mpz_sgn(mpz(d)) == 0 ? 0 : mpz_sgn(mpz(v));
+  if (sv == 0) return su;
+  if (su == 0 || su == sv) return sv;
+  BigInt n, t;  // opposite signs: the larger of u^2 and v^2 d wins
+  root_norm(n, u, v, d, t);
+  return su * mpz_sgn(mpz(n));
 }
 
 bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square) {
-  if (mpz_sgn(z(v)) == 0 || mpz_sgn(z(d)) == 0) return mpz_sgn(z(u)) == 0;
-  if (!square) return mpz_sgn(z(u)) == 0;  // v != 0 and sqrt(d) irrational
-  // u + v r == 0 with r = sqrt(d): signs opposite (or u = 0, impossible here) and u^2 = v^2 d
-  if (mpz_sgn(z(u)) == mpz_sgn(z(v)) || mpz_sgn(z(u)) == 0) return false;
-  BigInt l, r;
-  mpz_mul(z(l), z(u), z(u));
-  mpz_mul(z(r), z(v), z(v));
-  mpz_mul(z(r), z(r), z(d));
-  return mpz_cmp(z(l), z(r)) == 0;
+  if (!square && mpz_sgn(mpz(v)) != 0 && mpz_sgn(mpz(d)) != 0) return false;  // sqrt(d) irrational, v != 0
+  return root_sign(u, v, d) == 0;
 }
 
 Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
   Measure mu, mv, md;
-  mpfr_set_z(mu.backend().data(), z(u), MPFR_RNDN);
-  mpfr_set_z(md.backend().data(), z(den), MPFR_RNDN);
-  if (mpz_sgn(z(v)) == 0 || mpz_sgn(z(d)) == 0) return abs(mu) / md;
-  mpfr_set_z(mv.backend().data(), z(v), MPFR_RNDN);
+  mpfr_set_z(mu.backend().data(), mpz(u), MPFR_RNDN);
+  mpfr_set_z(md.backend().data(), mpz(den), MPFR_RNDN);
+  if (mpz_sgn(mpz(v)) == 0 || mpz_sgn(mpz(d)) == 0) return abs(mu) / md;
+  mpfr_set_z(mv.backend().data(), mpz(v), MPFR_RNDN);
   Measure s;
-  mpfr_set_z(s.backend().data(), z(d), MPFR_RNDN);
+  mpfr_set_z(s.backend().data(), mpz(d), MPFR_RNDN);
   s = sqrt(s);
   const Measure sum = abs(mu) + abs(mv) * s;
-  if (mpz_sgn(z(u)) == 0 || mpz_sgn(z(u)) == mpz_sgn(z(v))) return sum / md;
+  if (mpz_sgn(mpz(u)) == 0 || mpz_sgn(mpz(u)) == mpz_sgn(mpz(v))) return sum / md;
   BigInt c, t;  // |u^2 - v^2 d|, exact: no cancellation left
-  mpz_mul(z(c), z(u), z(u));
-  mpz_mul(z(t), z(v), z(v));
-  mpz_submul(z(c), z(t), z(d));
-  mpz_abs(z(c), z(c));
+  root_norm(c, u, v, d, t);
+  mpz_abs(mpz(c), mpz(c));
   Measure mc;
-  mpfr_set_z(mc.backend().data(), z(c), MPFR_RNDN);
+  mpfr_set_z(mc.backend().data(), mpz(c), MPFR_RNDN);
   return mc / (sum * md);
 }
 
 Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
+  const int sign = root_sign(u, v, d);
+  if (sign == 0) return Measure(0);
   const Measure m = root_magnitude(u, v, d, den);
-  const int su = mpz_sgn(z(u)), sv = mpz_sgn(z(d)) == 0 ? 0 : mpz_sgn(z(v));
-  int sign = su;
-  if (sv != 0 && (su == 0 || su == sv)) sign = sv;
-  else if (sv != 0) {  // opposite signs: the larger of u^2 and v^2 d wins
-    BigInt l, r;
-    mpz_mul(z(l), z(u), z(u));
-    mpz_mul(z(r), z(v), z(v));
-    mpz_mul(z(r), z(r), z(d));
-    sign = su * mpz_cmp(z(l), z(r));
-  }
-  return sign < 0 ? Measure(-m) : sign == 0 ? Measure(0) : m;
+  return sign < 0 ? Measure(-m) : m;
 }
+
+Measure IntegerPoint::coordinate(int i) const { return root_value(u(i), v(i), d, den()); }
+
+Measure IntegerPoint::magnitude(int i) const { return root_magnitude(u(i), v(i), d, den()); }
 
 }  // namespace qverify

@@ -2,10 +2,14 @@
 #include "laws.hpp"
 
 #include <qverify/batch/batch.hpp>
+#include <qverify/batch/items.hpp>
 #include <qverify/exact/interval.hpp>
 
+#include <algorithm>
 #include <cfenv>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 using namespace qverify;
 using Q = Rational;
@@ -253,4 +257,34 @@ TEST_CASE("interval batches by packs equal CGAL item by item and enclose the exa
 
 TEST_CASE("interval batches: non-finite inputs, overflow and a divisor around 0 fall back to CGAL", "[batch][pack]") {
   check_interval_batch<CGAL::Interval_nt<false>>(true);
+}
+
+TEST_CASE("for_each_item runs every item once and reports progress 1..n in order, on 1 and 2 threads", "[batch][items]") {
+  for (int threads : {1, 2}) {
+    const std::size_t n = 257;
+    std::vector<int> runs(n, 0);
+    std::vector<std::size_t> seen;
+    for_each_item(n, threads, [&](std::size_t done, std::size_t total) {
+      CHECK(total == n);
+      seen.push_back(done);  // the calls are serialised: no lock needed here
+    }, [&](std::size_t k) { ++runs[k]; });
+    CHECK(std::count(runs.begin(), runs.end(), 1) == static_cast<long>(n));
+    REQUIRE(seen.size() == n);
+    for (std::size_t i = 0; i < n; ++i) CHECK(seen[i] == i + 1);
+  }
+}
+
+TEST_CASE("for_each_item rethrows the first exception of an item, and no progress counts the failed item", "[batch][items]") {
+  for (int threads : {1, 2}) {
+    std::size_t last = 0;
+    CHECK_THROWS_WITH(for_each_item(100, threads, [&](std::size_t done, std::size_t) { last = done; },
+                                    [](std::size_t k) {
+                                      if (k == 40) throw std::runtime_error("item 40");
+                                    }),
+                      "item 40");
+    CHECK(last < 100);
+  }
+  int calls = 0;
+  for_each_item(0, 2, [&](std::size_t, std::size_t) { ++calls; }, [&](std::size_t) { ++calls; });
+  CHECK(calls == 0);
 }

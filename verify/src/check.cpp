@@ -4,8 +4,6 @@
 #include <qverify/batch/batch.hpp>  // gather_sym
 #include <qverify/batch/items.hpp>
 
-#include <atomic>
-#include <mutex>
 
 #include <cmath>
 #include <iomanip>
@@ -574,16 +572,7 @@ std::vector<CheckReport> batch_of_checks(std::size_t n, const BatchCheckOptions&
   in.reserve(n);
   for (std::size_t k = 0; k < n; ++k) in.push_back(make(k, "[" + std::to_string(k) + "]."));
   std::vector<CheckReport> out(n);
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  for_each_item(n, opt.threads, [&](std::size_t k) {
-    out[k] = check(in[k]);
-    const std::size_t d = ++done;
-    if (opt.progress) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      opt.progress(d, n);
-    }
-  });
+  for_each_item(n, opt.threads, opt.progress, [&](std::size_t k) { out[k] = check(in[k]); });
   return out;
 }
 

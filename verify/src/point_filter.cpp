@@ -92,11 +92,8 @@ namespace {
 void dot4(mpz_t out, const BigInt* row, const std::array<BigInt, 4>& x) {
   mpz_set_ui(out, 0);
   for (int j = 0; j < 4; ++j)
-    if (mpz_sgn(row[j].backend().data()) != 0) mpz_addmul(out, row[j].backend().data(), x[j].backend().data());
+    if (mpz_sgn(mpz(row[j])) != 0) mpz_addmul(out, mpz(row[j]), mpz(x[j]));
 }
-
-mpz_ptr z(BigInt& x) { return x.backend().data(); }
-mpz_srcptr z(const BigInt& x) { return x.backend().data(); }
 
 /// Scratch numbers of one thread (no allocation per check once they have grown).
 constexpr mpfr_prec_t kStageBits = 64;
@@ -123,19 +120,19 @@ Scratch& scratch() {
 /// rounded outwards and without cancellation: where a and b sqrt(d) have
 /// opposite signs, |a^2 - b^2 d| / (|a| + |b| sqrt(d)) (an exact integer over a sum).
 void enclose_abs(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, bool root, Scratch& s) {
-  mpz_abs(z(s.abs_a), z(a));
-  mpz_abs(z(s.abs_b), z(b));
-  const int sa = mpz_sgn(z(a)), sb = root ? mpz_sgn(z(b)) : 0;
+  mpz_abs(mpz(s.abs_a), mpz(a));
+  mpz_abs(mpz(s.abs_b), mpz(b));
+  const int sa = mpz_sgn(mpz(a)), sb = root ? mpz_sgn(mpz(b)) : 0;
   if (sb == 0) {
-    mpfr_set_z(lo, z(s.abs_a), MPFR_RNDD);
-    mpfr_set_z(hi, z(s.abs_a), MPFR_RNDU);
+    mpfr_set_z(lo, mpz(s.abs_a), MPFR_RNDD);
+    mpfr_set_z(hi, mpz(s.abs_a), MPFR_RNDU);
     return;
   }
   // |a| + |b| sqrt(d), down and up
   auto sum = [&](mpfr_ptr out, mpfr_srcptr sd, mpfr_rnd_t r) {
-    mpfr_set_z(out, z(s.abs_b), r);
+    mpfr_set_z(out, mpz(s.abs_b), r);
     mpfr_mul(out, out, sd, r);
-    mpfr_set_z(s.tmp, z(s.abs_a), r);
+    mpfr_set_z(s.tmp, mpz(s.abs_a), r);
     mpfr_add(out, out, s.tmp, r);
   };
   if (sa == 0 || sa == sb) {
@@ -145,31 +142,26 @@ void enclose_abs(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, boo
   }
   // d itself is the radicand squared away: conj = |a^2 - b^2 d|
   sum(s.tmp2, s.sdhi, MPFR_RNDU);  // denominator, up (for the lower bound)
-  mpfr_set_z(lo, z(s.conj), MPFR_RNDD);
+  mpfr_set_z(lo, mpz(s.conj), MPFR_RNDD);
   mpfr_div(lo, lo, s.tmp2, MPFR_RNDD);
   sum(s.tmp2, s.sdlo, MPFR_RNDD);  // denominator, down (for the upper bound)
-  mpfr_set_z(hi, z(s.conj), MPFR_RNDU);
+  mpfr_set_z(hi, mpz(s.conj), MPFR_RNDU);
   mpfr_div(hi, hi, s.tmp2, MPFR_RNDU);
-}
-
-/// conj = |a^2 - b^2 d| (for enclose_abs's opposite-sign case).
-void conjugate_norm(const BigInt& a, const BigInt& b, const BigInt& d, Scratch& s) {
-  mpz_mul(z(s.conj), z(a), z(a));
-  mpz_mul(z(s.t), z(b), z(b));
-  mpz_submul(z(s.conj), z(s.t), z(d));
-  mpz_abs(z(s.conj), z(s.conj));
 }
 
 /// [sdlo, sdhi] = sqrt(d) rounded outwards (the radicand of the points of Q(sqrt d)), for enclose_root.
 void enclose_sqrt(const BigInt& d, Scratch& s) {
-  mpfr_set_z(s.sdlo, z(d), MPFR_RNDD);
+  mpfr_set_z(s.sdlo, mpz(d), MPFR_RNDD);
   mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
-  mpfr_set_z(s.sdhi, z(d), MPFR_RNDU);
+  mpfr_set_z(s.sdhi, mpz(d), MPFR_RNDU);
   mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
 }
 
 void enclose_root(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, const BigInt& d, bool root, Scratch& s) {
-  if (root && mpz_sgn(z(a)) * mpz_sgn(z(b)) < 0) conjugate_norm(a, b, d, s);
+  if (root && mpz_sgn(mpz(a)) * mpz_sgn(mpz(b)) < 0) {  // conj = |a^2 - b^2 d|, for enclose_abs
+    root_norm(s.conj, a, b, d, s.t);
+    mpz_abs(mpz(s.conj), mpz(s.conj));
+  }
   enclose_abs(lo, hi, a, b, root, s);
 }
 
@@ -220,6 +212,8 @@ ClearedPoints::ClearedPoints(const std::vector<RootPoint>& points) {
   for (const RootPoint& x : points) {
     IntegerPoint ip(x);
     Point pt;
+    pt.w0 = ip.u(3);
+    pt.w1 = ip.v(3);
     pt.P = std::move(ip.P), pt.V = std::move(ip.V);
     pt.Dp = std::move(ip.Dp), pt.Dv = std::move(ip.Dv), pt.d = std::move(ip.d);
     pt.rational = ip.rational;
@@ -227,8 +221,6 @@ ClearedPoints::ClearedPoints(const std::vector<RootPoint>& points) {
     pt.ka = pt.Dv * pt.Dv;
     pt.kb = pt.d * pt.Dp * pt.Dp;
     pt.m = 2 * pt.Dp * pt.Dv;
-    pt.w0 = pt.P[3] * pt.Dv;
-    pt.w1 = pt.V[3] * pt.Dp;
     if (pt.square) {
       const BigInt r = sqrt(pt.d);
       pt.kc = r * pt.m;
@@ -244,9 +236,9 @@ bool ClearedPoints::on_quadric(std::size_t k, const IntegerQuadric& Q) const {
   Scratch& s = scratch();
   auto form = [&](const std::array<BigInt, 4>& u, const std::array<BigInt, 4>& v, BigInt& out) {
     // out = u^T Q v
-    for (int i = 0; i < 4; ++i) dot4(z(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], v);
-    mpz_set_ui(z(out), 0);
-    for (int i = 0; i < 4; ++i) mpz_addmul(z(out), z(u[static_cast<std::size_t>(i)]), z(s.y[i]));
+    for (int i = 0; i < 4; ++i) dot4(mpz(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], v);
+    mpz_set_ui(mpz(out), 0);
+    for (int i = 0; i < 4; ++i) mpz_addmul(mpz(out), mpz(u[static_cast<std::size_t>(i)]), mpz(s.y[i]));
   };
   if (x.rational) {
     form(x.P, x.P, s.a);
@@ -257,21 +249,21 @@ bool ClearedPoints::on_quadric(std::size_t k, const IntegerQuadric& Q) const {
   if (!x.square && s.c != 0) return false;
   form(x.V, x.V, s.b);
   form(x.P, x.P, s.a);
-  mpz_mul(z(s.t), z(s.a), z(x.ka));
-  mpz_addmul(z(s.t), z(s.b), z(x.kb));
-  if (x.square) mpz_addmul(z(s.t), z(s.c), z(x.kc));
+  mpz_mul(mpz(s.t), mpz(s.a), mpz(x.ka));
+  mpz_addmul(mpz(s.t), mpz(s.b), mpz(x.kb));
+  if (x.square) mpz_addmul(mpz(s.t), mpz(s.c), mpz(x.kc));
   return s.t == 0;
 }
 
 bool ClearedPoints::on_plane(std::size_t k, const IntegerPlane& p) const {
   const Point& x = pts_[k];
   Scratch& s = scratch();
-  dot4(z(s.a), p.pi.data(), x.P);
+  dot4(mpz(s.a), p.pi.data(), x.P);
   if (x.rational) return s.a == 0;
-  dot4(z(s.b), p.pi.data(), x.V);
+  dot4(mpz(s.b), p.pi.data(), x.V);
   if (!x.square) return s.a == 0 && s.b == 0;
-  mpz_mul(z(s.t), z(s.a), z(x.la));
-  mpz_addmul(z(s.t), z(s.b), z(x.lb));
+  mpz_mul(mpz(s.t), mpz(s.a), mpz(x.la));
+  mpz_addmul(mpz(s.t), mpz(s.b), mpz(x.lb));
   return s.t == 0;
 }
 
@@ -299,21 +291,21 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
   Scratch& s = scratch();
   const bool root = !x.rational;
   // y = Q P, zz = Q V; a = P.y, b = V.zz, c = P.zz
-  for (int i = 0; i < 4; ++i) dot4(z(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.P);
-  mpz_set_ui(z(s.a), 0);
-  for (int i = 0; i < 4; ++i) mpz_addmul(z(s.a), z(x.P[static_cast<std::size_t>(i)]), z(s.y[i]));
-  mpz_mul(z(s.f0), z(s.a), z(x.ka));
-  mpz_set_ui(z(s.f1), 0);
+  for (int i = 0; i < 4; ++i) dot4(mpz(s.y[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.P);
+  mpz_set_ui(mpz(s.a), 0);
+  for (int i = 0; i < 4; ++i) mpz_addmul(mpz(s.a), mpz(x.P[static_cast<std::size_t>(i)]), mpz(s.y[i]));
+  mpz_mul(mpz(s.f0), mpz(s.a), mpz(x.ka));
+  mpz_set_ui(mpz(s.f1), 0);
   if (root) {
-    for (int i = 0; i < 4; ++i) dot4(z(s.zz[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.V);
-    mpz_set_ui(z(s.b), 0);
-    mpz_set_ui(z(s.c), 0);
+    for (int i = 0; i < 4; ++i) dot4(mpz(s.zz[i]), &Q.q[static_cast<std::size_t>(4 * i)], x.V);
+    mpz_set_ui(mpz(s.b), 0);
+    mpz_set_ui(mpz(s.c), 0);
     for (int i = 0; i < 4; ++i) {
-      mpz_addmul(z(s.b), z(x.V[static_cast<std::size_t>(i)]), z(s.zz[i]));
-      mpz_addmul(z(s.c), z(x.P[static_cast<std::size_t>(i)]), z(s.zz[i]));
+      mpz_addmul(mpz(s.b), mpz(x.V[static_cast<std::size_t>(i)]), mpz(s.zz[i]));
+      mpz_addmul(mpz(s.c), mpz(x.P[static_cast<std::size_t>(i)]), mpz(s.zz[i]));
     }
-    mpz_addmul(z(s.f0), z(s.b), z(x.kb));
-    mpz_mul(z(s.f1), z(s.c), z(x.m));
+    mpz_addmul(mpz(s.f0), mpz(s.b), mpz(x.kb));
+    mpz_mul(mpz(s.f1), mpz(s.c), mpz(x.m));
     enclose_sqrt(x.d, s);
   }
   // |f| in [lo0, hi0] (times (Dp Dv)^2), |w| in [lo1, hi1], |g|^2 in [lo2, hi2] (times (Dp Dv)^2)
@@ -322,9 +314,9 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
   mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);
   mpfr_set_ui(s.hi[2], 0, MPFR_RNDU);
   for (int i = 0; i < 3; ++i) {
-    mpz_mul(z(s.g0), z(s.y[i]), z(x.Dv));
-    if (root) mpz_mul(z(s.g1), z(s.zz[i]), z(x.Dp));
-    else mpz_set_ui(z(s.g1), 0);
+    mpz_mul(mpz(s.g0), mpz(s.y[i]), mpz(x.Dv));
+    if (root) mpz_mul(mpz(s.g1), mpz(s.zz[i]), mpz(x.Dp));
+    else mpz_set_ui(mpz(s.g1), 0);
     enclose_root(s.lo[4], s.hi[4], s.g0, s.g1, x.d, root, s);
     mpfr_sqr(s.lo[4], s.lo[4], MPFR_RNDD);
     mpfr_add(s.lo[2], s.lo[2], s.lo[4], MPFR_RNDD);
@@ -344,21 +336,21 @@ FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, 
   Scratch& s = scratch();
   const bool root = !x.rational;
   // f = pi.x times Dp Dv: (pi.P) Dv + sqrt(d) (pi.V) Dp
-  dot4(z(s.a), p.pi.data(), x.P);
-  mpz_mul(z(s.f0), z(s.a), z(x.Dv));
-  mpz_set_ui(z(s.f1), 0);
+  dot4(mpz(s.a), p.pi.data(), x.P);
+  mpz_mul(mpz(s.f0), mpz(s.a), mpz(x.Dv));
+  mpz_set_ui(mpz(s.f1), 0);
   if (root) {
-    dot4(z(s.b), p.pi.data(), x.V);
-    mpz_mul(z(s.f1), z(s.b), z(x.Dp));
+    dot4(mpz(s.b), p.pi.data(), x.V);
+    mpz_mul(mpz(s.f1), mpz(s.b), mpz(x.Dp));
     enclose_sqrt(x.d, s);
   }
   enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
   enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
   // |pi_xyz|^2, exactly as an integer, then rounded outwards
-  mpz_set_ui(z(s.t), 0);
-  for (int i = 0; i < 3; ++i) mpz_addmul(z(s.t), z(p.pi[static_cast<std::size_t>(i)]), z(p.pi[static_cast<std::size_t>(i)]));
-  mpfr_set_z(s.lo[2], z(s.t), MPFR_RNDD);
-  mpfr_set_z(s.hi[2], z(s.t), MPFR_RNDU);
+  mpz_set_ui(mpz(s.t), 0);
+  for (int i = 0; i < 3; ++i) mpz_addmul(mpz(s.t), mpz(p.pi[static_cast<std::size_t>(i)]), mpz(p.pi[static_cast<std::size_t>(i)]));
+  mpfr_set_z(s.lo[2], mpz(s.t), MPFR_RNDD);
+  mpfr_set_z(s.hi[2], mpz(s.t), MPFR_RNDU);
   // f^2 <= (T size)^2 w^2 |pi_xyz|^2
   mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);
   mpfr_sqr(s.hi[0], s.hi[0], MPFR_RNDU);
@@ -368,7 +360,7 @@ FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, 
 
 std::size_t ClearedPoints::limb_bytes() const {
   std::size_t b = 0;
-  auto add = [&](const BigInt& x) { b += mpz_size(z(x)) * sizeof(mp_limb_t); };
+  auto add = [&](const BigInt& x) { b += mpz_size(mpz(x)) * sizeof(mp_limb_t); };
   for (const Point& x : pts_) {
     for (const BigInt& v : x.P) add(v);
     for (const BigInt& v : x.V) add(v);

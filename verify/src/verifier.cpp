@@ -10,9 +10,7 @@
 
 #include <qverify/batch/items.hpp>
 
-#include <atomic>
 #include <limits>
-#include <mutex>
 
 namespace qverify {
 namespace {
@@ -39,8 +37,6 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
   out.notes = rs.notes;
   const std::size_t ns = sc.shadows.size(), n = ns + sc.reflections.size();
   std::vector<VerifyCheck> checks(n);
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
   auto check_shadow_item = [&](std::size_t k, VerifyCheck& c) {
     const Pair& pr = sc.shadows[k];
     c.kind = "shadow";
@@ -92,14 +88,9 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
   };
   // Items are independent (item k's points come from its own seed): threads over them,
   // the checks kept in the scene's order.
-  for_each_item(n, opt.threads, [&](std::size_t i) {
+  for_each_item(n, opt.threads, opt.progress, [&](std::size_t i) {
     if (i < ns) check_shadow_item(i, checks[i]);
     else check_reflection_item(i - ns, checks[i]);
-    const std::size_t d = ++done;
-    if (opt.progress) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      opt.progress(d, n);
-    }
   });
   for (VerifyCheck& c : checks) {
     (c.skipped() ? out.skipped : c.passed() ? out.passed : out.failed)++;

@@ -23,6 +23,11 @@ namespace qverify {
 
 using BigInt = boost::multiprecision::mpz_int;
 
+/// GMP's integer behind a BigInt, for the in-place calls Boost has no form of
+/// (mpz_addmul, mpz_submul, mpz_divexact): no temporaries, no allocation once grown.
+inline mpz_ptr mpz(BigInt& x) { return x.backend().data(); }
+inline mpz_srcptr mpz(const BigInt& x) { return x.backend().data(); }
+
 /// The integer vector v D with D > 0 the least common multiple of v's denominators.
 void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, BigInt& D);
 /// The integer matrix Q D with D > 0 the least common multiple of Q's denominators (row-major).
@@ -35,9 +40,25 @@ struct IntegerPoint {
   BigInt Dp, Dv, d;
   bool rational = true;  ///< V = 0 (or delta = 0): x = P / Dp
   bool square = false;   ///< delta = r^2 for an integer r (then x is rational too, in another form)
+
+  /// x_i = (u_i + sqrt(delta) v_i) / den: u_i = P_i Dv, v_i = V_i Dp, den = Dp Dv.
+  BigInt u(int i) const { return P[static_cast<std::size_t>(i)] * Dv; }
+  BigInt v(int i) const { return V[static_cast<std::size_t>(i)] * Dp; }
+  BigInt den() const { return Dp * Dv; }
+  /// x_i to 80 digits, with its exact sign.
+  Measure coordinate(int i) const;
+  /// |x_i| to 80 digits.
+  Measure magnitude(int i) const;
 };
 
-/// u + v sqrt(d) == 0 exactly (d >= 0; `square`: d is a perfect square).
+/// out = u^2 - v^2 d exactly (`t` is scratch): the norm of u + v sqrt(d), whose sign
+/// tells |u| from |v| sqrt(d) and whose value lets |u + v sqrt(d)| be rounded
+/// without cancellation.
+void root_norm(BigInt& out, const BigInt& u, const BigInt& v, const BigInt& d, BigInt& t);
+/// The exact sign of u + v sqrt(d) (d >= 0).
+int root_sign(const BigInt& u, const BigInt& v, const BigInt& d);
+/// u + v sqrt(d) == 0 exactly (d >= 0; `square`: d is a perfect square, else a
+/// non-zero v already decides).
 bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square);
 /// |u + v sqrt(d)| / den to 80 digits (den > 0, d >= 0), without cancellation: where u and
 /// v sqrt(d) have opposite signs, |u^2 - v^2 d| / ((|u| + |v| sqrt(d)) den).
