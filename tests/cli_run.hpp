@@ -39,4 +39,13 @@ inline std::string temp_file(const std::string& name, const std::string& content
   return path.string();
 }
 
+/// An empty directory of this test process's own, under the system's temporary directory
+/// (whatever an earlier run of the same process id left there is removed first).
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("qverify-files-" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 }  // namespace qverify_test

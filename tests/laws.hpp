@@ -7,9 +7,21 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <random>
 
 namespace qverify::test {
+
+/// 2^e and 10^e as exact rationals (scales, units and exponents of the sweeps).
+inline Rational pow2(int e) {
+  using boost::multiprecision::mpz_int;
+  return e >= 0 ? Rational(mpz_int(1) << e) : Rational(1) / Rational(mpz_int(1) << -e);
+}
+inline Rational pow10(int e) {
+  boost::multiprecision::mpz_int p = 1;
+  for (int k = 0; k < std::abs(e); ++k) p *= 10;
+  return e >= 0 ? Rational(p) : Rational(1) / Rational(p);
+}
 
 /// Relative tolerance of the law checks: 2^12 eps (0 for exact types).
 template <class S> S law_tol() { return S(4096) * Eigen::NumTraits<S>::epsilon(); }

@@ -22,6 +22,7 @@ namespace {
 using qverify_test::run;
 using qverify_test::Run;
 using qverify_test::temp_file;
+using qverify_test::fresh_dir;
 
 std::string scene(const char* name) { return std::string(QVERIFY_SCENES) + "/" + name; }
 
@@ -345,13 +346,6 @@ RunBoth run_both(const std::string& args) {
   std::ifstream in(err_file);
   r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return r;
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("qverify-files-" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 }  // namespace

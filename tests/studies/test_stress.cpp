@@ -8,6 +8,8 @@
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
+#include "cli_run.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -18,6 +20,7 @@
 #include <unistd.h>
 
 using namespace qverify;
+using qverify_test::fresh_dir;
 
 TEST_CASE("every stress family at its worst case: the default double path meets the geometric target",
           "[stress]") {
@@ -95,12 +98,6 @@ TEST_CASE("far objects get a local origin that the verifier and candidates under
 // ------------------------------------------------------------------ candidates (issue 19)
 
 namespace {
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("qverify-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  return d;
-}
 
 /// A C++ callable candidate returning qverify's own eval document in the given frame.
 Candidate eval_candidate(const std::string& name, std::optional<Frame> frame) {

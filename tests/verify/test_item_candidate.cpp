@@ -6,6 +6,8 @@
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
+#include "cli_run.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -13,14 +15,9 @@
 #include <unistd.h>
 
 using namespace qverify;
+using qverify_test::fresh_dir;
 
 namespace {
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("qverify-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  return d;
-}
 
 /// qverify's own core in double, in the world frame: a correct implementation.
 ShadowCandidate<double> core_shadow(const Mat4<double>& A, const Vec4<double>& L) {

@@ -8,6 +8,8 @@
 #include <qverify/exact/wide_int.hpp>
 #include <qverify/verify/point_filter.hpp>
 
+#include "laws.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -15,6 +17,8 @@
 #include <vector>
 
 using namespace qverify;
+using qverify::test::pow10;
+using qverify::test::pow2;
 
 namespace {
 
@@ -358,15 +362,6 @@ namespace {
 
 using W = WideInt<10>;
 
-Q pow2(int e) {
-  using boost::multiprecision::mpz_int;
-  return e >= 0 ? Q(mpz_int(1) << e) : Q(1) / Q(mpz_int(1) << -e);
-}
-Q pow10(int e) {
-  boost::multiprecision::mpz_int p = 1;
-  for (int k = 0; k < std::abs(e); ++k) p *= 10;
-  return e >= 0 ? Q(p) : Q(1) / Q(p);
-}
 
 template <int R, int C> Eigen::Matrix<Q, R, C> rational(const Eigen::Matrix<W, R, C>& m, const Q& scale) {
   Eigen::Matrix<Q, R, C> out;

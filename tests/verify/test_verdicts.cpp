@@ -9,6 +9,8 @@
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
+#include "laws.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include <vector>
 
 using namespace qverify;
+using qverify::test::pow10;
 using Q = Rational;
 
 namespace {
@@ -110,11 +113,6 @@ std::string scene_for(const Case& k, const Placement& pl) {
          R"(], "mirrors": [{"id": "m", "plane": [1, 2, 2, 3]}]})";
 }
 
-Q pow10(int k) {
-  Q r(1);
-  for (int i = 0; i < std::abs(k); ++i) r *= 10;
-  return k >= 0 ? r : Q(1) / r;
-}
 
 }  // namespace
 
