@@ -25,22 +25,56 @@ Vec3<Measure> cartesian(const RootPoint& x) {
   return Vec3<Measure>(n.coordinate(0) / w, n.coordinate(1) / w, n.coordinate(2) / w);
 }
 
-/// Largest distance of the points from A's centre (centroid where K is singular).
+using FI = FilterInterval;
+
+FI enclosed(const Q& q) {
+  const Interval e = enclose(q);
+  return FI(e.inf(), e.sup());
+}
+
+bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
+
+/// Largest distance of the points from A's centre (centroid where K is singular),
+/// to 80 digits. With a centre, a filter first: each point's squared distance is
+/// enclosed from its coordinates' enclosures, and only the points whose upper
+/// bound reaches the largest lower bound (or that the intervals cannot bound)
+/// can be the farthest; only those are rounded to 80 digits.
 Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
   if (pts.empty()) return 0;
-  std::vector<Vec3<Measure>> xs;
-  for (const RootPoint& x : pts) xs.push_back(cartesian(x));
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  Vec3<Measure> c = Vec3<Measure>::Zero();
-  if (K.determinant() != 0) {
-    const Vec3<Q> cq = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-    for (int i = 0; i < 3; ++i) c(i) = to_measure(cq(i));
-  } else {
+  if (K.determinant() == 0) {
+    std::vector<Vec3<Measure>> xs;
+    for (const RootPoint& x : pts) xs.push_back(cartesian(x));
+    Vec3<Measure> c = Vec3<Measure>::Zero();
     for (const auto& x : xs) c += x;
     c /= Measure(static_cast<long>(xs.size()));
+    Measure best = 0;
+    for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
+    return best;
+  }
+  const Vec3<Q> cq = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+  Vec3<Measure> c;
+  for (int i = 0; i < 3; ++i) c(i) = to_measure(cq(i));
+  std::vector<FI> d2(pts.size());
+  std::vector<char> bounded(pts.size(), 0);
+  double floor = 0;
+  {
+    const FI ce[3] = {enclosed(cq(0)), enclosed(cq(1)), enclosed(cq(2))};
+    CGAL::Protect_FPU_rounding<true> guard;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const PointEnclosure& X = pts[k].enclosure();
+      if (!positive(CGAL::abs(X[3]))) continue;
+      FI s(0);
+      for (int i = 0; i < 3; ++i) s += CGAL::square(X[static_cast<std::size_t>(i)] / X[3] - ce[i]);
+      if (!std::isfinite(s.sup())) continue;
+      d2[k] = s;
+      bounded[k] = 1;
+      floor = std::max(floor, s.inf());
+    }
   }
   Measure best = 0;
-  for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    if (!bounded[k] || d2[k].sup() >= floor) best = mmax(best, sqrt((cartesian(pts[k]) - c).squaredNorm()));
   return best;
 }
 
@@ -125,17 +159,13 @@ ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint
   out.size = object_size(s.points, A);
   if (!s.points.empty())
     if (const auto whole = ellipsoid_size(A)) out.size = std::max(out.size, Measure(*whole));
-  for (const RootPoint& x : s.points) out.points.push_back(x.mapped(M));
+  out.points = RootPoint::mapped(s.points, M);
   return out;
 }
 
 std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Q>>& origin) {
   if (!origin) return pts;
-  const Mat4<Q> T = translation<Q>(Vec3<Q>(-*origin));
-  std::vector<RootPoint> out;
-  out.reserve(pts.size());
-  for (const RootPoint& x : pts) out.push_back(x.mapped(T));
-  return out;
+  return RootPoint::mapped(pts, translation<Q>(Vec3<Q>(-*origin)));
 }
 
 /// Point k's first-order distance d into the metric; nullopt: the result's gradient vanishes at
@@ -152,15 +182,6 @@ void add_distance(Metric& m, std::size_t k, const std::optional<Measure>& d) {
 }
 
 namespace {
-
-using FI = FilterInterval;
-
-FI enclosed(const Q& q) {
-  const Interval e = enclose(q);
-  return FI(e.inf(), e.sup());
-}
-
-bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
 
 /// The filter of measure_quadric / measure_plane. For each point, either
 /// nothing is certain (`exact`: it is measured exactly) or its distance and
@@ -204,7 +225,7 @@ Measure norm2(const IntegerPoint& x) {
     if (!x.rational) vv += x.V[i] * x.V[i], pv += x.P[i] * x.V[i];
   }
   const BigInt den = x.Dp * x.Dv;
-  return root_magnitude(BigInt(pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp), BigInt(2 * pv * den), x.d, BigInt(den * den));
+  return root_magnitude(BigInt(pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp), BigInt(2 * pv * den), x.d, x.root(), BigInt(den * den));
 }
 
 FI norm2(const PointEnclosure& X) {
@@ -261,12 +282,12 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
     const BigInt f0 = a * Dv2 + x.d * b * Dp2, f1 = c * DpDv;
     if (root_is_zero(f0, f1, x.d, x.square)) return;
     m.all_zero = false;
-    const Measure fm = root_magnitude(f0, f1, x.d, BigInt(Dp2 * Dv2 * DQ));
+    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(Dp2 * Dv2 * DQ));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
     const BigInt den = DpDv * DQ;
     Measure g = 0;
     for (int i = 0; i < 3; ++i) {
-      const Measure gi = root_magnitude(BigInt(y[i] * x.Dv), BigInt(z[i] * x.Dp), x.d, den);
+      const Measure gi = root_magnitude(BigInt(y[i] * x.Dv), BigInt(z[i] * x.Dp), x.d, x.root(), den);
       g += gi * gi;
     }
     const Measure w = x.magnitude(3);
@@ -308,7 +329,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
     const BigInt f0 = a * x.Dv, f1 = b * x.Dp;
     if (root_is_zero(f0, f1, x.d, x.square)) return;
     m.all_zero = false;
-    const Measure fm = root_magnitude(f0, f1, x.d, BigInt(x.Dp * x.Dv * Dpi));
+    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(x.Dp * x.Dv * Dpi));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
     const Measure w = x.magnitude(3);
     add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);

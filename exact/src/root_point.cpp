@@ -2,6 +2,8 @@
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/root_point.hpp>
 
+#include <stdexcept>
+
 namespace qverify {
 
 Gmpq to_gmpq(const Rational& q) { return Gmpq(q.backend().data()); }
@@ -34,35 +36,67 @@ RootPoint::RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rat
   enclose_coordinates();
 }
 
-void RootPoint::enclose_coordinates() {
+RootPoint RootPoint::with_integer_radicand(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& n) {
+  if (n < 0 || denominator(n) != 1) throw std::domain_error("RootPoint: the radicand is not a non-negative integer");
+  return n == 0 ? RootPoint(p, Vec4<Rational>::Zero(), n, normalised{}) : RootPoint(p, q, n, normalised{});
+}
+
+namespace {
+
+/// x_i = p_i + sign_i r_i with p_i and r_i = sqrt(delta) |q_i| >= 0 enclosed
+/// (sign_i = 0 where q_i or delta is 0).
+struct EnclosedParts {
+  FilterInterval p[4], r[4];
+  int sign[4];
+};
+
+EnclosedParts enclose_parts(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta) {
   // sqrt(delta) |q_i| from the enclosures of delta and q_i; where delta is beyond
   // the range of a double, from the rational delta q_i^2 (then a huge delta with a
   // small q_i is no harder than a small one).
-  const Interval ed = enclose(delta_);
+  const Interval ed = enclose(delta);
   const bool small_root = std::isfinite(ed.sup());
-  FilterInterval p[4], s[4];
-  bool root[4];
+  EnclosedParts e;
+  FilterInterval s[4];
   for (int i = 0; i < 4; ++i) {
-    const Interval e = enclose(p_(i));
-    p[i] = FilterInterval(e.inf(), e.sup());
-    root[i] = q_(i) != 0 && delta_ != 0;
-    if (!root[i]) continue;
-    const Interval r = small_root ? enclose(q_(i)) : enclose(Rational(delta_ * q_(i) * q_(i)));
-    s[i] = q_(i) > 0 || !small_root ? FilterInterval(r.inf(), r.sup()) : FilterInterval(-r.sup(), -r.inf());  // |q_i|
+    const Interval pe = enclose(p(i));
+    e.p[i] = FilterInterval(pe.inf(), pe.sup());
+    e.sign[i] = delta == 0 ? 0 : q(i).sign();
+    if (e.sign[i] == 0) continue;
+    const Interval r = small_root ? enclose(q(i)) : enclose(Rational(delta * q(i) * q(i)));
+    s[i] = e.sign[i] > 0 || !small_root ? FilterInterval(r.inf(), r.sup()) : FilterInterval(-r.sup(), -r.inf());  // |q_i|
   }
   CGAL::Protect_FPU_rounding<true> guard;
   const FilterInterval sd = CGAL::sqrt(FilterInterval(ed.inf(), ed.sup()));
-  for (int i = 0; i < 4; ++i) {
-    if (!root[i]) {
-      enclosure_[static_cast<std::size_t>(i)] = p[i];
-      continue;
-    }
-    const FilterInterval r = small_root ? sd * s[i] : CGAL::sqrt(s[i]);
-    enclosure_[static_cast<std::size_t>(i)] = q_(i) > 0 ? p[i] + r : p[i] - r;
-  }
+  for (int i = 0; i < 4; ++i)
+    if (e.sign[i] != 0) e.r[i] = small_root ? sd * s[i] : CGAL::sqrt(s[i]);
+  return e;
 }
 
-RootPoint RootPoint::mapped(const Mat4<Rational>& M) const {
+/// The enclosure of p + sqrt(delta) q (flip = 1) or of its conjugate p - sqrt(delta) q (flip = -1).
+PointEnclosure combine(const EnclosedParts& e, int flip) {
+  CGAL::Protect_FPU_rounding<true> guard;
+  PointEnclosure x;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const int sign = e.sign[i] * flip;
+    x[i] = sign > 0 ? e.p[i] + e.r[i] : sign < 0 ? e.p[i] - e.r[i] : e.p[i];
+  }
+  return x;
+}
+
+}  // namespace
+
+void RootPoint::enclose_coordinates() { enclosure_ = combine(enclose_parts(p_, q_, delta_), 1); }
+
+std::array<RootPoint, 2> RootPoint::conjugates(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& n) {
+  if (n <= 0 || denominator(n) != 1) throw std::domain_error("RootPoint: the radicand is not a positive integer");
+  const EnclosedParts e = enclose_parts(p, q, n);
+  return {RootPoint(p, q, n, combine(e, 1)), RootPoint(p, Vec4<Rational>(-q), n, combine(e, -1))};
+}
+
+RootPoint RootPoint::mapped(const Mat4<Rational>& M) const { return mapped(std::vector<RootPoint>{*this}, M)[0]; }
+
+std::vector<RootPoint> RootPoint::mapped(const std::vector<RootPoint>& xs, const Mat4<Rational>& M) {
   // On integers, one canonical fraction per coordinate at the end (Eigen's
   // rational product takes a gcd per operation).
   std::array<BigInt, 16> Mi;
@@ -81,7 +115,10 @@ RootPoint RootPoint::mapped(const Mat4<Rational>& M) const {
     }
     return out;
   };
-  return RootPoint(apply(p_), apply(q_), delta_, normalised{});
+  std::vector<RootPoint> out;
+  out.reserve(xs.size());
+  for (const RootPoint& x : xs) out.push_back(RootPoint(apply(x.p_), apply(x.q_), x.delta_, normalised{}));
+  return out;
 }
 
 std::array<RootNumber, 4> RootPoint::coords() const {
@@ -193,16 +230,21 @@ bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square
   return root_sign(u, v, d) == 0;
 }
 
-Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
+namespace {
+Measure sqrt_of(const BigInt& d) {
+  Measure s;
+  mpfr_set_z(s.backend().data(), mpz(d), MPFR_RNDN);
+  return sqrt(s);
+}
+}  // namespace
+
+Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den) {
   Measure mu, mv, md;
   mpfr_set_z(mu.backend().data(), mpz(u), MPFR_RNDN);
   mpfr_set_z(md.backend().data(), mpz(den), MPFR_RNDN);
   if (mpz_sgn(mpz(v)) == 0 || mpz_sgn(mpz(d)) == 0) return abs(mu) / md;
   mpfr_set_z(mv.backend().data(), mpz(v), MPFR_RNDN);
-  Measure s;
-  mpfr_set_z(s.backend().data(), mpz(d), MPFR_RNDN);
-  s = sqrt(s);
-  const Measure sum = abs(mu) + abs(mv) * s;
+  const Measure sum = abs(mu) + abs(mv) * root;
   if (mpz_sgn(mpz(u)) == 0 || mpz_sgn(mpz(u)) == mpz_sgn(mpz(v))) return sum / md;
   BigInt c, t;  // |u^2 - v^2 d|, exact: no cancellation left
   root_norm(c, u, v, d, t);
@@ -212,15 +254,20 @@ Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const 
   return mc / (sum * md);
 }
 
-Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den) {
+Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den) {
   const int sign = root_sign(u, v, d);
   if (sign == 0) return Measure(0);
-  const Measure m = root_magnitude(u, v, d, den);
+  const Measure m = root_magnitude(u, v, d, root, den);
   return sign < 0 ? Measure(-m) : m;
 }
 
-Measure IntegerPoint::coordinate(int i) const { return root_value(u(i), v(i), d, den()); }
+const Measure& IntegerPoint::root() const {
+  if (!root_) root_ = rational ? Measure(0) : sqrt_of(d);
+  return *root_;
+}
 
-Measure IntegerPoint::magnitude(int i) const { return root_magnitude(u(i), v(i), d, den()); }
+Measure IntegerPoint::coordinate(int i) const { return root_value(u(i), v(i), d, root(), den()); }
+
+Measure IntegerPoint::magnitude(int i) const { return root_magnitude(u(i), v(i), d, root(), den()); }
 
 }  // namespace qverify

@@ -3,6 +3,7 @@
 #include <qverify/exact/sampling.hpp>
 
 #include <random>
+#include <utility>
 
 namespace qverify {
 namespace {
@@ -33,7 +34,7 @@ struct Draw {
 ///   x = (alpha B - beta U) / (Db alpha) +- sqrt(beta^2 - alpha c) U / (Db alpha),
 /// the points of the rational quadratic of the line, with one gcd per
 /// coordinate at the end instead of one per rational operation (and p, q,
-/// delta written as the rational formulas write them).
+/// delta the very values RootPoint would make of the rational formulas).
 class Lines {
  public:
   Lines(const Mat4<Q>& A, const Vec4<Q>& b) {
@@ -77,15 +78,24 @@ class Lines {
     // In the rational terms of the line as given (u, not U; A, not Ai): q = u / (u^T A u) =
     // DA Du U / alpha and delta = delta_int / (Du DA Db)^2. The same p, q and delta as the
     // rational formulas, not merely the same points: plane_points (accuracy.cpp) steps along q.
+    // RootPoint keeps sqrt(n / m) (n / m in lowest terms) as sqrt(n m) / m: the radicand n m
+    // and q / m are made here on integers, one canonical fraction per coordinate.
     const BigInt den = Db_ * alpha, qscale = DA_ * Du, droot = Du * DA_ * Db_;
+    const Q d(delta, BigInt(droot * droot));
+    const BigInt n = numerator(d), m = denominator(d), qden = alpha * m;
     Vec4<Q> p, q;
     for (std::size_t i = 0; i < 4; ++i) {
       p(static_cast<Eigen::Index>(i)) = Q(BigInt(alpha * B_[i] - beta * U[i]), den);
-      q(static_cast<Eigen::Index>(i)) = Q(BigInt(qscale * U[i]), alpha);
+      q(static_cast<Eigen::Index>(i)) = Q(BigInt(qscale * U[i]), qden);
     }
-    const Q d(delta, BigInt(droot * droot));
-    out.emplace_back(p, q, d);
-    if (static_cast<int>(out.size()) < want) out.emplace_back(p, Vec4<Q>(-q), d);
+    const Q radicand(BigInt(n * m));
+    if (static_cast<int>(out.size()) + 1 < want) {
+      auto both = RootPoint::conjugates(p, q, radicand);
+      out.push_back(std::move(both[0]));
+      out.push_back(std::move(both[1]));
+    } else {
+      out.push_back(RootPoint::with_integer_radicand(p, q, radicand));
+    }
     return true;
   }
 

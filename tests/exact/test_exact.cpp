@@ -39,6 +39,41 @@ TEST_CASE("values that leave the point's field are refused - in release builds t
   CHECK_NOTHROW(x.form(Mat4<Q>::Identity()));
 }
 
+TEST_CASE("points made from an integer radicand equal the constructor's, enclosures included", "[exact][root]") {
+  test::RandomRationals rng(11);
+  auto same = [](const RootPoint& a, const RootPoint& b) {
+    CHECK(a.p() == b.p());
+    CHECK(a.q() == b.q());
+    CHECK(a.delta() == b.delta());
+    for (std::size_t i = 0; i < 4; ++i) {
+      CHECK(a.enclosure()[i].inf() == b.enclosure()[i].inf());
+      CHECK(a.enclosure()[i].sup() == b.enclosure()[i].sup());
+    }
+  };
+  for (int k = 0; k < 40; ++k) {
+    const Vec4<Q> p = rng.vec4();
+    Vec4<Q> q = rng.vec4();
+    if (k % 5 == 0) q(k % 4) = 0;  // a rational coordinate
+    // a radicand beyond the range of a double too (the enclosure takes another route there)
+    const Q n = k % 7 == 0 ? Q(boost::multiprecision::mpz_int(1) << 1100) + k : Q(2 + 3 * k);
+    const RootPoint x(p, q, n), y(p, Vec4<Q>(-q), n);
+    same(RootPoint::with_integer_radicand(p, q, n), x);
+    const auto both = RootPoint::conjugates(p, q, n);
+    same(both[0], x);
+    same(both[1], y);
+    for (std::size_t i = 0; i < 4; ++i) {  // and they enclose the point
+      const Measure xi = to_measure(x.coords()[i]);
+      CHECK(Measure(x.enclosure()[i].inf()) <= xi);
+      CHECK(xi <= Measure(x.enclosure()[i].sup()));
+    }
+  }
+  same(RootPoint::with_integer_radicand(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 1, 1, 0), Q(0)),
+       RootPoint(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 1, 1, 0), Q(0)));
+  CHECK_THROWS_AS(RootPoint::with_integer_radicand(Vec4<Q>::Zero(), Vec4<Q>::Zero(), Q(2, 3)), std::domain_error);
+  CHECK_THROWS_AS(RootPoint::with_integer_radicand(Vec4<Q>::Zero(), Vec4<Q>::Zero(), Q(-2)), std::domain_error);
+  CHECK_THROWS_AS(RootPoint::conjugates(Vec4<Q>::Zero(), Vec4<Q>::Zero(), Q(0)), std::domain_error);
+}
+
 TEST_CASE("exact samples lie exactly on the terminator and on the quadric - same seed - same points", "[exact][sampling]") {
   const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(Q(3, 2), Q(-1, 2), 3), Vec3<Q>(1, 2, Q(3, 4)), Mat3<Q>::Identity());
   const Vec4<Q> L(1, -2, 9, 1);

@@ -18,6 +18,7 @@
 #include <boost/multiprecision/gmp.hpp>
 
 #include <array>
+#include <optional>
 
 namespace qverify {
 
@@ -45,10 +46,17 @@ struct IntegerPoint {
   BigInt u(int i) const { return P[static_cast<std::size_t>(i)] * Dv; }
   BigInt v(int i) const { return V[static_cast<std::size_t>(i)] * Dp; }
   BigInt den() const { return Dp * Dv; }
+  /// sqrt(delta) to 80 digits, computed on first use and then kept: every value
+  /// of the point rounded to 80 digits needs it, and it costs more than the rest
+  /// of such a rounding. (Not thread-safe: an IntegerPoint belongs to one thread.)
+  const Measure& root() const;
   /// x_i to 80 digits, with its exact sign.
   Measure coordinate(int i) const;
   /// |x_i| to 80 digits.
   Measure magnitude(int i) const;
+
+ private:
+  mutable std::optional<Measure> root_;
 };
 
 /// out = u^2 - v^2 d exactly (`t` is scratch): the norm of u + v sqrt(d), whose sign
@@ -60,10 +68,11 @@ int root_sign(const BigInt& u, const BigInt& v, const BigInt& d);
 /// u + v sqrt(d) == 0 exactly (d >= 0; `square`: d is a perfect square, else a
 /// non-zero v already decides).
 bool root_is_zero(const BigInt& u, const BigInt& v, const BigInt& d, bool square);
-/// |u + v sqrt(d)| / den to 80 digits (den > 0, d >= 0), without cancellation: where u and
-/// v sqrt(d) have opposite signs, |u^2 - v^2 d| / ((|u| + |v| sqrt(d)) den).
-Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den);
+/// |u + v sqrt(d)| / den to 80 digits (den > 0, d >= 0; root = sqrt(d) to 80 digits, as
+/// IntegerPoint::root() gives it), without cancellation: where u and v sqrt(d) have
+/// opposite signs, |u^2 - v^2 d| / ((|u| + |v| sqrt(d)) den).
+Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den);
 /// (u + v sqrt(d)) / den to 80 digits, with its exact sign (root_magnitude signed).
-Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const BigInt& den);
+Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den);
 
 }  // namespace qverify

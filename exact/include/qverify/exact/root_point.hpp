@@ -22,6 +22,7 @@
 #include <array>
 
 #include <stdexcept>
+#include <vector>
 
 namespace qverify {
 
@@ -51,6 +52,15 @@ class RootPoint {
  public:
   /// x = p + sqrt(delta) q, delta >= 0 (normalised to an integer: sqrt(n/d) = sqrt(n d)/d).
   RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta);
+  /// x = p + sqrt(n) q for an integer n >= 0, taken as given: the form the
+  /// constructor above normalises to, for code that has its radicand as an
+  /// integer already (the sampler), without that constructor's divisions.
+  /// Throws std::domain_error when n is negative or not an integer.
+  static RootPoint with_integer_radicand(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& n);
+  /// p + sqrt(n) q and its conjugate p - sqrt(n) q for an integer n > 0, taken
+  /// as given (as with_integer_radicand), the enclosures of p and of sqrt(n) q
+  /// made once for both.
+  static std::array<RootPoint, 2> conjugates(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& n);
 
   const Vec4<Rational>& p() const { return p_; }
   const Vec4<Rational>& q() const { return q_; }
@@ -59,6 +69,8 @@ class RootPoint {
   std::array<RootNumber, 4> coords() const;
   /// The point M x (a rational linear map keeps the field).
   RootPoint mapped(const Mat4<Rational>& M) const;
+  /// The points M x_k, M cleared to integers once for all of them.
+  static std::vector<RootPoint> mapped(const std::vector<RootPoint>& xs, const Mat4<Rational>& M);
   /// x^T Q x, computed in Q(sqrt(delta)) with CGAL's arithmetic.
   RootNumber form(const Mat4<Rational>& Q) const;
   /// pi . x.
@@ -66,8 +78,9 @@ class RootPoint {
   /// Approximate Cartesian coordinates (x/w), to 80 digits; requires w != 0.
   Vec3<double> approx_cartesian() const;
   /// Certified enclosures of the coordinates, made once with the point: p_i
-  /// enclosed, plus sign(q_i) times the square root of the enclosure of the
-  /// rational delta q_i^2 (so a huge delta with a small q is no harder than a
+  /// enclosed, plus sign(q_i) times an enclosure of sqrt(delta) |q_i| (where
+  /// delta is beyond the range of a double, the square root of the enclosed
+  /// rational delta q_i^2, so a huge delta with a small q is no harder than a
   /// small one). The floating filters in front of exact evaluations
   /// (measure_quadric, the verifier's point filter) start from it; an entry
   /// beyond the range of a double is an infinite bound, never a wrong one.
@@ -79,6 +92,8 @@ class RootPoint {
       : p_(p), q_(q), delta_(delta) {
     enclose_coordinates();
   }
+  RootPoint(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta, const PointEnclosure& e)
+      : p_(p), q_(q), delta_(delta), enclosure_(e) {}
   void check_root(const RootNumber& v) const;
   void enclose_coordinates();
   Vec4<Rational> p_, q_;
