@@ -21,14 +21,9 @@ using namespace qverify;
 using qverify_test::run;
 using qverify_test::Run;
 using qverify_test::temp_file;
+using qverify_test::fresh_dir;
 
 namespace {
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("qverify-ccmd-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  return d;
-}
 
 nlohmann::json read_json(const std::filesystem::path& p) {
   std::ifstream in(p);

@@ -1,0 +1,85 @@
+// The accuracy measure behind error_bound, inaccurate and verify's reported errors: its
+// filters (the points' enclosures, then each doubtful point's exact integers enclosed) only
+// choose which points are rounded to 80 digits; the metric is the one of every point measured
+// alone, exactly.
+#include "laws.hpp"
+
+#include <qverify/core/core.hpp>
+#include <qverify/eval/accuracy.hpp>
+#include <qverify/exact/rounding.hpp>
+
+#include <vector>
+
+using namespace qverify;
+using Q = Rational;
+
+namespace {
+
+/// The metric of a point set as the maximum over its points, each measured alone (a set of
+/// one point is never filtered: its point is the worst).
+template <class Measure1> Metric one_by_one(const std::vector<RootPoint>& pts, Measure1&& measure1) {
+  Metric m;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const Metric one = measure1(pts[k]);
+    if (one.all_zero) continue;
+    m.all_zero = false;
+    if (one.residual > m.residual) m.residual = one.residual;
+    if (one.singular) {
+      if (!m.singular) m.worst = k;
+      m.singular = true;
+      continue;
+    }
+    if (one.distance >= m.distance) {
+      m.distance = one.distance;
+      if (!m.singular) m.worst = k;
+    }
+  }
+  return m;
+}
+
+void same_metric(const Metric& got, const Metric& want) {
+  CHECK(got.all_zero == want.all_zero);
+  CHECK(got.singular == want.singular);
+  CHECK(got.distance == want.distance);
+  CHECK(got.residual == want.residual);
+  if (!want.all_zero) CHECK(got.worst == want.worst);
+}
+
+template <int R, int C> Eigen::Matrix<Q, R, C> rounded_to_double(const Eigen::Matrix<Q, R, C>& m) {
+  RoundingReport rep;
+  return m.unaryExpr([&](const Q& v) { return Q(round_rational<double>(v, rep)); });
+}
+
+}  // namespace
+
+TEST_CASE("the filtered measure equals every point measured alone: exact, rounded and perturbed results",
+          "[eval][accuracy]") {
+  test::RandomRationals rng(23);
+  for (int item = 0; item < 6; ++item) {
+    // an ellipsoid with double-valued entries (17-digit doubles, as real inputs are) and a light
+    const Vec3<Q> radii(Q(1) + Q(item, 7), Q(2, 3), Q(5, 4));
+    Mat4<Q> A = Mat4<Q>::Zero();
+    for (int i = 0; i < 3; ++i) A(i, i) = Q(1) / (radii(i) * radii(i));
+    A(3, 3) = -1;
+    A = rounded_to_double(Mat4<Q>(A + Q(1, 100) * rng.symmetric()));
+    const Vec4<Q> L(Q(3) + item, Q(-2), Q(4), Q(1));
+    const ItemPoints t = terminator_points(A, L, 48, 100 + static_cast<std::uint64_t>(item));
+    REQUIRE(t.points.size() == 48);
+    const Mat4<Q> P = tangent_cone<Q>(A, L);
+    const Vec4<Q> pi = polar_plane<Q>(A, L);
+    Mat4<Q> off = P;
+    off(0, 1) *= 1 + Q(1, 10000000);
+    off(1, 0) = off(0, 1);
+    // exact (every point on it), rounded once to double (residuals at the rounding level, the
+    // filter's hard case), off by 1e-7 (every point clearly off)
+    for (const Mat4<Q>& cand : {P, rounded_to_double(P), off}) {
+      same_metric(measure_quadric(t.points, cand),
+                  one_by_one(t.points, [&](const RootPoint& x) { return measure_quadric({x}, cand); }));
+      same_metric(measure_quadric(t.generators, cand),
+                  one_by_one(t.generators, [&](const RootPoint& x) { return measure_quadric({x}, cand); }));
+    }
+    for (const Vec4<Q>& cand : {pi, rounded_to_double(Vec4<Q>(pi * Q(1, 3))), Vec4<Q>(pi + Vec4<Q>(0, 0, 0, Q(1, 1000)))})
+      same_metric(measure_plane(t.points, cand),
+                  one_by_one(t.points, [&](const RootPoint& x) { return measure_plane({x}, cand); }));
+  }
+}
