@@ -224,7 +224,7 @@ Measure norm2(const IntegerPoint& x) {
     pp += x.P[i] * x.P[i];
     if (!x.rational) vv += x.V[i] * x.V[i], pv += x.P[i] * x.V[i];
   }
-  const BigInt den = x.Dp * x.Dv;
+  const BigInt den = x.den();
   return root_magnitude(BigInt(pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp), BigInt(2 * pv * den), x.d, x.root(), BigInt(den * den));
 }
 
@@ -329,7 +329,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
     const BigInt f0 = a * x.Dv, f1 = b * x.Dp;
     if (root_is_zero(f0, f1, x.d, x.square)) return;
     m.all_zero = false;
-    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(x.Dp * x.Dv * Dpi));
+    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(x.den() * Dpi));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
     const Measure w = x.magnitude(3);
     add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);
