@@ -17,6 +17,8 @@ Functions:
                                   checks any program's shadow on exact points
     check_reflection(A, plane, M=..., B=...)
                                   checks any program's mirror image
+    check_shadows(As, Ls, P=Ps, ...), check_reflections(As, planes, B=Bs, ...)
+                                  many items at once, on threads, with progress
     eval_scene(scene, ...)        the qverify-eval/1 document of a scene
     verify_scene(scene, ...)      the qverify-verify/1 document of a scene
     stress(fn, families=[...], out=DIR)
@@ -55,7 +57,9 @@ from ._qverify import (  # noqa: F401
     _stress,
     _verify_scene,
     check_reflection,
+    check_reflections,
     check_shadow,
+    check_shadows,
     reflection,
     shadow,
     stress_families,
@@ -68,6 +72,8 @@ __all__ = [
     "reflection",
     "check_shadow",
     "check_reflection",
+    "check_shadows",
+    "check_reflections",
     "eval_scene",
     "verify_scene",
     "stress",

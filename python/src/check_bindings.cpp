@@ -3,6 +3,7 @@
 #include "convert.hpp"
 #include "options.hpp"
 
+#include <qverify/batch/items.hpp>
 #include <qverify/verify/check.hpp>
 
 #include <pybind11/stl.h>
@@ -172,6 +173,160 @@ CheckReport check_reflection_py(py::handle A_in, py::handle plane_in, const py::
   return check_reflection_exact(A, plane, c, opt, eps);
 }
 
+// ------------------------------------------------------------------ batches
+
+/// One argument of check_shadows / check_reflections: an array with a leading
+/// item axis (n, 4, 4) / (n, 4), or a single item (4, 4) / (4,) given once for
+/// every item. Entries are read exactly, as in check_shadow.
+struct BatchArg {
+  std::string name;
+  py::object array = py::none();  ///< numpy.asarray of the argument; None when not given
+  bool per_item = false;
+  long items = 0;    ///< the leading axis (per_item only)
+  int item_ndim = 2; ///< 2: a 4x4 matrix, 1: a vector
+
+  BatchArg(const std::string& n, const py::object& value, int ndim) : name(n), item_ndim(ndim) {
+    if (value.is_none()) return;
+    array = numpy().attr("asarray")(value);
+    const long nd = array.attr("ndim").cast<long>();
+    if (nd == item_ndim + 1) {
+      per_item = true;
+      items = array.attr("shape").cast<py::tuple>()[0].cast<long>();
+    } else if (nd != item_ndim) {
+      bad_argument(name, std::string("expected an array of shape ") + (item_ndim == 2 ? "(n, 4, 4) or (4, 4)" : "(n, 4) or (4,)") +
+                             " (one entry per item, or one for all), found shape " + shape_text(array));
+    }
+  }
+  bool given() const { return !array.is_none(); }
+  /// Item k's entry, as the exact argument named "NAME[k]" (or "NAME" when given once).
+  py::object item(long k, std::string& path) const {
+    path = per_item ? name + "[" + std::to_string(k) + "]" : name;
+    return per_item ? py::object(array[py::int_(k)]) : array;
+  }
+  Mat4<Rational> matrix(long k, Kinds& kinds) const {
+    std::string path;
+    const py::object v = item(k, path);
+    return to_matrix(v, path, kinds);
+  }
+  Vec4<Rational> vector(long k, Kinds& kinds) const {
+    std::string path;
+    const py::object v = item(k, path);
+    return to_vector<4>(v, path, kinds);
+  }
+  Vec3<Rational> vector3(long k, Kinds& kinds) const {
+    std::string path;
+    const py::object v = item(k, path);
+    return to_vector<3>(v, path, kinds);
+  }
+};
+
+/// The number of items: the common leading axis of the arguments that have one
+/// (1 when none has); a mismatch names the argument.
+long batch_items(const std::vector<const BatchArg*>& args) {
+  const BatchArg* first = nullptr;
+  for (const BatchArg* a : args) {
+    if (!a->given() || !a->per_item) continue;
+    if (!first) first = a;
+    else if (a->items != first->items)
+      bad_argument(a->name, std::to_string(a->items) + " items where " + first->name + " gives " +
+                                std::to_string(first->items) + ": every argument needs one entry per item (or one for all)");
+  }
+  return first ? first->items : 1;
+}
+
+BatchCheckOptions batch_options(const CheckOptions& check, int threads, const py::object& progress) {
+  if (threads < 0) bad_argument("threads", "expected 0 (one per logical processor) or a positive count");
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    bad_argument("progress", "expected a callable progress(done, total), found " + type_name(progress));
+  BatchCheckOptions opt;
+  opt.check = check;
+  opt.threads = threads;
+  if (!progress.is_none())
+    opt.progress = [progress](std::size_t done, std::size_t total) {
+      py::gil_scoped_acquire gil;  // the checks run with the GIL released
+      progress(done, total);
+    };
+  return opt;
+}
+
+/// Runs check(k) for every item on opt.threads threads, the GIL released.
+template <class Check> std::vector<CheckReport> run_batch(std::size_t n, const BatchCheckOptions& opt, Check check) {
+  std::vector<CheckReport> out(n);
+  py::gil_scoped_release nogil;
+  for_each_item(n, opt.threads, opt.progress, [&](std::size_t k) { out[k] = check(k); });
+  return out;
+}
+
+std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::object& L_in, const py::object& P_in,
+                                          const py::object& polar_in, const py::object& R_in,
+                                          const py::object& origin_in, long samples, long long seed, double accuracy,
+                                          const std::string& method, const py::object& exact, int threads,
+                                          const py::object& progress) {
+  const CheckOptions opt = options(samples, seed, accuracy, method);
+  const BatchCheckOptions bopt = batch_options(opt, threads, progress);
+  const BatchArg A("A", A_in, 2), L("L", L_in, 1), P("P", P_in, 2), polar("polar_plane", polar_in, 1), R("R", R_in, 2),
+      origin("origin", origin_in, 1);
+  if (!A.given()) bad_argument("A", "the quadrics are needed");
+  if (!L.given()) bad_argument("L", "the lights are needed");
+  if (!P.given() && !polar.given() && !R.given()) bad_argument("P", "nothing to check: give P, polar_plane or R");
+  const long n = batch_items({&A, &L, &P, &polar, &R, &origin});
+  // Every item read and validated before anything is computed.
+  Kinds inputs, cand;
+  std::vector<Mat4<Rational>> As;
+  std::vector<Vec4<Rational>> Ls;
+  std::vector<ExactShadowCandidate> cs(static_cast<std::size_t>(n));
+  for (long k = 0; k < n; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    As.push_back(A.matrix(k, inputs));
+    Ls.push_back(L.vector(k, inputs));
+    validate_quadric(As[u], "", A.per_item ? "A[" + std::to_string(k) + "]" : "A");
+    validate_light(Ls[u], "", L.per_item ? "L[" + std::to_string(k) + "]" : "L");
+    if (P.given()) cs[u].P = P.matrix(k, cand);
+    if (polar.given()) cs[u].polar_plane = polar.vector(k, cand);
+    if (R.given()) cs[u].R = R.matrix(k, cand);
+    Kinds origin_kinds;  // the frame's origin does not decide the mode
+    if (origin.given()) cs[u].origin = origin.vector3(k, origin_kinds);
+  }
+  const Mode mode = mode_of(inputs, cand, exact);
+  const Measure eps = mode == Mode::proof ? Measure(0) : candidate_epsilon(cand);
+  return run_batch(static_cast<std::size_t>(n), bopt, [&](std::size_t k) {
+    return check_shadow_exact(As[k], Ls[k], cs[k], opt, eps);  // item 0: the sample points it gets alone
+  });
+}
+
+std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::object& plane_in, const py::object& M_in,
+                                              const py::object& B_in, const py::object& origin_in, long samples,
+                                              long long seed, double accuracy, const py::object& exact, int threads,
+                                              const py::object& progress) {
+  const CheckOptions opt = options(samples, seed, accuracy, "direct");
+  const BatchCheckOptions bopt = batch_options(opt, threads, progress);
+  const BatchArg A("A", A_in, 2), plane("plane", plane_in, 1), M("M", M_in, 2), B("B", B_in, 2), origin("origin", origin_in, 1);
+  if (!A.given()) bad_argument("A", "the quadrics are needed");
+  if (!plane.given()) bad_argument("plane", "the mirror planes are needed");
+  if (!M.given() && !B.given()) bad_argument("B", "nothing to check: give M or B");
+  const long n = batch_items({&A, &plane, &M, &B, &origin});
+  Kinds inputs, cand;
+  std::vector<Mat4<Rational>> As;
+  std::vector<Vec4<Rational>> planes;
+  std::vector<ExactReflectionCandidate> cs(static_cast<std::size_t>(n));
+  for (long k = 0; k < n; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    As.push_back(A.matrix(k, inputs));
+    planes.push_back(plane.vector(k, inputs));
+    validate_quadric(As[u], "", A.per_item ? "A[" + std::to_string(k) + "]" : "A");
+    validate_plane(planes[u], "", plane.per_item ? "plane[" + std::to_string(k) + "]" : "plane");
+    if (M.given()) cs[u].M = M.matrix(k, cand);
+    if (B.given()) cs[u].B = B.matrix(k, cand);
+    Kinds origin_kinds;
+    if (origin.given()) cs[u].origin = origin.vector3(k, origin_kinds);
+  }
+  const Mode mode = mode_of(inputs, cand, exact);
+  const Measure eps = mode == Mode::proof ? Measure(0) : candidate_epsilon(cand);
+  return run_batch(static_cast<std::size_t>(n), bopt, [&](std::size_t k) {
+    return check_reflection_exact(As[k], planes[k], cs[k], opt, eps);
+  });
+}
+
 std::string report_repr(const CheckReport& r) {
   std::string verdict = r.skipped ? "skipped" : r.passed ? "passed" : "FAILED";
   char buf[160];
@@ -317,6 +472,70 @@ Example:
     >>> s = qverify.shadow(A, L)
     >>> rep = qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R)
     >>> assert rep, rep.summary
+)");
+
+  m.def("check_shadows", &check_shadows_py, py::arg("A"), py::arg("L"), py::arg("P") = py::none(),
+        py::arg("polar_plane") = py::none(), py::arg("R") = py::none(), py::kw_only(), py::arg("origin") = py::none(),
+        py::arg("samples") = kDefaultSamples, py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy,
+        py::arg("method") = "direct", py::arg("exact") = py::none(), py::arg("threads") = 0,
+        py::arg("progress") = py::none(),
+        R"(Checks many shadows at once: a test suite's whole table, a renderer's frame.
+
+Report k is what check_shadow(A[k], L[k], P=P[k], ...) returns for item k
+alone (the same sample points, the same verdict); the items are checked on
+`threads` threads with the GIL released.
+
+Args:
+    A: the quadrics, shape (n, 4, 4); or one (4, 4) quadric for every item.
+    L: the lights, shape (n, 4); or one light (4,) for every item.
+    P, polar_plane, R: the candidates' results, (n, 4, 4) / (n, 4) (or one
+        for all); give any of them.
+    origin: the frames, (n, 3) or (3,), or None for world coordinates.
+    samples, seed, accuracy, method, exact: as in check_shadow (the mode
+        is decided once for the whole batch).
+    threads: 0 (default) for one per logical processor.
+    progress: None, or a callable progress(done, total) called after each
+        item (one call at a time, done = 1, 2, ..., n).
+
+Every entry is read exactly (float64 and float32 arrays, object arrays of
+Fraction, nested lists, decimal strings) and every item is validated before
+anything is computed.
+
+Returns:
+    list[CheckReport], one per item, in order.
+
+Raises:
+    qverify.InputError: a bad argument; `path` names the item, e.g.
+        "P[7][0][1]" (entry (0, 1) of item 7's P) or "L" for a count that
+        does not match A's.
+
+Example:
+    >>> reps = qverify.check_shadows(As, Ls, P=Ps)
+    >>> failed = [k for k, r in enumerate(reps) if not r]
+)");
+
+  m.def("check_reflections", &check_reflections_py, py::arg("A"), py::arg("plane"), py::arg("M") = py::none(),
+        py::arg("B") = py::none(), py::kw_only(), py::arg("origin") = py::none(), py::arg("samples") = kDefaultSamples,
+        py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy, py::arg("exact") = py::none(),
+        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        R"(Checks many mirror images at once (as check_shadows does shadows).
+
+Report k is what check_reflection(A[k], plane[k], M=M[k], B=B[k], ...)
+returns for item k alone.
+
+Args:
+    A: the quadrics, (n, 4, 4) or one (4, 4) for all.
+    plane: the mirror planes (a, b, c, d), (n, 4) or one (4,) for all.
+    M, B: the candidates' reflection matrices and mirror images, (n, 4, 4)
+        or one for all; give either.
+    origin, samples, seed, accuracy, exact, threads, progress: as in
+        check_shadows.
+
+Returns:
+    list[CheckReport], one per item, in order.
+
+Raises:
+    qverify.InputError: a bad argument; `path` names the item ("B[3][2][1]").
 )");
 
   m.def("check_reflection", &check_reflection_py, py::arg("A"), py::arg("plane"), py::arg("M") = py::none(),

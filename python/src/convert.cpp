@@ -7,15 +7,16 @@
 
 namespace qverify::py_glue {
 
-namespace {
-
 std::string type_name(py::handle h) { return py::str(py::type::handle_of(h).attr("__name__")).cast<std::string>(); }
 
-/// numpy, imported once (the module imports it at load time).
 py::module_& numpy() {
   static py::module_* np = new py::module_(py::module_::import("numpy"));  // intentionally leaked: lives as long as the interpreter
   return *np;
 }
+
+std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<std::string>(); }
+
+namespace {
 
 std::string short_repr(py::handle h) {
   std::string r = py::repr(h).cast<std::string>();
@@ -41,9 +42,6 @@ Rational from_ratio(py::handle num, py::handle den, const std::string& path) {
 bool is_sequence(py::handle h) {
   return !py::isinstance<py::str>(h) && !py::isinstance<py::bytes>(h) && py::isinstance<py::sequence>(h);
 }
-
-/// A numpy array's shape as "(3, 4)".
-std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<std::string>(); }
 
 }  // namespace
 

@@ -50,6 +50,13 @@ struct Kinds {
   bool all_floating() const { return !any_exact; }
 };
 
+/// numpy, imported once (the module imports it at load time).
+py::module_& numpy();
+/// The Python type name of a value ("list", "ndarray"), for messages.
+std::string type_name(py::handle h);
+/// A numpy array's shape as "(3, 4)".
+std::string shape_text(py::handle arr);
+
 /// Throws InputError("", path, problem): an argument of a Python call.
 [[noreturn]] void bad_argument(const std::string& path, const std::string& problem);
 
