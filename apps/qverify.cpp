@@ -354,9 +354,10 @@ int run_eval(const Options& o) {
   if (o.tolerance > 0 && o.tolerance < std::ldexp(1.0, -53))
     throw UsageError("--tolerance: below 2^-53 (1.1e-16) a double result cannot be certified (even the exact "
                      "result rounded to double is that far); use --precision exact");
-  const EvalReport report = o.tolerance > 0
-                                ? adaptive_eval_report(sc, method, o.tolerance, AccuracyOptions{o.accuracy})
-                                : eval_report(sc, prec, method, frame_of(o.frame_text), AccuracyOptions{o.accuracy});
+  AccuracyOptions aopt{o.accuracy};
+  aopt.progress = progress_bar("eval (accuracy measure)");
+  const EvalReport report = o.tolerance > 0 ? adaptive_eval_report(sc, method, o.tolerance, aopt)
+                                            : eval_report(sc, prec, method, frame_of(o.frame_text), aopt);
   if (o.as_json) std::cout << eval_json(report).dump(2) << "\n";
   else std::cout << eval_text(report);
   return kOk;
@@ -368,8 +369,9 @@ int run_verify(const Options& o) {
   const Scene sc = load_scene(o.scene_file);
   // Computed results are eval's (its accuracy measure with its own samples and seed decides
   // escalation and the inaccurate flag): verify checks what `eval --accuracy T` prints.
-  const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text),
-                                                              AccuracyOptions{o.accuracy})
+  AccuracyOptions aopt{o.accuracy};
+  aopt.progress = progress_bar("verify (eval's accuracy measure)");
+  const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text), aopt)
                                            : candidate_results(sc, o.candidate, prec);
   VerifyOptions vopt{o.samples, o.seed, o.accuracy};
   vopt.progress = progress_bar("verify");

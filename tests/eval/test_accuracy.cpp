@@ -6,6 +6,8 @@
 
 #include <qverify/core/core.hpp>
 #include <qverify/eval/accuracy.hpp>
+#include <qverify/eval/results.hpp>
+#include <qverify/scene/scene.hpp>
 #include <qverify/exact/rounding.hpp>
 
 #include <vector>
@@ -82,4 +84,33 @@ TEST_CASE("the filtered measure equals every point measured alone: exact, rounde
       same_metric(measure_plane(t.points, cand),
                   one_by_one(t.points, [&](const RootPoint& x) { return measure_plane({x}, cand); }));
   }
+}
+
+TEST_CASE("the accuracy measure reports progress once per item, in order, and its results do not depend on it",
+          "[accuracy][progress]") {
+  const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/mixed-requests.json");
+  const Precision dbl = *parse_precision("double");
+  AccuracyOptions quiet;
+  quiet.threads = 2;
+  AccuracyOptions counted = quiet;
+  std::vector<std::size_t> done;
+  std::size_t total = 0;
+  counted.progress = [&](std::size_t d, std::size_t t) {
+    done.push_back(d);
+    total = t;
+  };
+  const ResultSet a = computed_results(sc, dbl, Method::direct, std::nullopt, quiet);
+  const ResultSet b = computed_results(sc, dbl, Method::direct, std::nullopt, counted);
+  const std::size_t n = a.shadows.size() + a.reflections.size();
+  REQUIRE(n > 2);
+  CHECK(total == n);
+  std::vector<std::size_t> expected(n);
+  for (std::size_t k = 0; k < n; ++k) expected[k] = k + 1;
+  CHECK(done == expected);
+  for (std::size_t k = 0; k < a.shadows.size(); ++k) {
+    REQUIRE(a.shadows[k].accuracy.has_value() == b.shadows[k].accuracy.has_value());
+    if (a.shadows[k].accuracy) CHECK(a.shadows[k].accuracy->bound == b.shadows[k].accuracy->bound);
+  }
+  for (std::size_t k = 0; k < a.reflections.size(); ++k)
+    if (a.reflections[k].accuracy) CHECK(a.reflections[k].accuracy->bound == b.reflections[k].accuracy->bound);
 }

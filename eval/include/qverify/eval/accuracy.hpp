@@ -15,6 +15,7 @@
 /// its quadratic part, -K^-1 k; the points' centroid where K is singular).
 /// A far-away point therefore cannot make a wrong result look small.
 
+#include <qverify/batch/items.hpp>
 #include <qverify/eval/certified_bound.hpp>
 #include <qverify/eval/frames.hpp>
 #include <qverify/exact/root_point.hpp>
@@ -161,6 +162,8 @@ struct AccuracyOptions {
   std::uint64_t seed = 1;
   /// Threads over the items (0: one per logical processor); the results do not depend on it.
   int threads = 0;
+  /// Called after each item is measured with (items done, items in all), one call at a time.
+  ItemProgress progress = nullptr;
 };
 
 /// error_bound of an item from its geometric error measured on the sampled

@@ -315,8 +315,9 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     for (auto& a : ev.reflection_accuracy) a.bound = 0;
     return;
   } else {
-    // Items are independent (item k's points come from its own seed): threads over them.
-    for_each_item(ev.shadows.size(), opt.threads, [&](std::size_t k) {
+    // Items are independent (item k's points come from its own seed): threads over them,
+    // shadows and reflections in one pass (one progress count).
+    auto shadow_item = [&](std::size_t k) {
       ShadowMeter meter(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other], opt, k);
       auto measure = [&](const ShadowItem<S>& it) {
         const ShadowResult<S>& r = it.result;
@@ -331,8 +332,8 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
           ev.shadow_accuracy[k] = measure(ev.shadows[k]);
         }
       }
-    });
-    for_each_item(ev.reflections.size(), opt.threads, [&](std::size_t k) {
+    };
+    auto reflection_item = [&](std::size_t k) {
       const Pair& p = ev.reflections[k].pair;
       ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt, k);
       auto measure = [&](const ReflectionItem<S>& it) {
@@ -347,6 +348,11 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
           ev.reflection_accuracy[k] = measure(ev.reflections[k]);
         }
       }
+    };
+    const std::size_t ns = ev.shadows.size();
+    for_each_item(ns + ev.reflections.size(), opt.threads, opt.progress, [&](std::size_t i) {
+      if (i < ns) shadow_item(i);
+      else reflection_item(i - ns);
     });
   }
 }
