@@ -1,6 +1,7 @@
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/interval.hpp>
+#include <qverify/exact/root_enclosure.hpp>
 
 #include <algorithm>
 #include <iomanip>
@@ -183,31 +184,55 @@ void add_distance(Metric& m, std::size_t k, const std::optional<Measure>& d) {
 
 namespace {
 
-/// The filter of measure_quadric / measure_plane. For each point, either
-/// nothing is certain (`exact`: it is measured exactly) or its distance and
-/// residual lie in the enclosures `dist` and `res` (and it is certainly off
-/// the result, with a non-zero gradient and w). `measure(k)` is the exact
-/// measurement of point k; it is called, in increasing k, for the points
-/// that could be the worst by distance or by residual and the uncertain ones.
+/// The filter of measure_quadric / measure_plane, in two stages, each only for
+/// the points the one before leaves in doubt:
+///  1. `certain(k, ...)` from the points' double enclosures (the caller's first
+///     loop): cheap, but a point enclosed in doubles loses about as much as a
+///     double result's whole residual, so against such a result it rarely
+///     certifies anything;
+///  2. `refine(k)`: the point's values from its exact integers, enclosed at
+///     kRefineBits (root_enclosure.hpp): a few units of the last place of a
+///     double wide, enough to tell which points can be the worst.
+/// A point is then certain (its distance and residual lie in `dist` and `res`,
+/// and it is certainly off the result, with a non-zero gradient and w), exactly
+/// on the result, or uncertain. `measure(k)`, the exact measurement rounded to
+/// 80 digits, is called in increasing k for the uncertain points and those that
+/// can be the worst by distance or by residual; the result equals measuring
+/// every point (tests/eval/test_accuracy.cpp).
 struct PointFilter {
-  std::vector<char> exact;
+  enum State : char { certain_off, uncertain, exactly_on };
+  std::vector<char> state;
   std::vector<FI> dist, res;
+  bool with_residual;
   double dist_floor = -1, res_floor = -1;  ///< largest lower bounds over the certain points
 
-  explicit PointFilter(std::size_t n) : exact(n, 1), dist(n), res(n) {}
+  PointFilter(std::size_t n, bool residual) : state(n, uncertain), dist(n), res(n), with_residual(residual) {}
 
-  /// Point k is certainly off the result: f != 0 and the denominators positive.
-  void certain(std::size_t k, const FI& d, const FI& r, bool with_residual) {
+  /// Point k is certainly off the result (f != 0, the denominators positive) when d and r say so.
+  void certain(std::size_t k, const FI& d, const FI& r) {
     if (!positive(d) || (with_residual && !positive(r))) return;
-    exact[k] = 0;
+    state[k] = certain_off;
     dist[k] = d, res[k] = r;
     dist_floor = std::max(dist_floor, d.inf());
     if (with_residual) res_floor = std::max(res_floor, r.inf());
   }
 
-  template <class F> void finish(Metric& m, bool with_residual, F&& measure) const {
-    for (std::size_t k = 0; k < exact.size(); ++k) {
-      if (exact[k] || dist[k].sup() >= dist_floor || (with_residual && res[k].sup() >= res_floor)) {
+  bool in_doubt(std::size_t k) const {
+    return state[k] == uncertain ||
+           (state[k] == certain_off && (dist[k].sup() >= dist_floor || (with_residual && res[k].sup() >= res_floor)));
+  }
+
+  /// Stage 2: refine(k, *this) for every point in doubt; it calls certain(k, ...) or on_result(k), or leaves k.
+  template <class R> void refine(R&& refine) {
+    for (std::size_t k = 0; k < state.size(); ++k)
+      if (in_doubt(k)) refine(k);
+  }
+  void on_result(std::size_t k) { state[k] = exactly_on; }
+
+  template <class F> void finish(Metric& m, F&& measure) const {
+    for (std::size_t k = 0; k < state.size(); ++k) {
+      if (state[k] == exactly_on) continue;  // exactly on it: no distance, no residual
+      if (in_doubt(k)) {
         measure(k);
         continue;
       }
@@ -216,20 +241,122 @@ struct PointFilter {
   }
 };
 
-/// |x|^2 = (Dv^2 sum P_i^2 + delta Dp^2 sum V_i^2 + sqrt(delta) 2 Dp Dv sum P_i V_i) / (Dp Dv)^2:
-/// one rounding of an exact value, not four squares of rounded coordinates.
-Measure norm2(const IntegerPoint& x) {
+/// The precision of the filter's second stage: a double result's residual is some
+/// 2^-53 of the terms it is the difference of, enclosed then without the exact norm.
+constexpr mpfr_prec_t kRefineBits = 128;
+
+/// MPFR intervals of the second stage (one set per thread).
+struct RefineScratch {
+  static constexpr int kCount = 6;
+  mpfr_t lo[kCount], hi[kCount];
+  BigInt g0, g1, nu, nv, w0, w1;
+  RefineScratch() {
+    for (int i = 0; i < kCount; ++i) mpfr_init2(lo[i], kRefineBits), mpfr_init2(hi[i], kRefineBits);
+  }
+  ~RefineScratch() {
+    for (int i = 0; i < kCount; ++i) mpfr_clear(lo[i]), mpfr_clear(hi[i]);
+  }
+  RefineScratch(const RefineScratch&) = delete;
+  RefineScratch& operator=(const RefineScratch&) = delete;
+  static RefineScratch& get() {
+    thread_local RefineScratch s;
+    return s;
+  }
+  /// [lo[i], hi[i]] as a double interval, rounded outwards.
+  FI interval(int i) const { return FI(mpfr_get_d(lo[i], MPFR_RNDD), mpfr_get_d(hi[i], MPFR_RNDU)); }
+  /// slot i = slot j / slot k (non-negative intervals; i differs from j and k), outwards.
+  void quotient(int i, int j, int k) {
+    mpfr_div(lo[i], lo[j], hi[k], MPFR_RNDD);
+    mpfr_div(hi[i], hi[j], lo[k], MPFR_RNDU);
+  }
+  /// slot i *= slot j (non-negative intervals), outwards.
+  void multiply(int i, int j) {
+    mpfr_mul(lo[i], lo[i], lo[j], MPFR_RNDD);
+    mpfr_mul(hi[i], hi[i], hi[j], MPFR_RNDU);
+  }
+  /// [lo[i], hi[i]] = sqrt of the integer n, outwards.
+  void sqrt_of(int i, const BigInt& n) {
+    mpfr_set_z(lo[i], mpz(n), MPFR_RNDD);
+    mpfr_sqrt(lo[i], lo[i], MPFR_RNDD);
+    mpfr_set_z(hi[i], mpz(n), MPFR_RNDU);
+    mpfr_sqrt(hi[i], hi[i], MPFR_RNDU);
+  }
+};
+
+/// |x|^2 = (N0 + N1 sqrt(delta)) / (Dp Dv)^2 with N0 = Dv^2 sum P_i^2 + delta Dp^2 sum V_i^2,
+/// N1 = 2 Dp Dv sum P_i V_i.
+void norm2_parts(const IntegerPoint& x, BigInt& n0, BigInt& n1) {
   BigInt pp, vv, pv;
   for (std::size_t i = 0; i < 4; ++i) {
     pp += x.P[i] * x.P[i];
     if (!x.rational) vv += x.V[i] * x.V[i], pv += x.P[i] * x.V[i];
   }
+  n0 = pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp;
+  n1 = 2 * pv * x.den();
+}
+
+/// |x|^2 to 80 digits: one rounding of an exact value, not four squares of rounded coordinates.
+Measure norm2(const IntegerPoint& x) {
+  BigInt n0, n1;
+  norm2_parts(x, n0, n1);
   const BigInt den = x.den();
-  return root_magnitude(BigInt(pp * x.Dv * x.Dv + x.d * vv * x.Dp * x.Dp), BigInt(2 * pv * den), x.d, x.root(), BigInt(den * den));
+  return root_magnitude(n0, n1, x.d, x.root(), BigInt(den * den));
 }
 
 FI norm2(const PointEnclosure& X) {
   return CGAL::square(X[0]) + CGAL::square(X[1]) + CGAL::square(X[2]) + CGAL::square(X[3]);
+}
+
+/// A point's exact values against an integer matrix Qi (Q = Qi / DQ; integer_point.hpp):
+/// x^T Q x = (f0 + f1 sqrt(delta)) / (Dp^2 Dv^2 DQ), (Q x)_i = (y_i Dv + z_i Dp sqrt(delta)) / (Dp Dv DQ).
+struct QuadricValues {
+  IntegerPoint x;
+  BigInt y[4], z[4], f0, f1;
+  bool zero;  ///< x^T Q x == 0 exactly
+
+  QuadricValues(const RootPoint& p, const std::array<BigInt, 16>& Qi) : x(p) {
+    BigInt a, b, c;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        const BigInt& q = Qi[static_cast<std::size_t>(4 * i + j)];
+        y[i] += q * x.P[static_cast<std::size_t>(j)];
+        if (!x.rational) z[i] += q * x.V[static_cast<std::size_t>(j)];
+      }
+    }
+    for (int i = 0; i < 4; ++i) {  // c = P^T Q V + V^T Q P (Q need not be symmetric)
+      const auto u = static_cast<std::size_t>(i);
+      a += x.P[u] * y[i];
+      if (!x.rational) b += x.V[u] * z[i], c += x.P[u] * z[i] + x.V[u] * y[i];
+    }
+    f0 = a * x.Dv * x.Dv + x.d * b * x.Dp * x.Dp;
+    f1 = c * x.den();
+    zero = root_is_zero(f0, f1, x.d, x.square);
+  }
+};
+
+/// A plane's exact value at a point: pi . x = (f0 + f1 sqrt(delta)) / (Dp Dv Dpi).
+struct PlaneValues {
+  IntegerPoint x;
+  BigInt f0, f1;
+  bool zero;
+
+  PlaneValues(const RootPoint& p, const std::array<BigInt, 4>& Pi) : x(p) {
+    BigInt a, b;
+    for (std::size_t i = 0; i < 4; ++i) {
+      a += Pi[i] * x.P[i];
+      if (!x.rational) b += Pi[i] * x.V[i];
+    }
+    f0 = a * x.Dv;
+    f1 = b * x.Dp;
+    zero = root_is_zero(f0, f1, x.d, x.square);
+  }
+};
+
+/// Encloses sqrt(v_0^2 + ... + v_{count-1}^2) of integers into slot i of s.
+void integer_norm(RefineScratch& s, int i, const BigInt* v, std::size_t count) {
+  BigInt sum;
+  for (std::size_t j = 0; j < count; ++j) sum += v[j] * v[j];
+  s.sqrt_of(i, sum);
 }
 
 }  // namespace
@@ -241,7 +368,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   FI Qe[4][4];
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) Qe[i][j] = enclosed(Qm(i, j));
-  PointFilter filter(pts.size());
+  PointFilter filter(pts.size(), with_residual);
   {
     CGAL::Protect_FPU_rounding<true> guard;
     FI q2(0);
@@ -257,37 +384,65 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
       const FI w = CGAL::abs(X[3]);
       if (!positive(f) || !positive(g) || !positive(w)) continue;
       const FI nx = norm2(X);
-      filter.certain(k, f / (w * g * 2), with_residual && positive(nx) ? f / (qn * nx) : FI(0), with_residual);
+      filter.certain(k, f / (w * g * 2), with_residual && positive(nx) ? f / (qn * nx) : FI(0));
     }
   }
   std::array<BigInt, 16> Qi;
   BigInt DQ;
   clear_denominators(Qm, Qi, DQ);
-  filter.finish(m, with_residual, [&](std::size_t k) {
-    const IntegerPoint x(pts[k]);
-    BigInt y[4], z[4], a, b, c;
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) {
-        const BigInt& q = Qi[static_cast<std::size_t>(4 * i + j)];
-        y[i] += q * x.P[static_cast<std::size_t>(j)];
-        if (!x.rational) z[i] += q * x.V[static_cast<std::size_t>(j)];
-      }
+  // Stage 2. With F = f0 + f1 sqrt(delta), W = u_3 + v_3 sqrt(delta), G_i = y_i Dv + z_i Dp sqrt(delta)
+  // and N = |x|^2 (Dp Dv)^2 the denominators cancel: distance |F| / (2 |W| |G|), residual |F| / (|Qi| N).
+  RefineScratch& s = RefineScratch::get();
+  integer_norm(s, 4, Qi.data(), 16);  // |Qi|
+  filter.refine([&](std::size_t k) {
+    const QuadricValues v(pts[k], Qi);
+    if (v.zero) return filter.on_result(k);
+    const IntegerPoint& x = v.x;
+    const bool root = !x.rational;
+    RootEnclosure& e = thread_root_enclosure(kRefineBits);
+    if (root) e.set_radicand(x.d);
+    e.enclose(s.lo[0], s.hi[0], v.f0, v.f1, root);        // |F|
+    s.w0 = x.u(3);
+    s.w1 = x.v(3);
+    e.enclose(s.lo[1], s.hi[1], s.w0, s.w1, root);  // |W|
+    mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);                  // |G|^2
+    mpfr_set_ui(s.hi[2], 0, MPFR_RNDU);
+    for (int i = 0; i < 3; ++i) {
+      s.g0 = v.y[i] * x.Dv;
+      if (root) s.g1 = v.z[i] * x.Dp;
+      e.enclose(s.lo[3], s.hi[3], s.g0, s.g1, root);
+      mpfr_sqr(s.lo[3], s.lo[3], MPFR_RNDD);
+      mpfr_add(s.lo[2], s.lo[2], s.lo[3], MPFR_RNDD);
+      mpfr_sqr(s.hi[3], s.hi[3], MPFR_RNDU);
+      mpfr_add(s.hi[2], s.hi[2], s.hi[3], MPFR_RNDU);
     }
-    for (int i = 0; i < 4; ++i) {  // c = P^T Q V + V^T Q P (Q need not be symmetric)
-      const auto u = static_cast<std::size_t>(i);
-      a += x.P[u] * y[i];
-      if (!x.rational) b += x.V[u] * z[i], c += x.P[u] * z[i] + x.V[u] * y[i];
+    if (mpfr_zero_p(s.lo[1]) || mpfr_zero_p(s.lo[2]) || mpfr_zero_p(s.lo[0])) return;  // left to the measure
+    mpfr_sqrt(s.lo[2], s.lo[2], MPFR_RNDD);
+    mpfr_sqrt(s.hi[2], s.hi[2], MPFR_RNDU);
+    s.multiply(2, 1);
+    mpfr_mul_2si(s.lo[2], s.lo[2], 1, MPFR_RNDD);  // 2 |W| |G|
+    mpfr_mul_2si(s.hi[2], s.hi[2], 1, MPFR_RNDU);
+    s.quotient(1, 0, 2);  // the distance |F| / (2 |W| |G|)
+    if (with_residual) {
+      norm2_parts(x, s.nu, s.nv);
+      e.enclose(s.lo[3], s.hi[3], s.nu, s.nv, root);  // N
+      s.multiply(3, 4);                               // |Qi| N
+      s.quotient(5, 0, 3);                            // the residual |F| / (|Qi| N)
     }
-    const BigInt Dp2 = x.Dp * x.Dp, Dv2 = x.Dv * x.Dv, DpDv = x.Dp * x.Dv;
-    const BigInt f0 = a * Dv2 + x.d * b * Dp2, f1 = c * DpDv;
-    if (root_is_zero(f0, f1, x.d, x.square)) return;
+    filter.certain(k, s.interval(1), with_residual ? s.interval(5) : FI(0));
+  });
+  filter.finish(m, [&](std::size_t k) {
+    const QuadricValues v(pts[k], Qi);
+    if (v.zero) return;
+    const IntegerPoint& x = v.x;
     m.all_zero = false;
-    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(Dp2 * Dv2 * DQ));
+    const BigInt DpDv = x.den();
+    const Measure fm = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(DpDv * DpDv * DQ));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
     const BigInt den = DpDv * DQ;
     Measure g = 0;
     for (int i = 0; i < 3; ++i) {
-      const Measure gi = root_magnitude(BigInt(y[i] * x.Dv), BigInt(z[i] * x.Dp), x.d, x.root(), den);
+      const Measure gi = root_magnitude(BigInt(v.y[i] * x.Dv), BigInt(v.z[i] * x.Dp), x.d, x.root(), den);
       g += gi * gi;
     }
     const Measure w = x.magnitude(3);
@@ -302,7 +457,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
   const bool with_residual = pn > 0;
   FI pe[4];
   for (int i = 0; i < 4; ++i) pe[i] = enclosed(pi(i));
-  PointFilter filter(pts.size());
+  PointFilter filter(pts.size(), with_residual);
   {
     CGAL::Protect_FPU_rounding<true> guard;
     const FI nxyz = CGAL::sqrt(CGAL::square(pe[0]) + CGAL::square(pe[1]) + CGAL::square(pe[2]));
@@ -313,23 +468,47 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
       const FI w = CGAL::abs(X[3]);
       if (!positive(f) || !positive(nxyz) || !positive(w)) continue;
       const FI nx = CGAL::sqrt(norm2(X));
-      filter.certain(k, f / (w * nxyz), with_residual && positive(nx) ? f / (n * nx) : FI(0), with_residual);
+      filter.certain(k, f / (w * nxyz), with_residual && positive(nx) ? f / (n * nx) : FI(0));
     }
   }
   std::array<BigInt, 4> Pi;
   BigInt Dpi;
   clear_denominators(pi, Pi, Dpi);
-  filter.finish(m, with_residual, [&](std::size_t k) {
-    const IntegerPoint x(pts[k]);
-    BigInt a, b;
-    for (int i = 0; i < 4; ++i) {
-      a += Pi[static_cast<std::size_t>(i)] * x.P[static_cast<std::size_t>(i)];
-      if (!x.rational) b += Pi[static_cast<std::size_t>(i)] * x.V[static_cast<std::size_t>(i)];
+  // Stage 2, the denominators cancelled (as in measure_quadric): distance |F| / (|W| |Pi_xyz|),
+  // residual |F| / (|Pi| sqrt(N)).
+  RefineScratch& s = RefineScratch::get();
+  integer_norm(s, 4, Pi.data(), 3);  // |Pi_xyz|
+  integer_norm(s, 3, Pi.data(), 4);  // |Pi|
+  filter.refine([&](std::size_t k) {
+    const PlaneValues v(pts[k], Pi);
+    if (v.zero) return filter.on_result(k);
+    const IntegerPoint& x = v.x;
+    const bool root = !x.rational;
+    RootEnclosure& e = thread_root_enclosure(kRefineBits);
+    if (root) e.set_radicand(x.d);
+    e.enclose(s.lo[0], s.hi[0], v.f0, v.f1, root);  // |F|
+    s.w0 = x.u(3);
+    s.w1 = x.v(3);
+    e.enclose(s.lo[1], s.hi[1], s.w0, s.w1, root);  // |W|
+    if (mpfr_zero_p(s.lo[0]) || mpfr_zero_p(s.lo[1]) || mpfr_zero_p(s.lo[4])) return;  // left to the measure
+    s.multiply(1, 4);
+    s.quotient(2, 0, 1);  // the distance
+    if (with_residual) {
+      norm2_parts(x, s.nu, s.nv);
+      e.enclose(s.lo[1], s.hi[1], s.nu, s.nv, root);  // N, then sqrt(N) |Pi|
+      mpfr_sqrt(s.lo[1], s.lo[1], MPFR_RNDD);
+      mpfr_sqrt(s.hi[1], s.hi[1], MPFR_RNDU);
+      s.multiply(1, 3);
+      s.quotient(5, 0, 1);  // the residual
     }
-    const BigInt f0 = a * x.Dv, f1 = b * x.Dp;
-    if (root_is_zero(f0, f1, x.d, x.square)) return;
+    filter.certain(k, s.interval(2), with_residual ? s.interval(5) : FI(0));
+  });
+  filter.finish(m, [&](std::size_t k) {
+    const PlaneValues v(pts[k], Pi);
+    if (v.zero) return;
+    const IntegerPoint& x = v.x;
     m.all_zero = false;
-    const Measure fm = root_magnitude(f0, f1, x.d, x.root(), BigInt(x.den() * Dpi));
+    const Measure fm = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(x.den() * Dpi));
     if (with_residual) m.residual = mmax(m.residual, Measure(fm / (pn * sqrt(norm2(x)))));
     const Measure w = x.magnitude(3);
     add_distance(m, k, pxyz > 0 && w > 0 ? std::optional<Measure>(fm / (w * pxyz)) : std::nullopt);

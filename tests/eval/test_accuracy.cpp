@@ -69,18 +69,23 @@ TEST_CASE("the filtered measure equals every point measured alone: exact, rounde
     REQUIRE(t.points.size() == 48);
     const Mat4<Q> P = tangent_cone<Q>(A, L);
     const Vec4<Q> pi = polar_plane<Q>(A, L);
-    Mat4<Q> off = P;
-    off(0, 1) *= 1 + Q(1, 10000000);
-    off(1, 0) = off(0, 1);
+    auto perturbed = [&](const Q& by) {
+      Mat4<Q> off = P;
+      off(0, 1) *= 1 + by;
+      off(1, 0) = off(0, 1);
+      return off;
+    };
     // exact (every point on it), rounded once to double (residuals at the rounding level, the
-    // filter's hard case), off by 1e-7 (every point clearly off)
-    for (const Mat4<Q>& cand : {P, rounded_to_double(P), off}) {
+    // first stage's hard case), off by 1e-7 (every point clearly off), off by 1e-40 (the second
+    // stage needs the exact norm: the residual cancels beyond its 128 bits)
+    for (const Mat4<Q>& cand : {P, rounded_to_double(P), perturbed(Q(1, 10000000)), perturbed(Q(1) / test::pow10(40))}) {
       same_metric(measure_quadric(t.points, cand),
                   one_by_one(t.points, [&](const RootPoint& x) { return measure_quadric({x}, cand); }));
       same_metric(measure_quadric(t.generators, cand),
                   one_by_one(t.generators, [&](const RootPoint& x) { return measure_quadric({x}, cand); }));
     }
-    for (const Vec4<Q>& cand : {pi, rounded_to_double(Vec4<Q>(pi * Q(1, 3))), Vec4<Q>(pi + Vec4<Q>(0, 0, 0, Q(1, 1000)))})
+    for (const Vec4<Q>& cand : {pi, rounded_to_double(Vec4<Q>(pi * Q(1, 3))), Vec4<Q>(pi + Vec4<Q>(0, 0, 0, Q(1, 1000))),
+                                Vec4<Q>(pi + Vec4<Q>(0, 0, 0, Q(1) / test::pow10(40)))})
       same_metric(measure_plane(t.points, cand),
                   one_by_one(t.points, [&](const RootPoint& x) { return measure_plane({x}, cand); }));
   }

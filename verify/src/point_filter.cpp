@@ -1,5 +1,7 @@
 #include <qverify/verify/point_filter.hpp>
 
+#include <qverify/exact/root_enclosure.hpp>
+
 #include <cmath>
 #include <limits>
 
@@ -96,17 +98,20 @@ void dot4(mpz_t out, const BigInt* row, const std::array<BigInt, 4>& x) {
 }
 
 /// Scratch numbers of one thread (no allocation per check once they have grown).
-constexpr mpfr_prec_t kStageBits = 64;
+/// 128 bits: a double result's residual, some 2^-53 of the terms it is the difference of,
+/// is then enclosed without the exact norm (root_enclosure.hpp).
+constexpr mpfr_prec_t kStageBits = 128;
 struct Scratch {
-  BigInt y[4], zz[4], a, b, c, t, f0, f1, g0, g1, abs_a, abs_b, conj;
-  mpfr_t lo[8], hi[8], sdlo, sdhi, tmp, tmp2;
+  BigInt y[4], zz[4], a, b, c, t, f0, f1, g0, g1;
+  mpfr_t lo[8], hi[8], tmp;
+  RootEnclosure& root = thread_root_enclosure(kStageBits);
   Scratch() {
     for (int k = 0; k < 8; ++k) mpfr_init2(lo[k], kStageBits), mpfr_init2(hi[k], kStageBits);
-    for (mpfr_ptr x : {&sdlo[0], &sdhi[0], &tmp[0], &tmp2[0]}) mpfr_init2(x, kStageBits);
+    mpfr_init2(tmp, kStageBits);
   }
   ~Scratch() {
     for (int k = 0; k < 8; ++k) mpfr_clear(lo[k]), mpfr_clear(hi[k]);
-    for (mpfr_ptr x : {&sdlo[0], &sdhi[0], &tmp[0], &tmp2[0]}) mpfr_clear(x);
+    mpfr_clear(tmp);
   }
   Scratch(const Scratch&) = delete;
   Scratch& operator=(const Scratch&) = delete;
@@ -114,55 +119,6 @@ struct Scratch {
 Scratch& scratch() {
   thread_local Scratch s;
   return s;
-}
-
-/// [lo, hi] encloses |a + b sqrt(d)| (d >= 0; [sdlo, sdhi] encloses sqrt(d)),
-/// rounded outwards and without cancellation: where a and b sqrt(d) have
-/// opposite signs, |a^2 - b^2 d| / (|a| + |b| sqrt(d)) (an exact integer over a sum).
-void enclose_abs(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, bool root, Scratch& s) {
-  mpz_abs(mpz(s.abs_a), mpz(a));
-  mpz_abs(mpz(s.abs_b), mpz(b));
-  const int sa = mpz_sgn(mpz(a)), sb = root ? mpz_sgn(mpz(b)) : 0;
-  if (sb == 0) {
-    mpfr_set_z(lo, mpz(s.abs_a), MPFR_RNDD);
-    mpfr_set_z(hi, mpz(s.abs_a), MPFR_RNDU);
-    return;
-  }
-  // |a| + |b| sqrt(d), down and up
-  auto sum = [&](mpfr_ptr out, mpfr_srcptr sd, mpfr_rnd_t r) {
-    mpfr_set_z(out, mpz(s.abs_b), r);
-    mpfr_mul(out, out, sd, r);
-    mpfr_set_z(s.tmp, mpz(s.abs_a), r);
-    mpfr_add(out, out, s.tmp, r);
-  };
-  if (sa == 0 || sa == sb) {
-    sum(lo, s.sdlo, MPFR_RNDD);
-    sum(hi, s.sdhi, MPFR_RNDU);
-    return;
-  }
-  // d itself is the radicand squared away: conj = |a^2 - b^2 d|
-  sum(s.tmp2, s.sdhi, MPFR_RNDU);  // denominator, up (for the lower bound)
-  mpfr_set_z(lo, mpz(s.conj), MPFR_RNDD);
-  mpfr_div(lo, lo, s.tmp2, MPFR_RNDD);
-  sum(s.tmp2, s.sdlo, MPFR_RNDD);  // denominator, down (for the upper bound)
-  mpfr_set_z(hi, mpz(s.conj), MPFR_RNDU);
-  mpfr_div(hi, hi, s.tmp2, MPFR_RNDU);
-}
-
-/// [sdlo, sdhi] = sqrt(d) rounded outwards (the radicand of the points of Q(sqrt d)), for enclose_root.
-void enclose_sqrt(const BigInt& d, Scratch& s) {
-  mpfr_set_z(s.sdlo, mpz(d), MPFR_RNDD);
-  mpfr_sqrt(s.sdlo, s.sdlo, MPFR_RNDD);
-  mpfr_set_z(s.sdhi, mpz(d), MPFR_RNDU);
-  mpfr_sqrt(s.sdhi, s.sdhi, MPFR_RNDU);
-}
-
-void enclose_root(mpfr_ptr lo, mpfr_ptr hi, const BigInt& a, const BigInt& b, const BigInt& d, bool root, Scratch& s) {
-  if (root && mpz_sgn(mpz(a)) * mpz_sgn(mpz(b)) < 0) {  // conj = |a^2 - b^2 d|, for enclose_abs
-    root_norm(s.conj, a, b, d, s.t);
-    mpz_abs(mpz(s.conj), mpz(s.conj));
-  }
-  enclose_abs(lo, hi, a, b, root, s);
 }
 
 /// pass / fail / undecided from [lhs] against [rhs] (both non-negative).
@@ -306,18 +262,18 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
     }
     mpz_addmul(mpz(s.f0), mpz(s.b), mpz(x.kb));
     mpz_mul(mpz(s.f1), mpz(s.c), mpz(x.m));
-    enclose_sqrt(x.d, s);
+    s.root.set_radicand(x.d);
   }
   // |f| in [lo0, hi0] (times (Dp Dv)^2), |w| in [lo1, hi1], |g|^2 in [lo2, hi2] (times (Dp Dv)^2)
-  enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
-  enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
+  s.root.enclose(s.lo[0], s.hi[0], s.f0, s.f1, root);
+  s.root.enclose(s.lo[1], s.hi[1], x.w0, x.w1, root);
   mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);
   mpfr_set_ui(s.hi[2], 0, MPFR_RNDU);
   for (int i = 0; i < 3; ++i) {
     mpz_mul(mpz(s.g0), mpz(s.y[i]), mpz(x.Dv));
     if (root) mpz_mul(mpz(s.g1), mpz(s.zz[i]), mpz(x.Dp));
     else mpz_set_ui(mpz(s.g1), 0);
-    enclose_root(s.lo[4], s.hi[4], s.g0, s.g1, x.d, root, s);
+    s.root.enclose(s.lo[4], s.hi[4], s.g0, s.g1, root);
     mpfr_sqr(s.lo[4], s.lo[4], MPFR_RNDD);
     mpfr_add(s.lo[2], s.lo[2], s.lo[4], MPFR_RNDD);
     mpfr_sqr(s.hi[4], s.hi[4], MPFR_RNDU);
@@ -342,10 +298,10 @@ FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, 
   if (root) {
     dot4(mpz(s.b), p.pi.data(), x.V);
     mpz_mul(mpz(s.f1), mpz(s.b), mpz(x.Dp));
-    enclose_sqrt(x.d, s);
+    s.root.set_radicand(x.d);
   }
-  enclose_root(s.lo[0], s.hi[0], s.f0, s.f1, x.d, root, s);
-  enclose_root(s.lo[1], s.hi[1], x.w0, x.w1, x.d, root, s);
+  s.root.enclose(s.lo[0], s.hi[0], s.f0, s.f1, root);
+  s.root.enclose(s.lo[1], s.hi[1], x.w0, x.w1, root);
   // |pi_xyz|^2, exactly as an integer, then rounded outwards
   mpz_set_ui(mpz(s.t), 0);
   for (int i = 0; i < 3; ++i) mpz_addmul(mpz(s.t), mpz(p.pi[static_cast<std::size_t>(i)]), mpz(p.pi[static_cast<std::size_t>(i)]));

@@ -26,9 +26,10 @@
 ///  2. exact integers: with the point's denominators cleared once
 ///     (ClearedPoints) and the candidate's doubles as integers times a power of
 ///     two, f = F0 + F1 sqrt(d), (Q x)_i and w are exact integer pairs; their
-///     magnitudes are enclosed in MPFR at 64 bits with directed rounding, with
-///     no cancellation (a - b sqrt(d) as (a^2 - b^2 d) / (a + b sqrt(d))), so
-///     this stage decides everything but points within about 1e-15 of the
+///     magnitudes are enclosed in MPFR at 128 bits with directed rounding
+///     (exact/root_enclosure.hpp: a - b sqrt(d) directly where that is tight,
+///     else as (a^2 - b^2 d) / (a + b sqrt(d)), no cancellation), so this
+///     stage decides everything but points within about 1e-15 of the
 ///     boundary (the enclosure of T * size is one ulp wide);
 ///  3. the verifier's own measure at that one point (measure_quadric /
 ///     measure_plane, Q(sqrt d) and 80 digits).
