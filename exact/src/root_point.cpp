@@ -2,6 +2,8 @@
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/root_point.hpp>
 
+#include <mpfr.h>
+
 #include <stdexcept>
 
 namespace qverify {
@@ -51,9 +53,10 @@ struct EnclosedParts {
 };
 
 EnclosedParts enclose_parts(const Vec4<Rational>& p, const Vec4<Rational>& q, const Rational& delta) {
-  // sqrt(delta) |q_i| from the enclosures of delta and q_i; where delta is beyond
-  // the range of a double, from the rational delta q_i^2 (then a huge delta with a
-  // small q_i is no harder than a small one).
+  // sqrt(delta) |q_i| from the enclosures of delta and q_i; where delta is beyond the
+  // range of a double, sqrt(delta) is enclosed in MPFR (whose exponent range is wide) and
+  // multiplied by the exact q_i there, each step rounded outwards (no rational product, no
+  // gcd; a huge delta with a small q_i is then no harder than a small one).
   const Interval ed = enclose(delta);
   const bool small_root = std::isfinite(ed.sup());
   EnclosedParts e;
@@ -62,14 +65,35 @@ EnclosedParts enclose_parts(const Vec4<Rational>& p, const Vec4<Rational>& q, co
     const Interval pe = enclose(p(i));
     e.p[i] = FilterInterval(pe.inf(), pe.sup());
     e.sign[i] = delta == 0 ? 0 : q(i).sign();
-    if (e.sign[i] == 0) continue;
-    const Interval r = small_root ? enclose(q(i)) : enclose(Rational(delta * q(i) * q(i)));
-    s[i] = e.sign[i] > 0 || !small_root ? FilterInterval(r.inf(), r.sup()) : FilterInterval(-r.sup(), -r.inf());  // |q_i|
+    if (e.sign[i] == 0 || !small_root) continue;
+    const Interval r = enclose(q(i));
+    s[i] = e.sign[i] > 0 ? FilterInterval(r.inf(), r.sup()) : FilterInterval(-r.sup(), -r.inf());  // |q_i|
+  }
+  if (!small_root) {
+    MPFR_DECL_INIT(sdlo, 53);
+    MPFR_DECL_INIT(sdhi, 53);
+    MPFR_DECL_INIT(lo, 53);
+    MPFR_DECL_INIT(hi, 53);
+    mpfr_set_q(sdlo, delta.backend().data(), MPFR_RNDD);
+    mpfr_sqrt(sdlo, sdlo, MPFR_RNDD);
+    mpfr_set_q(sdhi, delta.backend().data(), MPFR_RNDU);
+    mpfr_sqrt(sdhi, sdhi, MPFR_RNDU);
+    for (int i = 0; i < 4; ++i) {
+      if (e.sign[i] == 0) continue;
+      // |sqrt(delta) q_i|: for q_i < 0 the product rounded up (towards 0) is the lower bound of its magnitude
+      const bool neg = e.sign[i] < 0;
+      mpfr_mul_q(lo, sdlo, q(i).backend().data(), neg ? MPFR_RNDU : MPFR_RNDD);
+      mpfr_mul_q(hi, sdhi, q(i).backend().data(), neg ? MPFR_RNDD : MPFR_RNDU);
+      mpfr_abs(lo, lo, MPFR_RNDD);
+      mpfr_abs(hi, hi, MPFR_RNDU);
+      e.r[i] = FilterInterval(mpfr_get_d(lo, MPFR_RNDD), mpfr_get_d(hi, MPFR_RNDU));
+    }
+    return e;
   }
   CGAL::Protect_FPU_rounding<true> guard;
   const FilterInterval sd = CGAL::sqrt(FilterInterval(ed.inf(), ed.sup()));
   for (int i = 0; i < 4; ++i)
-    if (e.sign[i] != 0) e.r[i] = small_root ? sd * s[i] : CGAL::sqrt(s[i]);
+    if (e.sign[i] != 0) e.r[i] = sd * s[i];
   return e;
 }
 

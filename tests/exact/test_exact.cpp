@@ -61,11 +61,16 @@ TEST_CASE("points made from an integer radicand equal the constructor's, enclosu
     const auto both = RootPoint::conjugates(p, q, n);
     same(both[0], x);
     same(both[1], y);
-    for (std::size_t i = 0; i < 4; ++i) {  // and they enclose the point
-      const Measure xi = to_measure(x.coords()[i]);
-      CHECK(Measure(x.enclosure()[i].inf()) <= xi);
-      CHECK(xi <= Measure(x.enclosure()[i].sup()));
-    }
+    // and they enclose the point; with the huge radicand also for a q of 2^-549, whose
+    // coordinates are of order 1 (the product sqrt(delta) q_i is then what is enclosed)
+    const RootPoint z(p, Vec4<Q>(q / Q(boost::multiprecision::mpz_int(1) << 549)), n);
+    for (const RootPoint* w : {&x, &y, &z})
+      for (std::size_t i = 0; i < 4; ++i) {
+        const Measure xi = to_measure(w->coords()[i]);
+        CHECK(Measure(w->enclosure()[i].inf()) <= xi);
+        CHECK(xi <= Measure(w->enclosure()[i].sup()));
+        CHECK(w->enclosure()[i].sup() - w->enclosure()[i].inf() <= 1e-14 * (1 + abs(xi.convert_to<double>())));
+      }
   }
   same(RootPoint::with_integer_radicand(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 1, 1, 0), Q(0)),
        RootPoint(Vec4<Q>(1, 2, 3, 1), Vec4<Q>(1, 1, 1, 0), Q(0)));
