@@ -118,27 +118,39 @@ std::array<RootPoint, 2> RootPoint::conjugates(const Vec4<Rational>& p, const Ve
   return {RootPoint(p, q, n, combine(e, 1)), RootPoint(p, Vec4<Rational>(-q), n, combine(e, -1))};
 }
 
-RootPoint RootPoint::mapped(const Mat4<Rational>& M) const { return mapped(std::vector<RootPoint>{*this}, M)[0]; }
-
-std::vector<RootPoint> RootPoint::mapped(const std::vector<RootPoint>& xs, const Mat4<Rational>& M) {
-  // On integers, one canonical fraction per coordinate at the end (Eigen's
-  // rational product takes a gcd per operation).
-  std::array<BigInt, 16> Mi;
-  BigInt DM;
-  clear_denominators(M, Mi, DM);
-  auto apply = [&](const Vec4<Rational>& v) {
+namespace {
+/// x -> M x on integers, one canonical fraction per coordinate at the end (Eigen's
+/// rational product takes a gcd per operation); M's denominators cleared once.
+class ClearedMap {
+ public:
+  explicit ClearedMap(const Mat4<Rational>& M) { clear_denominators(M, Mi_, DM_); }
+  Vec4<Rational> operator()(const Vec4<Rational>& v) const {
     std::array<BigInt, 4> V;
     BigInt Dv;
     clear_denominators(v, V, Dv);
-    const BigInt den = DM * Dv;
+    const BigInt den = DM_ * Dv;
     Vec4<Rational> out;
     for (int i = 0; i < 4; ++i) {
       BigInt num;
-      for (int j = 0; j < 4; ++j) num += Mi[static_cast<std::size_t>(4 * i + j)] * V[static_cast<std::size_t>(j)];
+      for (int j = 0; j < 4; ++j) num += Mi_[static_cast<std::size_t>(4 * i + j)] * V[static_cast<std::size_t>(j)];
       out(i) = Rational(num, den);
     }
     return out;
-  };
+  }
+
+ private:
+  std::array<BigInt, 16> Mi_;
+  BigInt DM_;
+};
+}  // namespace
+
+RootPoint RootPoint::mapped(const Mat4<Rational>& M) const {
+  const ClearedMap apply(M);
+  return RootPoint(apply(p_), apply(q_), delta_, normalised{});
+}
+
+std::vector<RootPoint> RootPoint::mapped(const std::vector<RootPoint>& xs, const Mat4<Rational>& M) {
+  const ClearedMap apply(M);  // once per point set
   std::vector<RootPoint> out;
   out.reserve(xs.size());
   for (const RootPoint& x : xs) out.push_back(RootPoint(apply(x.p_), apply(x.q_), x.delta_, normalised{}));
@@ -262,7 +274,10 @@ Measure sqrt_of(const BigInt& d) {
 }
 }  // namespace
 
-Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den) {
+namespace {
+/// root_magnitude with the norm u^2 - v^2 d given when the caller has it (root_value's sign needs it too).
+Measure magnitude_with_norm(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den,
+                            const BigInt* norm) {
   Measure mu, mv, md;
   mpfr_set_z(mu.backend().data(), mpz(u), MPFR_RNDN);
   mpfr_set_z(md.backend().data(), mpz(den), MPFR_RNDN);
@@ -271,17 +286,32 @@ Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const 
   const Measure sum = abs(mu) + abs(mv) * root;
   if (mpz_sgn(mpz(u)) == 0 || mpz_sgn(mpz(u)) == mpz_sgn(mpz(v))) return sum / md;
   BigInt c, t;  // |u^2 - v^2 d|, exact: no cancellation left
-  root_norm(c, u, v, d, t);
+  if (norm) c = *norm;
+  else root_norm(c, u, v, d, t);
   mpz_abs(mpz(c), mpz(c));
   Measure mc;
   mpfr_set_z(mc.backend().data(), mpz(c), MPFR_RNDN);
   return mc / (sum * md);
 }
+}  // namespace
+
+Measure root_magnitude(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den) {
+  return magnitude_with_norm(u, v, d, root, den, nullptr);
+}
 
 Measure root_value(const BigInt& u, const BigInt& v, const BigInt& d, const Measure& root, const BigInt& den) {
-  const int sign = root_sign(u, v, d);
+  const int su = mpz_sgn(mpz(u)), sv = mpz_sgn(mpz(d)) == 0 ? 0 : mpz_sgn(mpz(v));
+  if (sv == 0 || su == 0 || su == sv) {  // no cancellation: the sign is that of either part
+    const int sign = sv == 0 ? su : sv;
+    if (sign == 0) return Measure(0);
+    const Measure m = magnitude_with_norm(u, v, d, root, den, nullptr);
+    return sign < 0 ? Measure(-m) : m;
+  }
+  BigInt n, t;  // opposite signs: the norm decides the sign and serves the magnitude
+  root_norm(n, u, v, d, t);
+  const int sign = su * mpz_sgn(mpz(n));
   if (sign == 0) return Measure(0);
-  const Measure m = root_magnitude(u, v, d, root, den);
+  const Measure m = magnitude_with_norm(u, v, d, root, den, &n);
   return sign < 0 ? Measure(-m) : m;
 }
 
