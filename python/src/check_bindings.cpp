@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <limits>
+#include <map>
 
 namespace py = pybind11;
 using namespace qverify;
@@ -98,126 +99,170 @@ std::string status_arg(const py::object& status) {
   return status.cast<std::string>();
 }
 
+/// One check as read from Python (with the GIL): the exact inputs, the candidate, and the mode
+/// the kinds of their numbers decide. Run without the GIL by run_check, the same for a single
+/// check and for each item of a batch.
+struct ShadowCall {
+  Mat4<Rational> A;
+  Vec4<Rational> L;
+  ExactShadowCandidate c;
+  Mode mode = Mode::proof;
+  Kinds cand;
+};
+struct ReflectionCall {
+  Mat4<Rational> A;
+  Vec4<Rational> plane;
+  ExactReflectionCandidate c;
+  Mode mode = Mode::proof;
+  Kinds cand;
+};
+
+/// Reads and validates one shadow check; `A`, `L`, ... are the arguments (None: not given)
+/// and `name(arg)` their names in errors ("P", or "P[7]" for item 7 of a batch).
+template <class Name>
+ShadowCall read_shadow(py::handle A_in, py::handle L_in, const py::object& P_in, const py::object& polar_in,
+                       const py::object& R_in, const py::object& origin_in, const std::string& status,
+                       const py::object& exact, Name&& name) {
+  ShadowCall call;
+  Kinds inputs;
+  call.A = to_matrix(A_in, name("A"), inputs);
+  call.L = to_vector<4>(L_in, name("L"), inputs);
+  call.c.P = optional_in(P_in, [&](const py::object& o) { return to_matrix(o, name("P"), call.cand); });
+  call.c.polar_plane = optional_in(polar_in, [&](const py::object& o) { return to_vector<4>(o, name("polar_plane"), call.cand); });
+  call.c.R = optional_in(R_in, [&](const py::object& o) { return to_matrix(o, name("R"), call.cand); });
+  Kinds origin_kinds;  // the frame's origin does not decide the mode
+  call.c.origin = optional_in(origin_in, [&](const py::object& o) { return to_vector<3>(o, name("origin"), origin_kinds); });
+  inputs.add(origin_kinds);
+  call.c.status = status;
+  validate_quadric(call.A, "", name("A"));
+  validate_light(call.L, "", name("L"));
+  if (!call.c.P && !call.c.polar_plane && !call.c.R) bad_argument("P", "nothing to check: give P, polar_plane or R");
+  call.mode = mode_of(inputs, call.cand, exact);
+  return call;
+}
+
+template <class Name>
+ReflectionCall read_reflection(py::handle A_in, py::handle plane_in, const py::object& M_in, const py::object& B_in,
+                               const py::object& origin_in, const std::string& status, const py::object& exact,
+                               Name&& name) {
+  ReflectionCall call;
+  Kinds inputs;
+  call.A = to_matrix(A_in, name("A"), inputs);
+  call.plane = to_vector<4>(plane_in, name("plane"), inputs);
+  call.c.M = optional_in(M_in, [&](const py::object& o) { return to_matrix(o, name("M"), call.cand); });
+  call.c.B = optional_in(B_in, [&](const py::object& o) { return to_matrix(o, name("B"), call.cand); });
+  Kinds origin_kinds;
+  call.c.origin = optional_in(origin_in, [&](const py::object& o) { return to_vector<3>(o, name("origin"), origin_kinds); });
+  inputs.add(origin_kinds);
+  call.c.status = status;
+  validate_quadric(call.A, "", name("A"));
+  validate_plane(call.plane, "", name("plane"));
+  if (!call.c.M && !call.c.B) bad_argument("B", "nothing to check: give M or B");
+  call.mode = mode_of(inputs, call.cand, exact);
+  return call;
+}
+
+/// Runs a check in its mode (no Python object is touched: called without the GIL).
+CheckReport run_check(const ShadowCall& call, const CheckOptions& opt) {
+  switch (call.mode) {
+    case Mode::proof: return check_shadow<Rational>(call.A, call.L, call.c, opt);
+    case Mode::doubles: {
+      ShadowCandidate<double> d;
+      d.P = cast_to<double>(call.c.P);
+      d.polar_plane = cast_to<double>(call.c.polar_plane);
+      d.R = cast_to<double>(call.c.R);
+      d.origin = cast_to<double>(call.c.origin);
+      d.status = call.c.status;
+      return check_shadow<double>(cast_to<double>(call.A), cast_to<double>(call.L), d, opt);
+    }
+    case Mode::mixed: break;
+  }
+  return check_shadow_exact(call.A, call.L, call.c, opt, candidate_epsilon(call.cand));
+}
+
+CheckReport run_check(const ReflectionCall& call, const CheckOptions& opt) {
+  switch (call.mode) {
+    case Mode::proof: return check_reflection<Rational>(call.A, call.plane, call.c, opt);
+    case Mode::doubles: {
+      ReflectionCandidate<double> d;
+      d.M = cast_to<double>(call.c.M);
+      d.B = cast_to<double>(call.c.B);
+      d.origin = cast_to<double>(call.c.origin);
+      d.status = call.c.status;
+      return check_reflection<double>(cast_to<double>(call.A), cast_to<double>(call.plane), d, opt);
+    }
+    case Mode::mixed: break;
+  }
+  return check_reflection_exact(call.A, call.plane, call.c, opt, candidate_epsilon(call.cand));
+}
+
+/// An argument's name as it is (a single check).
+const auto plain_name = [](const char* arg) { return std::string(arg); };
+
 CheckReport check_shadow_py(py::handle A_in, py::handle L_in, const py::object& P_in, const py::object& polar_in,
                             const py::object& R_in, const py::object& origin_in, const py::object& status_in,
                             long samples, long long seed, double accuracy, const std::string& method,
                             const py::object& exact) {
-  Kinds inputs, cand;
-  const Mat4<Rational> A = to_matrix(A_in, "A", inputs);
-  const Vec4<Rational> L = to_vector<4>(L_in, "L", inputs);
-  ExactShadowCandidate c;
-  c.P = optional_in(P_in, [&](const py::object& o) { return to_matrix(o, "P", cand); });
-  c.polar_plane = optional_in(polar_in, [&](const py::object& o) { return to_vector<4>(o, "polar_plane", cand); });
-  c.R = optional_in(R_in, [&](const py::object& o) { return to_matrix(o, "R", cand); });
-  Kinds origin_kinds;  // the frame's origin does not decide the mode
-  c.origin = optional_in(origin_in, [&](const py::object& o) { return to_vector<3>(o, "origin", origin_kinds); });
-  inputs.add(origin_kinds);
-  c.status = status_arg(status_in);
   const CheckOptions opt = options(samples, seed, accuracy, method);
-  validate_quadric(A, "", "A");
-  validate_light(L, "", "L");
-  if (!c.P && !c.polar_plane && !c.R) bad_argument("P", "nothing to check: give P, polar_plane or R");
-  const Mode mode = mode_of(inputs, cand, exact);
-  const Measure eps = mode == Mode::mixed ? candidate_epsilon(cand) : Measure(0);
-
+  const ShadowCall call = read_shadow(A_in, L_in, P_in, polar_in, R_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
-  switch (mode) {
-    case Mode::proof: return check_shadow<Rational>(A, L, c, opt);
-    case Mode::doubles: {
-      ShadowCandidate<double> d;
-      d.P = cast_to<double>(c.P);
-      d.polar_plane = cast_to<double>(c.polar_plane);
-      d.R = cast_to<double>(c.R);
-      d.origin = cast_to<double>(c.origin);
-      d.status = c.status;
-      return check_shadow<double>(cast_to<double>(A), cast_to<double>(L), d, opt);
-    }
-    case Mode::mixed: break;
-  }
-  return check_shadow_exact(A, L, c, opt, eps);
+  return run_check(call, opt);
 }
 
 CheckReport check_reflection_py(py::handle A_in, py::handle plane_in, const py::object& M_in, const py::object& B_in,
                                 const py::object& origin_in, const py::object& status_in, long samples,
                                 long long seed, double accuracy, const py::object& exact) {
-  Kinds inputs, cand;
-  const Mat4<Rational> A = to_matrix(A_in, "A", inputs);
-  const Vec4<Rational> plane = to_vector<4>(plane_in, "plane", inputs);
-  ExactReflectionCandidate c;
-  c.M = optional_in(M_in, [&](const py::object& o) { return to_matrix(o, "M", cand); });
-  c.B = optional_in(B_in, [&](const py::object& o) { return to_matrix(o, "B", cand); });
-  Kinds origin_kinds;
-  c.origin = optional_in(origin_in, [&](const py::object& o) { return to_vector<3>(o, "origin", origin_kinds); });
-  inputs.add(origin_kinds);
-  c.status = status_arg(status_in);
   const CheckOptions opt = options(samples, seed, accuracy, "direct");
-  validate_quadric(A, "", "A");
-  validate_plane(plane, "", "plane");
-  if (!c.M && !c.B) bad_argument("B", "nothing to check: give M or B");
-  const Mode mode = mode_of(inputs, cand, exact);
-  const Measure eps = mode == Mode::mixed ? candidate_epsilon(cand) : Measure(0);
-
+  const ReflectionCall call = read_reflection(A_in, plane_in, M_in, B_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
-  switch (mode) {
-    case Mode::proof: return check_reflection<Rational>(A, plane, c, opt);
-    case Mode::doubles: {
-      ReflectionCandidate<double> d;
-      d.M = cast_to<double>(c.M);
-      d.B = cast_to<double>(c.B);
-      d.origin = cast_to<double>(c.origin);
-      d.status = c.status;
-      return check_reflection<double>(cast_to<double>(A), cast_to<double>(plane), d, opt);
-    }
-    case Mode::mixed: break;
-  }
-  return check_reflection_exact(A, plane, c, opt, eps);
+  return run_check(call, opt);
 }
 
 // ------------------------------------------------------------------ batches
 
-/// One argument of check_shadows / check_reflections: an array with a leading
-/// item axis (n, 4, 4) / (n, 4), or a single item (4, 4) / (4,) given once for
-/// every item. Entries are read exactly, as in check_shadow.
+/// One argument of check_shadows / check_reflections: n items with a leading item axis
+/// ((n, 4, 4) matrices, (n, 4) vectors), or one item (4, 4) / (4,) given once for every item.
+/// A numpy array is told by its ndim; a list by its nesting (its first entry's first entry a
+/// sequence: a list of matrices). Each item is then read as the single check reads its argument
+/// (nested lists entry by entry, never coerced to one dtype first).
 struct BatchArg {
   std::string name;
-  py::object array = py::none();  ///< numpy.asarray of the argument; None when not given
+  py::object value = py::none();  ///< the argument; None when not given
   bool per_item = false;
-  long items = 0;    ///< the leading axis (per_item only)
-  int item_ndim = 2; ///< 2: a 4x4 matrix, 1: a vector
+  long items = 0;                 ///< the leading axis (per_item only)
 
-  BatchArg(const std::string& n, const py::object& value, int ndim) : name(n), item_ndim(ndim) {
+  BatchArg(const std::string& n, const py::object& v, int item_ndim) : name(n), value(v) {
     if (value.is_none()) return;
-    array = numpy().attr("asarray")(value);
-    const long nd = array.attr("ndim").cast<long>();
-    if (nd == item_ndim + 1) {
-      per_item = true;
-      items = array.attr("shape").cast<py::tuple>()[0].cast<long>();
-    } else if (nd != item_ndim) {
-      bad_argument(name, std::string("expected an array of shape ") + (item_ndim == 2 ? "(n, 4, 4) or (4, 4)" : "(n, 4) or (4,)") +
-                             " (one entry per item, or one for all), found shape " + shape_text(array));
+    const std::string expected = item_ndim == 2 ? "(n, 4, 4) or (4, 4)" : "(n, 4) or (4,)";
+    if (py::isinstance(value, numpy().attr("ndarray"))) {
+      const long nd = value.attr("ndim").cast<long>();
+      if (nd != item_ndim && nd != item_ndim + 1)
+        bad_argument(name, "expected an array of shape " + expected + " (one entry per item, or one for all), found shape " +
+                               shape_text(value));
+      per_item = nd == item_ndim + 1;
+      if (per_item) items = value.attr("shape").cast<py::tuple>()[0].cast<long>();
+      return;
     }
+    if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value))
+      bad_argument(name, "expected " + expected + " numbers (a numpy array or nested lists), found " + type_name(value));
+    const py::sequence seq = value.cast<py::sequence>();
+    auto is_seq = [](const py::handle& h) { return py::isinstance<py::sequence>(h) && !py::isinstance<py::str>(h); };
+    if (seq.size() == 0) {  // an empty batch
+      per_item = true;
+      return;
+    }
+    const py::object first = seq[0];
+    per_item = item_ndim == 2 ? is_seq(first) && py::len(first) > 0 && is_seq(first.cast<py::sequence>()[0]) : is_seq(first);
+    if (per_item) items = static_cast<long>(seq.size());
   }
-  bool given() const { return !array.is_none(); }
-  /// Item k's entry, as the exact argument named "NAME[k]" (or "NAME" when given once).
-  py::object item(long k, std::string& path) const {
-    path = per_item ? name + "[" + std::to_string(k) + "]" : name;
-    return per_item ? py::object(array[py::int_(k)]) : array;
+  bool given() const { return !value.is_none(); }
+  /// Item k's entry (None when not given).
+  py::object item(long k) const {
+    if (!given() || !per_item) return value;
+    return value[py::int_(k)];
   }
-  Mat4<Rational> matrix(long k, Kinds& kinds) const {
-    std::string path;
-    const py::object v = item(k, path);
-    return to_matrix(v, path, kinds);
-  }
-  Vec4<Rational> vector(long k, Kinds& kinds) const {
-    std::string path;
-    const py::object v = item(k, path);
-    return to_vector<4>(v, path, kinds);
-  }
-  Vec3<Rational> vector3(long k, Kinds& kinds) const {
-    std::string path;
-    const py::object v = item(k, path);
-    return to_vector<3>(v, path, kinds);
-  }
+  /// Item k's name in errors: "P[7]", or "P" when given once for all.
+  std::string item_name(long k) const { return per_item ? name + "[" + std::to_string(k) + "]" : name; }
 };
 
 /// The number of items: the common leading axis of the arguments that have one
@@ -249,11 +294,11 @@ BatchCheckOptions batch_options(const CheckOptions& check, int threads, const py
   return opt;
 }
 
-/// Runs check(k) for every item on opt.threads threads, the GIL released.
-template <class Check> std::vector<CheckReport> run_batch(std::size_t n, const BatchCheckOptions& opt, Check check) {
-  std::vector<CheckReport> out(n);
+/// Every call run_check'ed on opt.threads threads, the GIL released.
+template <class Call> std::vector<CheckReport> run_batch(const std::vector<Call>& calls, const BatchCheckOptions& opt) {
+  std::vector<CheckReport> out(calls.size());
   py::gil_scoped_release nogil;
-  for_each_item(n, opt.threads, opt.progress, [&](std::size_t k) { out[k] = check(k); });
+  for_each_item(calls.size(), opt.threads, opt.progress, [&](std::size_t k) { out[k] = run_check(calls[k], opt.check); });
   return out;
 }
 
@@ -270,28 +315,15 @@ std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::obje
   if (!L.given()) bad_argument("L", "the lights are needed");
   if (!P.given() && !polar.given() && !R.given()) bad_argument("P", "nothing to check: give P, polar_plane or R");
   const long n = batch_items({&A, &L, &P, &polar, &R, &origin});
-  // Every item read and validated before anything is computed.
-  Kinds inputs, cand;
-  std::vector<Mat4<Rational>> As;
-  std::vector<Vec4<Rational>> Ls;
-  std::vector<ExactShadowCandidate> cs(static_cast<std::size_t>(n));
+  // Every item read and validated before anything is computed, each as check_shadow reads it.
+  std::vector<ShadowCall> calls;
+  calls.reserve(static_cast<std::size_t>(n));
   for (long k = 0; k < n; ++k) {
-    const auto u = static_cast<std::size_t>(k);
-    As.push_back(A.matrix(k, inputs));
-    Ls.push_back(L.vector(k, inputs));
-    validate_quadric(As[u], "", A.per_item ? "A[" + std::to_string(k) + "]" : "A");
-    validate_light(Ls[u], "", L.per_item ? "L[" + std::to_string(k) + "]" : "L");
-    if (P.given()) cs[u].P = P.matrix(k, cand);
-    if (polar.given()) cs[u].polar_plane = polar.vector(k, cand);
-    if (R.given()) cs[u].R = R.matrix(k, cand);
-    Kinds origin_kinds;  // the frame's origin does not decide the mode
-    if (origin.given()) cs[u].origin = origin.vector3(k, origin_kinds);
+    const std::map<std::string, const BatchArg*> args{{"A", &A}, {"L", &L}, {"P", &P}, {"polar_plane", &polar}, {"R", &R}, {"origin", &origin}};
+    calls.push_back(read_shadow(A.item(k), L.item(k), P.item(k), polar.item(k), R.item(k), origin.item(k), "", exact,
+                                [&](const char* arg) { return args.at(arg)->item_name(k); }));
   }
-  const Mode mode = mode_of(inputs, cand, exact);
-  const Measure eps = mode == Mode::proof ? Measure(0) : candidate_epsilon(cand);
-  return run_batch(static_cast<std::size_t>(n), bopt, [&](std::size_t k) {
-    return check_shadow_exact(As[k], Ls[k], cs[k], opt, eps);  // item 0: the sample points it gets alone
-  });
+  return run_batch(calls, bopt);
 }
 
 std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::object& plane_in, const py::object& M_in,
@@ -305,26 +337,14 @@ std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::
   if (!plane.given()) bad_argument("plane", "the mirror planes are needed");
   if (!M.given() && !B.given()) bad_argument("B", "nothing to check: give M or B");
   const long n = batch_items({&A, &plane, &M, &B, &origin});
-  Kinds inputs, cand;
-  std::vector<Mat4<Rational>> As;
-  std::vector<Vec4<Rational>> planes;
-  std::vector<ExactReflectionCandidate> cs(static_cast<std::size_t>(n));
+  std::vector<ReflectionCall> calls;
+  calls.reserve(static_cast<std::size_t>(n));
   for (long k = 0; k < n; ++k) {
-    const auto u = static_cast<std::size_t>(k);
-    As.push_back(A.matrix(k, inputs));
-    planes.push_back(plane.vector(k, inputs));
-    validate_quadric(As[u], "", A.per_item ? "A[" + std::to_string(k) + "]" : "A");
-    validate_plane(planes[u], "", plane.per_item ? "plane[" + std::to_string(k) + "]" : "plane");
-    if (M.given()) cs[u].M = M.matrix(k, cand);
-    if (B.given()) cs[u].B = B.matrix(k, cand);
-    Kinds origin_kinds;
-    if (origin.given()) cs[u].origin = origin.vector3(k, origin_kinds);
+    const std::map<std::string, const BatchArg*> args{{"A", &A}, {"plane", &plane}, {"M", &M}, {"B", &B}, {"origin", &origin}};
+    calls.push_back(read_reflection(A.item(k), plane.item(k), M.item(k), B.item(k), origin.item(k), "", exact,
+                                    [&](const char* arg) { return args.at(arg)->item_name(k); }));
   }
-  const Mode mode = mode_of(inputs, cand, exact);
-  const Measure eps = mode == Mode::proof ? Measure(0) : candidate_epsilon(cand);
-  return run_batch(static_cast<std::size_t>(n), bopt, [&](std::size_t k) {
-    return check_reflection_exact(As[k], planes[k], cs[k], opt, eps);
-  });
+  return run_batch(calls, bopt);
 }
 
 std::string report_repr(const CheckReport& r) {
@@ -491,15 +511,16 @@ Args:
     P, polar_plane, R: the candidates' results, (n, 4, 4) / (n, 4) (or one
         for all); give any of them.
     origin: the frames, (n, 3) or (3,), or None for world coordinates.
-    samples, seed, accuracy, method, exact: as in check_shadow (the mode
-        is decided once for the whole batch).
+    samples, seed, accuracy, method, exact: as in check_shadow (each
+        item's mode, proof or floating, decided from its own numbers).
     threads: 0 (default) for one per logical processor.
     progress: None, or a callable progress(done, total) called after each
         item (one call at a time, done = 1, 2, ..., n).
 
-Every entry is read exactly (float64 and float32 arrays, object arrays of
-Fraction, nested lists, decimal strings) and every item is validated before
-anything is computed.
+Every entry is read exactly, each item as check_shadow reads its arguments
+(float64 and float32 arrays, object arrays of Fraction, nested lists of int,
+float, Fraction or strings, entry by entry), and every item is validated
+before anything is computed.
 
 Returns:
     list[CheckReport], one per item, in order.

@@ -135,3 +135,21 @@ def test_bad_input_names_the_item_and_computes_nothing(shadows, change, path):
         qverify.check_shadows(args.pop("A"), args.pop("L"), samples=8, **args)
     assert err.value.path == path
     assert calls == []  # nothing was checked
+
+
+def test_nested_lists_are_read_entry_by_entry_as_a_single_check_reads_them():
+    A = sphere_at([1, 2, 3], 2)  # Fractions
+    Ls = [[9, 1, 1, 1], [2**60 + 1, 0.5, 3, 1]]  # an int beyond a double's 53 bits beside a float
+    exact_P = qverify.shadow(A, Ls[0], precision="exact").P  # Fractions: proof mode for item 0
+    float_P = qverify.shadow(A, Ls[1]).P.tolist()               # floats: judged at the target for item 1
+    reps = qverify.check_shadows(A, Ls, P=[exact_P, float_P], samples=8)
+    assert reps[0].exact and not reps[1].exact
+    for k, P in enumerate([exact_P, float_P]):
+        assert same_report(reps[k], qverify.check_shadow(A, Ls[k], P=P, samples=8)), k
+
+
+def test_a_ragged_list_names_its_item():
+    A = sphere_at([0, 0, 0], 1)
+    with pytest.raises(qverify.InputError) as err:
+        qverify.check_shadows(A, [[3, 4, 8, 1], [3, 4, 8]], P=[np.eye(4), np.eye(4)])
+    assert err.value.path == "L[1]"
