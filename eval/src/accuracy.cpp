@@ -222,7 +222,7 @@ struct PointFilter {
            (state[k] == certain_off && (dist[k].sup() >= dist_floor || (with_residual && res[k].sup() >= res_floor)));
   }
 
-  /// Stage 2: refine(k, *this) for every point in doubt; it calls certain(k, ...) or on_result(k), or leaves k.
+  /// Stage 2: refine(k) for every point in doubt; it calls certain(k, ...) or on_result(k), or leaves k uncertain.
   template <class R> void refine(R&& refine) {
     for (std::size_t k = 0; k < state.size(); ++k)
       if (in_doubt(k)) refine(k);
@@ -241,8 +241,10 @@ struct PointFilter {
   }
 };
 
-/// The precision of the filter's second stage: a double result's residual is some
-/// 2^-53 of the terms it is the difference of, enclosed then without the exact norm.
+/// The precision of the filter's second stage: the direct difference of a value's two parts
+/// (root_enclosure.hpp) stays tight unless they agree to about 2^-96 of themselves (a value
+/// that nearly vanishes as a number of Q(sqrt d)), so the exact norm, two products of the
+/// big integers, is rarely needed.
 constexpr mpfr_prec_t kRefineBits = 128;
 
 /// MPFR intervals of the second stage (one set per thread).

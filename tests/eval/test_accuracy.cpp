@@ -75,10 +75,20 @@ TEST_CASE("the filtered measure equals every point measured alone: exact, rounde
       off(1, 0) = off(0, 1);
       return off;
     };
+    // A candidate whose value at point 0 nearly vanishes as a number of Q(sqrt d): P + pi pi^T with
+    // pi . x_0 within 1e-45 of 0, so (pi . x_0)^2 = a + b sqrt(d) with a and b sqrt(d) equal to
+    // about 90 digits: the second stage's direct difference cannot tell them apart and takes the
+    // exact norm. (A perturbed P does not do that: x^T P x = 0 in both parts of Q(sqrt d), so
+    // the residual's two parts are those of x^T E x for the perturbation E, whatever its size.)
+    const Measure x0 = to_measure(t.points[0].coords()[0]) / to_measure(t.points[0].coords()[3]);
+    const Q c = Q(Measure(x0 * to_measure(test::pow10(45))).convert_to<boost::multiprecision::mpz_int>()) / test::pow10(45);
+    const Vec4<Q> pin(Q(1), Q(0), Q(0), Q(-c));
+    const Mat4<Q> near = P + pin * pin.transpose();
     // exact (every point on it), rounded once to double (residuals at the rounding level, the
-    // first stage's hard case), off by 1e-7 (every point clearly off), off by 1e-40 (the second
-    // stage needs the exact norm: the residual cancels beyond its 128 bits)
-    for (const Mat4<Q>& cand : {P, rounded_to_double(P), perturbed(Q(1, 10000000)), perturbed(Q(1) / test::pow10(40))}) {
+    // first stage's hard case), off by 1e-7 and by 1e-40 (every point off, the second stage
+    // needed), and the near-vanishing value above
+    for (const Mat4<Q>& cand :
+         {P, rounded_to_double(P), perturbed(Q(1, 10000000)), perturbed(Q(1) / test::pow10(40)), near}) {
       same_metric(measure_quadric(t.points, cand),
                   one_by_one(t.points, [&](const RootPoint& x) { return measure_quadric({x}, cand); }));
       same_metric(measure_quadric(t.generators, cand),

@@ -30,11 +30,18 @@ struct Bounds {
   ~Bounds() { mpfr_clear(lo), mpfr_clear(hi); }
 };
 
-/// Encloses |u + v sqrt(d)| and checks that it holds and how wide it is.
-void check(RootEnclosure& e, mpfr_prec_t bits, const BigInt& u, const BigInt& v, const BigInt& d) {
-  Bounds b(bits);
+/// Encloses |u + v sqrt(d)| (into bounds of `out_bits`, default the working precision) and
+/// checks that it holds and how wide it is; `root` false: v sqrt(d) is ignored (a rational point).
+void check(RootEnclosure& e, mpfr_prec_t bits, const BigInt& u, const BigInt& v, const BigInt& d, bool root = true,
+           mpfr_prec_t out_bits = 0) {
+  Bounds b(out_bits ? out_bits : bits);
   e.set_radicand(d);
-  e.enclose(b.lo, b.hi, u, v, true);
+  e.enclose(b.lo, b.hi, u, v, root);
+  if (!root) {  // |u| alone
+    CHECK(compare_abs(u, BigInt(0), d, b.lo) >= 0);
+    CHECK(compare_abs(u, BigInt(0), d, b.hi) <= 0);
+    return;
+  }
   INFO("u = " << u << ", v = " << v << ", d = " << d);
   REQUIRE(mpfr_sgn(b.lo) >= 0);
   CHECK(compare_abs(u, v, d, b.lo) >= 0);
@@ -82,6 +89,18 @@ TEST_CASE("root enclosures hold exactly and are tight on both paths", "[exact][e
       mpz_fdiv_q_2exp(mpz(r), mpz(r), 40);
       check(e, bits, BigInt(near + (v > 0 ? BigInt(-r) : r)), v, d);
     }
+    // the direct difference with an inexact subtraction (|u| far above |v| sqrt(d), both below
+    // 2^bits): a wrong rounding direction there shows
+    for (int trial = 0; trial < 200; ++trial) {
+      const BigInt u = abs(random_int(gen, static_cast<int>(bits) - 4)) + 1;
+      const BigInt d = 2 + gen() % 100000, v = -BigInt(1 + gen() % 1000);
+      check(e, bits, u, v, d);
+      check(e, bits, BigInt(-u), BigInt(-v), d);
+      check(e, bits, u, v, d, true, bits + 7);  // into bounds of another precision
+      check(e, bits, u, v, d, true, bits - 9);
+    }
+    check(e, bits, BigInt(12345), BigInt(77), BigInt(0));          // d = 0: v sqrt(d) = 0
+    check(e, bits, BigInt(-12345), BigInt(77), BigInt(3), false);  // a rational point: v ignored
     // a perfect square: u + v sqrt(d) exactly 0
     check(e, bits, BigInt(-21), BigInt(7), BigInt(9));
     check(e, bits, BigInt(0), BigInt(0), BigInt(5));

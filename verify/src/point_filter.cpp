@@ -98,8 +98,8 @@ void dot4(mpz_t out, const BigInt* row, const std::array<BigInt, 4>& x) {
 }
 
 /// Scratch numbers of one thread (no allocation per check once they have grown).
-/// 128 bits: a double result's residual, some 2^-53 of the terms it is the difference of,
-/// is then enclosed without the exact norm (root_enclosure.hpp).
+/// 128 bits: the direct difference of a value's two parts stays tight unless they agree to
+/// about 2^-96 of themselves, so the exact norm is rarely needed (root_enclosure.hpp).
 constexpr mpfr_prec_t kStageBits = 128;
 struct Scratch {
   BigInt y[4], zz[4], a, b, c, t, f0, f1, g0, g1;

@@ -79,9 +79,9 @@ class RootPoint {
   Vec3<double> approx_cartesian() const;
   /// Certified enclosures of the coordinates, made once with the point: p_i
   /// enclosed, plus sign(q_i) times an enclosure of sqrt(delta) |q_i| (where
-  /// delta is beyond the range of a double, the square root of the enclosed
-  /// rational delta q_i^2, so a huge delta with a small q is no harder than a
-  /// small one). The floating filters in front of exact evaluations
+  /// delta is beyond the range of a double, sqrt(delta) enclosed in MPFR and
+  /// multiplied by the exact q_i there, each step rounded outwards, so a huge
+  /// delta with a small q is no harder than a small one). The floating filters in front of exact evaluations
   /// (measure_quadric, the verifier's point filter) start from it; an entry
   /// beyond the range of a double is an infinite bound, never a wrong one.
   const PointEnclosure& enclosure() const { return enclosure_; }
