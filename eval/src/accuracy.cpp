@@ -276,6 +276,18 @@ struct RefineScratch {
     mpfr_mul(lo[i], lo[i], lo[j], MPFR_RNDD);
     mpfr_mul(hi[i], hi[i], hi[j], MPFR_RNDU);
   }
+  /// A point's first values: |F| = |f0 + f1 sqrt(delta)| into slot 0 and |W| = |x_3| (times
+  /// Dp Dv) into slot 1; the enclosure is returned with the point's radicand set, for the rest.
+  RootEnclosure& start(const IntegerPoint& x, const BigInt& f0, const BigInt& f1) {
+    RootEnclosure& e = thread_root_enclosure(kRefineBits);
+    const bool root = !x.rational;
+    if (root) e.set_radicand(x.d);
+    e.enclose(lo[0], hi[0], f0, f1, root);
+    w0 = x.u(3);
+    w1 = x.v(3);
+    e.enclose(lo[1], hi[1], w0, w1, root);
+    return e;
+  }
   /// [lo[i], hi[i]] = sqrt of the integer n, outwards.
   void sqrt_of(int i, const BigInt& n) {
     mpfr_set_z(lo[i], mpz(n), MPFR_RNDD);
@@ -401,13 +413,8 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
     if (v.zero) return filter.on_result(k);
     const IntegerPoint& x = v.x;
     const bool root = !x.rational;
-    RootEnclosure& e = thread_root_enclosure(kRefineBits);
-    if (root) e.set_radicand(x.d);
-    e.enclose(s.lo[0], s.hi[0], v.f0, v.f1, root);        // |F|
-    s.w0 = x.u(3);
-    s.w1 = x.v(3);
-    e.enclose(s.lo[1], s.hi[1], s.w0, s.w1, root);  // |W|
-    mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);                  // |G|^2
+    RootEnclosure& e = s.start(x, v.f0, v.f1);  // |F|, |W|
+    mpfr_set_ui(s.lo[2], 0, MPFR_RNDD);         // |G|^2
     mpfr_set_ui(s.hi[2], 0, MPFR_RNDU);
     for (int i = 0; i < 3; ++i) {
       s.g0 = v.y[i] * x.Dv;
@@ -486,12 +493,7 @@ Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
     if (v.zero) return filter.on_result(k);
     const IntegerPoint& x = v.x;
     const bool root = !x.rational;
-    RootEnclosure& e = thread_root_enclosure(kRefineBits);
-    if (root) e.set_radicand(x.d);
-    e.enclose(s.lo[0], s.hi[0], v.f0, v.f1, root);  // |F|
-    s.w0 = x.u(3);
-    s.w1 = x.v(3);
-    e.enclose(s.lo[1], s.hi[1], s.w0, s.w1, root);  // |W|
+    RootEnclosure& e = s.start(x, v.f0, v.f1);  // |F|, |W|
     if (mpfr_zero_p(s.lo[0]) || mpfr_zero_p(s.lo[1]) || mpfr_zero_p(s.lo[4])) return;  // left to the measure
     s.multiply(1, 4);
     s.quotient(2, 0, 1);  // the distance

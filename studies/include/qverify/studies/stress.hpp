@@ -92,10 +92,15 @@ struct StressPoint {
   std::size_t sample_points = 0;      ///< exact points of the item the errors are measured on
   double kappa = 0;                   ///< first-order condition estimate of the naive (world-frame) double computation
   double predicted_double_error = 0;  ///< eps_double * kappa
-  /// The floor: the exact result correctly rounded to double in the default run's frame (infinite when not finite).
+  /// The floor: the exact results correctly rounded to double in the default run's frame, P's (B's) error on
+  /// these points or the item's error eval finds the rounding to reach (certified where it certifies),
+  /// the larger (infinite when not finite).
   double rounded_exact_error = std::numeric_limits<double>::infinity();
   double target = 0;                  ///< max(1e-9, 10 rounded_exact_error)
-  bool default_meets_target = false;  ///< the default (robust) double run's geometric error is within the target
+  /// The default (robust) double run is within the target from above: eval's error bound of the item
+  /// (certified for P, the polar plane and B of an ellipsoid) and its error on these points and in what
+  /// eval proves it reaches (item_geometric_error) are at most `target`.
+  bool default_meets_target = false;
   std::vector<StressRun> runs;        ///< qverify's runs, then the candidate's
 };
 
