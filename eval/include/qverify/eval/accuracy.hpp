@@ -92,12 +92,16 @@ std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::op
 ///
 /// Filtered, with the same result as measuring every point exactly: each
 /// point's residual and distance are first enclosed in interval arithmetic
-/// (from the point's RootPoint::enclosure and Q's entries enclosed). Only the
-/// points that can still matter are measured exactly in Q(sqrt delta): those
-/// whose enclosures could reach the largest lower bound of the others
-/// (usually one or two), and those the intervals cannot separate from zero or
-/// from a vanishing gradient or w. The others are certainly off Q and
-/// certainly not the worst, which is all the metric says about them.
+/// (from the point's RootPoint::enclosure and Q's entries enclosed); the
+/// points those enclosures leave in doubt (they could reach the largest lower
+/// bound of the others, or cannot be told from zero or from a vanishing
+/// gradient or w: against a double result, nearly every point, since the
+/// point's double enclosure loses about as much as the result's residual) are
+/// evaluated exactly on integers and those values enclosed at 128 bits
+/// (exact/root_enclosure.hpp). Only the points that can still be the worst,
+/// or that stay uncertain, are rounded to 80 digits (usually one or two). The
+/// others are certainly off Q and certainly not the worst, which is all the
+/// metric says about them.
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Rational>& Q);
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Rational>& pi);
 
