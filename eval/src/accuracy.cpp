@@ -288,13 +288,6 @@ struct RefineScratch {
     e.enclose(lo[1], hi[1], w0, w1, root);
     return e;
   }
-  /// [lo[i], hi[i]] = sqrt of the integer n, outwards.
-  void sqrt_of(int i, const BigInt& n) {
-    mpfr_set_z(lo[i], mpz(n), MPFR_RNDD);
-    mpfr_sqrt(lo[i], lo[i], MPFR_RNDD);
-    mpfr_set_z(hi[i], mpz(n), MPFR_RNDU);
-    mpfr_sqrt(hi[i], hi[i], MPFR_RNDU);
-  }
 };
 
 /// |x|^2 = (N0 + N1 sqrt(delta)) / (Dp Dv)^2 with N0 = Dv^2 sum P_i^2 + delta Dp^2 sum V_i^2,
@@ -370,7 +363,7 @@ struct PlaneValues {
 void integer_norm(RefineScratch& s, int i, const BigInt* v, std::size_t count) {
   BigInt sum;
   for (std::size_t j = 0; j < count; ++j) sum += v[j] * v[j];
-  s.sqrt_of(i, sum);
+  enclose_sqrt(s.lo[i], s.hi[i], sum);
 }
 
 }  // namespace
@@ -419,11 +412,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
     for (int i = 0; i < 3; ++i) {
       s.g0 = v.y[i] * x.Dv;
       if (root) s.g1 = v.z[i] * x.Dp;
-      e.enclose(s.lo[3], s.hi[3], s.g0, s.g1, root);
-      mpfr_sqr(s.lo[3], s.lo[3], MPFR_RNDD);
-      mpfr_add(s.lo[2], s.lo[2], s.lo[3], MPFR_RNDD);
-      mpfr_sqr(s.hi[3], s.hi[3], MPFR_RNDU);
-      mpfr_add(s.hi[2], s.hi[2], s.hi[3], MPFR_RNDU);
+      e.add_square(s.lo[2], s.hi[2], s.g0, s.g1, root);
     }
     if (mpfr_zero_p(s.lo[1]) || mpfr_zero_p(s.lo[2]) || mpfr_zero_p(s.lo[0])) return;  // left to the measure
     mpfr_sqrt(s.lo[2], s.lo[2], MPFR_RNDD);

@@ -6,19 +6,33 @@
 namespace qverify {
 
 RootEnclosure::RootEnclosure(mpfr_prec_t bits) {
-  for (mpfr_ptr x : {&sdlo_[0], &sdhi_[0], &alo_[0], &ahi_[0], &blo_[0], &bhi_[0], &t0_[0], &t1_[0]}) mpfr_init2(x, bits);
+  for (mpfr_ptr x : {&sdlo_[0], &sdhi_[0], &alo_[0], &ahi_[0], &blo_[0], &bhi_[0], &t0_[0], &t1_[0], &sqlo_[0], &sqhi_[0]})
+    mpfr_init2(x, bits);
 }
 
 RootEnclosure::~RootEnclosure() {
-  for (mpfr_ptr x : {&sdlo_[0], &sdhi_[0], &alo_[0], &ahi_[0], &blo_[0], &bhi_[0], &t0_[0], &t1_[0]}) mpfr_clear(x);
+  for (mpfr_ptr x : {&sdlo_[0], &sdhi_[0], &alo_[0], &ahi_[0], &blo_[0], &bhi_[0], &t0_[0], &t1_[0], &sqlo_[0], &sqhi_[0]})
+    mpfr_clear(x);
+}
+
+void enclose_sqrt(mpfr_ptr lo, mpfr_ptr hi, const BigInt& n) {
+  mpfr_set_z(lo, mpz(n), MPFR_RNDD);
+  mpfr_sqrt(lo, lo, MPFR_RNDD);
+  mpfr_set_z(hi, mpz(n), MPFR_RNDU);
+  mpfr_sqrt(hi, hi, MPFR_RNDU);
 }
 
 void RootEnclosure::set_radicand(const BigInt& d) {
   d_ = &d;
-  mpfr_set_z(sdlo_, mpz(d), MPFR_RNDD);
-  mpfr_sqrt(sdlo_, sdlo_, MPFR_RNDD);
-  mpfr_set_z(sdhi_, mpz(d), MPFR_RNDU);
-  mpfr_sqrt(sdhi_, sdhi_, MPFR_RNDU);
+  enclose_sqrt(sdlo_, sdhi_, d);
+}
+
+void RootEnclosure::add_square(mpfr_ptr lo, mpfr_ptr hi, const BigInt& u, const BigInt& v, bool root) {
+  enclose(sqlo_, sqhi_, u, v, root);
+  mpfr_sqr(sqlo_, sqlo_, MPFR_RNDD);
+  mpfr_add(lo, lo, sqlo_, MPFR_RNDD);
+  mpfr_sqr(sqhi_, sqhi_, MPFR_RNDU);
+  mpfr_add(hi, hi, sqhi_, MPFR_RNDU);
 }
 
 void RootEnclosure::enclose(mpfr_ptr lo, mpfr_ptr hi, const BigInt& u, const BigInt& v, bool root) {

@@ -273,11 +273,7 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
     mpz_mul(mpz(s.g0), mpz(s.y[i]), mpz(x.Dv));
     if (root) mpz_mul(mpz(s.g1), mpz(s.zz[i]), mpz(x.Dp));
     else mpz_set_ui(mpz(s.g1), 0);
-    s.root.enclose(s.lo[4], s.hi[4], s.g0, s.g1, root);
-    mpfr_sqr(s.lo[4], s.lo[4], MPFR_RNDD);
-    mpfr_add(s.lo[2], s.lo[2], s.lo[4], MPFR_RNDD);
-    mpfr_sqr(s.hi[4], s.hi[4], MPFR_RNDU);
-    mpfr_add(s.hi[2], s.hi[2], s.hi[4], MPFR_RNDU);
+    s.root.add_square(s.lo[2], s.hi[2], s.g0, s.g1, root);
   }
   // f^2 <= 4 (T size)^2 w^2 |g|^2
   mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);

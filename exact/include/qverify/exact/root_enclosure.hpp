@@ -36,12 +36,17 @@ class RootEnclosure {
   /// [lo, hi] contains |u + v sqrt(d)|, lo >= 0 (d from set_radicand; `root`
   /// false: the point is rational and v is ignored). lo and hi may have any precision.
   void enclose(mpfr_ptr lo, mpfr_ptr hi, const BigInt& u, const BigInt& v, bool root);
+  /// [lo, hi] += |u + v sqrt(d)|^2, rounded outwards (a sum of squares: a gradient's norm).
+  void add_square(mpfr_ptr lo, mpfr_ptr hi, const BigInt& u, const BigInt& v, bool root);
 
  private:
   const BigInt* d_ = nullptr;
-  mpfr_t sdlo_, sdhi_, alo_, ahi_, blo_, bhi_, t0_, t1_;
+  mpfr_t sdlo_, sdhi_, alo_, ahi_, blo_, bhi_, t0_, t1_, sqlo_, sqhi_;
   BigInt abs_, conj_, t_;
 };
+
+/// [lo, hi] = sqrt(n) of an integer n >= 0, rounded outwards at lo's and hi's precision.
+void enclose_sqrt(mpfr_ptr lo, mpfr_ptr hi, const BigInt& n);
 
 /// One RootEnclosure per thread at `bits` (the filters' scratch: no allocation per value once grown).
 RootEnclosure& thread_root_enclosure(mpfr_prec_t bits);
