@@ -9,7 +9,6 @@
 #include <pybind11/stl.h>
 
 #include <limits>
-#include <map>
 
 namespace py = pybind11;
 using namespace qverify;
@@ -279,6 +278,16 @@ long batch_items(const std::vector<const BatchArg*>& args) {
   return first ? first->items : 1;
 }
 
+/// The names of item k's arguments in errors, for read_shadow / read_reflection: "P[7]", or
+/// "P" for an argument given once for all.
+auto item_names(const std::vector<const BatchArg*>& args, long k) {
+  return [&args, k](const char* arg) {
+    for (const BatchArg* a : args)
+      if (a->name == arg) return a->item_name(k);
+    return std::string(arg);
+  };
+}
+
 BatchCheckOptions batch_options(const CheckOptions& check, int threads, const py::object& progress) {
   if (threads < 0) bad_argument("threads", "expected 0 (one per logical processor) or a positive count");
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
@@ -314,15 +323,14 @@ std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::obje
   if (!A.given()) bad_argument("A", "the quadrics are needed");
   if (!L.given()) bad_argument("L", "the lights are needed");
   if (!P.given() && !polar.given() && !R.given()) bad_argument("P", "nothing to check: give P, polar_plane or R");
-  const long n = batch_items({&A, &L, &P, &polar, &R, &origin});
+  const std::vector<const BatchArg*> args{&A, &L, &P, &polar, &R, &origin};
+  const long n = batch_items(args);
   // Every item read and validated before anything is computed, each as check_shadow reads it.
   std::vector<ShadowCall> calls;
   calls.reserve(static_cast<std::size_t>(n));
-  for (long k = 0; k < n; ++k) {
-    const std::map<std::string, const BatchArg*> args{{"A", &A}, {"L", &L}, {"P", &P}, {"polar_plane", &polar}, {"R", &R}, {"origin", &origin}};
+  for (long k = 0; k < n; ++k)
     calls.push_back(read_shadow(A.item(k), L.item(k), P.item(k), polar.item(k), R.item(k), origin.item(k), "", exact,
-                                [&](const char* arg) { return args.at(arg)->item_name(k); }));
-  }
+                                item_names(args, k)));
   return run_batch(calls, bopt);
 }
 
@@ -336,14 +344,13 @@ std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::
   if (!A.given()) bad_argument("A", "the quadrics are needed");
   if (!plane.given()) bad_argument("plane", "the mirror planes are needed");
   if (!M.given() && !B.given()) bad_argument("B", "nothing to check: give M or B");
-  const long n = batch_items({&A, &plane, &M, &B, &origin});
+  const std::vector<const BatchArg*> args{&A, &plane, &M, &B, &origin};
+  const long n = batch_items(args);
   std::vector<ReflectionCall> calls;
   calls.reserve(static_cast<std::size_t>(n));
-  for (long k = 0; k < n; ++k) {
-    const std::map<std::string, const BatchArg*> args{{"A", &A}, {"plane", &plane}, {"M", &M}, {"B", &B}, {"origin", &origin}};
+  for (long k = 0; k < n; ++k)
     calls.push_back(read_reflection(A.item(k), plane.item(k), M.item(k), B.item(k), origin.item(k), "", exact,
-                                    [&](const char* arg) { return args.at(arg)->item_name(k); }));
-  }
+                                    item_names(args, k)));
   return run_batch(calls, bopt);
 }
 
