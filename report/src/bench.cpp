@@ -129,9 +129,12 @@ json processor_json(const ProcessorInfo& p) {
           {"model", optional_number(p.model)},
           {"instruction_set", p.instruction_set},
           {"lanes", p.lanes},
+          {"interval_kernel", p.interval_kernel},
           {"supports", p.supports},
           {"logical_cpus", p.logical_cpus},
-          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for"}};
+          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for; interval_kernel: what "
+                     "the interval batches run here (a second kernel compiled for another instruction set, chosen at "
+                     "run time, where the build measured it faster)"}};
 }
 
 }  // namespace
@@ -152,7 +155,9 @@ json bench_json(const BenchReport& b) {
           {"timing", timing_note(b)},
           {"simd", {{"lanes", b.processor.lanes},
                     {"instruction_set", b.processor.instruction_set},
-                    {"note", "double and interval batches run W items per instruction (batch/pack.hpp)"}}},
+                    {"interval_instruction_set", b.processor.interval_kernel},
+                    {"note", "double and interval batches run W items per instruction (batch/pack.hpp); the "
+                             "interval batches on interval_instruction_set (exact/interval_batch.hpp)"}}},
           {"exact_arithmetic", exact_arithmetic_json(b)},
           {"verification", verification_json(b.verification)},
           {"rows", rows}};
@@ -164,9 +169,11 @@ std::string bench_text(const BenchReport& b) {
   const ProcessorInfo& cpu = b.processor;
   auto number = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("null"); };
   fmt::format_to(put,
-                 "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({})\n"
+                 "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({}; interval "
+                 "batches: {})\n"
                  "processor: {} {} (family {}, model {})\n\n",
-                 b.n, b.threads, b.memory_bandwidth_gbps, cpu.lanes, cpu.instruction_set, cpu.vendor.value_or("?"),
+                 b.n, b.threads, b.memory_bandwidth_gbps, cpu.lanes, cpu.instruction_set, cpu.interval_kernel,
+                 cpu.vendor.value_or("?"),
                  cpu.model_name.value_or("?"), number(cpu.family), number(cpu.model));
   fmt::format_to(put, "{:<17} {:<9} {:<8} {:<14} {:>12} {:>10} {:>6} {:>8} {:>9}\n", "op", "precision", "method", "inputs",
                  "items/s", "ns/item", "bytes", "roofline", "x double");

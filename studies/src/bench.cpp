@@ -1,6 +1,7 @@
 #include <qverify/batch/batch.hpp>
 #include <qverify/core/mirror_division_free.hpp>
 #include <qverify/exact/interval.hpp>
+#include <qverify/exact/interval_batch.hpp>
 #include <qverify/exact/rounding.hpp>
 #include <qverify/exact/wide_int.hpp>
 #include <qverify/eval/accuracy.hpp>
@@ -217,21 +218,6 @@ int bits(Int x) {
 constexpr std::size_t kShadowBytes = (10 + 4) * 8 + (10 + 4 + 10) * 8;  ///< double A, L in; P, pi, R out
 constexpr std::size_t kReflectionBytes = (10 + 4) * 8 + (12 + 10) * 8;  ///< double A, plane in; M, B out
 
-/// The widest x86 vector extension this build was compiled for.
-const char* instruction_set() {
-#if defined(__AVX512F__)
-  return "AVX-512";
-#elif defined(__AVX2__)
-  return "AVX2";
-#elif defined(__AVX__)
-  return "AVX";
-#elif defined(__SSE2__)
-  return "SSE2";
-#else
-  return "scalar";
-#endif
-}
-
 // ------------------------------------------------------- exact arithmetic for doubles
 
 /// Exact rows on double-valued and decimal-17 inputs: WideInt<10> (640-bit
@@ -418,7 +404,8 @@ ProcessorInfo processor_info() {
   }
   for (const auto& [flag, name] : {std::pair{"sse2", "SSE2"}, {"avx2", "AVX2"}, {"avx512f", "AVX-512"}, {"avx512ifma", "AVX-512 IFMA"}})
     if (flags.find(std::string(" ") + flag + " ") != std::string::npos) p.supports.push_back(name);
-  p.instruction_set = instruction_set();
+  p.instruction_set = build_instruction_set();
+  p.interval_kernel = interval_batch_kernel();
   p.lanes = static_cast<int>(DoublePack::size());
   p.logical_cpus = std::thread::hardware_concurrency();
   return p;
@@ -1006,13 +993,12 @@ class BenchRun {
   /// Each round: the copy, then for each kind its inputs (converted again, untimed) and the four double and
   /// interval direct rows, then the copy again; so that rows and bandwidth sample the same moments.
   void direct_rows(FloatBuffers& b) {
-    auto guard = [] { return CGAL::Protect_FPU_rounding<true>(); };
     std::vector<std::vector<double>> t(3 * 4);
     const std::vector<std::function<void()>> jobs{
         [&] { shadow_batch<double>(b.A, b.L, Method::direct, b.P, b.pi, b.R, T_); },
         [&] { reflection_batch<double>(b.A, b.L, Method::direct, b.M, b.B, T_); },
-        [&] { shadow_batch<I>(b.AI, b.LI, Method::direct, b.PI, b.piI, b.RI, T_, guard); },
-        [&] { reflection_batch<I>(b.AI, b.LI, Method::direct, b.MI, b.BI, T_, false, guard); }};
+        [&] { interval_shadow_batch<false>(b.AI, b.LI, Method::direct, b.PI, b.piI, b.RI, T_); },
+        [&] { interval_reflection_batch<false>(b.AI, b.LI, Method::direct, b.MI, b.BI, T_); }};
     for (int r = 0; r < rounds_; ++r) {
       say("bench: stream copy, double and interval direct rows of every kind of input, round " + std::to_string(r + 1) +
           "/" + std::to_string(rounds_));

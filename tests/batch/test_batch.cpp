@@ -4,6 +4,7 @@
 #include <qverify/batch/batch.hpp>
 #include <qverify/batch/items.hpp>
 #include <qverify/exact/interval.hpp>
+#include <qverify/exact/interval_batch.hpp>
 
 #include <algorithm>
 #include <cfenv>
@@ -186,8 +187,12 @@ TEST_CASE("interval packs give CGAL's bounds, operation by operation", "[batch][
 
 namespace {
 /// Batches of CGAL intervals by packs, against the same formulas item by item with CGAL's
-/// Interval_nt (bound for bound), and against the exact results (enclosure).
-template <class I> void check_interval_batch(bool with_faults) {
+/// Interval_nt (bound for bound), and against the exact results (enclosure). `dispatched`: by
+/// interval_shadow_batch / interval_reflection_batch (exact/interval_batch.hpp), which run the
+/// second kernel, compiled for another instruction set, where the build has one and this
+/// processor runs it (else the same template as here).
+template <bool Pr> void check_interval_batch(bool with_faults, bool dispatched = false) {
+  using I = CGAL::Interval_nt<Pr>;
   test::RandomRationals rng(21);
   const Eigen::Index n = 2051;
   SymBatch<I> A(n, 10);
@@ -216,8 +221,13 @@ template <class I> void check_interval_batch(bool with_faults) {
   SymBatch<I> P, R, B;
   Vec4Batch<I> pi;
   AffineBatch<I> M;
-  shadow_batch<I>(A, L, Method::direct, P, pi, R, 2, upward);
-  reflection_batch<I>(A, planes, Method::direct, M, B, 2, false, upward);
+  if (dispatched) {
+    interval_shadow_batch<Pr>(A, L, Method::direct, P, pi, R, 2);
+    interval_reflection_batch<Pr>(A, planes, Method::direct, M, B, 2);
+  } else {
+    shadow_batch<I>(A, L, Method::direct, P, pi, R, 2, upward);
+    reflection_batch<I>(A, planes, Method::direct, M, B, 2, false, upward);
+  }
   CGAL::Protect_FPU_rounding<true> guard;
   long enclosed = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -251,12 +261,45 @@ template <class I> void check_interval_batch(bool with_faults) {
 }  // namespace
 
 TEST_CASE("interval batches by packs equal CGAL item by item and enclose the exact results", "[batch][pack]") {
-  check_interval_batch<CGAL::Interval_nt<false>>(false);
-  check_interval_batch<CGAL::Interval_nt<true>>(false);
+  check_interval_batch<false>(false);
+  check_interval_batch<true>(false);
 }
 
 TEST_CASE("interval batches: non-finite inputs, overflow and a divisor around 0 fall back to CGAL", "[batch][pack]") {
-  check_interval_batch<CGAL::Interval_nt<false>>(true);
+  check_interval_batch<false>(true);
+}
+
+TEST_CASE("the fastest interval kernel here (exact/interval_batch.hpp) gives the same bounds, faults included",
+          "[batch][pack][dispatch]") {
+  INFO("interval kernel: " << interval_batch_kernel() << "; the build's: " << build_instruction_set());
+  check_interval_batch<false>(false, true);
+  check_interval_batch<true>(false, true);
+  check_interval_batch<false>(true, true);
+  check_interval_batch<true>(true, true);
+}
+
+TEST_CASE("interval batches of the paper method go through the generic template", "[batch][dispatch]") {
+  // the second kernel is the direct route only: the paper route runs item by item either way
+  test::RandomRationals rng(23);
+  const Eigen::Index n = 64;
+  using I = CGAL::Interval_nt<true>;
+  SymBatch<I> A(n, 10);
+  Vec4Batch<I> L(n, 4);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Mat4<Rational> a = through_double(rng.symmetric());
+    Vec4<Rational> l = through_double(rng.vec4());
+    l(3) = 1;
+    for (int k = 0; k < 10; ++k) A(i, k) = I(as_double(a(kSymRow[k], kSymCol[k])));
+    for (int k = 0; k < 4; ++k) L(i, k) = I(as_double(l(k)));
+  }
+  SymBatch<I> P1, R1, P2, R2;
+  Vec4Batch<I> pi1, pi2;
+  interval_shadow_batch<true>(A, L, Method::paper, P1, pi1, R1, 1);
+  shadow_batch<I>(A, L, Method::paper, P2, pi2, R2, 1);
+  bool same = true;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int k = 0; k < 10; ++k) same &= same_bounds(P1(i, k), P2(i, k)) && same_bounds(R1(i, k), R2(i, k));
+  CHECK(same);
 }
 
 TEST_CASE("for_each_item runs every item once and reports progress 1..n in order, on 1 and 2 threads", "[batch][items]") {

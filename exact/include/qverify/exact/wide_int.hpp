@@ -270,7 +270,7 @@ template <int N> class WideInt {
     const int n = x.limbs();
     for (int k = 0; k < n; ++k) {
       r.d_[k] = x.d_[k];
-      asm("" ::: "memory");  // keep it a loop of moves, not a call to memmove
+      asm("" : "+r"(k));  // keep it a loop of moves, not a call to memmove
     }
     r.size_ = signed_size;
   }

@@ -43,6 +43,9 @@ struct ProcessorInfo {
   std::optional<int> family, model;               ///< its cpu family and model
   std::string instruction_set;                    ///< the widest x86 vector extension this build was compiled for
   int lanes = 1;                                  ///< doubles per instruction of the batches (batch/pack.hpp)
+  /// What the interval batches run (exact/interval_batch.hpp): the build's instruction set, or
+  /// a second kernel's, e.g. "AVX-512 (run-time dispatch)"
+  std::string interval_kernel;
   std::vector<std::string> supports;  ///< of SSE2, AVX2, AVX-512 and AVX-512 IFMA, those the processor has
   unsigned logical_cpus = 0;
 };

@@ -1,0 +1,62 @@
+#pragma once
+/// \file interval_batch.hpp
+/// Batches of certified intervals on the fastest code this machine runs.
+///
+/// `shadow_batch` and `reflection_batch` (batch/batch.hpp) of CGAL intervals
+/// run the generic formulas on IntervalPack (interval_pack.hpp), compiled
+/// for the build's instruction set. Unlike the double batches, which are
+/// bound by memory, interval packs are bound by arithmetic and registers: a
+/// product is about a dozen vector operations (sign-selected corners) on two
+/// registers per value. On AMD Zen 4 and 5 the AVX-512 kernel (8 lanes, 32
+/// registers) takes about 2/3 of the AVX2 one's time, while the double
+/// kernel is 5-10% faster with AVX2, which the build therefore takes.
+///
+/// These functions are those batches, with one difference: a build that
+/// measured a faster interval kernel for another instruction set than its
+/// own (QVERIFY_ARCH=auto, cmake/ChooseArch.cmake) carries a second copy of
+/// the same template compiled for it, and runs that copy when the processor
+/// has the instruction set (asked at run time: never under valgrind, which
+/// does not emulate AVX-512). The results are the same bit for bit: every
+/// lane performs the same IEEE operations whatever the width
+/// (tests/batch/test_batch.cpp, "[dispatch]").
+///
+/// The copy is compiled in its own file and linked with every symbol but
+/// its entry points made local (exact/CMakeLists.txt): else the linker could
+/// pick its AVX-512 instantiation of an inline function (Eigen's, CGAL's,
+/// the standard library's) for the rest of the program, which would fault on
+/// a processor without AVX-512.
+///
+/// Method paper runs item by item (batch.hpp) and is passed to the generic
+/// template. CGAL::Interval_nt<false> needs the rounding mode upward: the
+/// functions set it on every thread they run (and restore it).
+
+#include <qverify/batch/rows.hpp>
+#include <qverify/core/method.hpp>
+
+#include <CGAL/Interval_nt.h>
+
+namespace qverify {
+
+/// P, pi and R of every item, as shadow_batch (batch.hpp), on the fastest interval kernel here.
+template <bool Protected>
+void interval_shadow_batch(const SymBatch<CGAL::Interval_nt<Protected>>& A, const Vec4Batch<CGAL::Interval_nt<Protected>>& L,
+                           Method method, SymBatch<CGAL::Interval_nt<Protected>>& P,
+                           Vec4Batch<CGAL::Interval_nt<Protected>>& pi, SymBatch<CGAL::Interval_nt<Protected>>& R,
+                           int threads);
+
+/// M (rows 1-3) and B of every item, as reflection_batch (batch.hpp), on the fastest interval kernel here.
+template <bool Protected>
+void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Protected>>& A,
+                               const Vec4Batch<CGAL::Interval_nt<Protected>>& planes, Method method,
+                               AffineBatch<CGAL::Interval_nt<Protected>>& M, SymBatch<CGAL::Interval_nt<Protected>>& B,
+                               int threads);
+
+/// The widest x86 vector extension the library was compiled for ("AVX-512", "AVX2", "AVX",
+/// "SSE2", "scalar"): what the double batches run.
+const char* build_instruction_set();
+
+/// Which kernel the two functions above run on this processor: the build's instruction set
+/// ("AVX2", "AVX-512", ...), or that of the second copy, e.g. "AVX-512 (run-time dispatch)".
+const char* interval_batch_kernel();
+
+}  // namespace qverify

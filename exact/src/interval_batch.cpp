@@ -1,0 +1,94 @@
+#include <qverify/exact/interval_batch.hpp>
+
+#include <qverify/exact/interval_pack.hpp>
+
+#include "interval_batch_kernel.hpp"
+
+#include <string>
+
+namespace qverify {
+namespace {
+
+/// Does the second interval kernel exist in this build and run on this processor? (Asked once.)
+bool second_kernel_here() {
+#if defined(QVERIFY_INTERVAL_SECOND_KERNEL)
+  static const bool here = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports(QVERIFY_INTERVAL_SECOND_KERNEL) != 0;
+  }();
+  return here;
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
+template <bool Pr>
+void interval_shadow_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& L,
+                           Method method, SymBatch<CGAL::Interval_nt<Pr>>& P, Vec4Batch<CGAL::Interval_nt<Pr>>& pi,
+                           SymBatch<CGAL::Interval_nt<Pr>>& R, int threads) {
+  if (method == Method::direct && second_kernel_here()) {
+    const Eigen::Index n = A.rows();
+    P.resize(n, 10), pi.resize(n, 4), R.resize(n, 10);
+    second_kernel::shadow(A, L, P, pi, R, threads);
+    return;
+  }
+  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, method, P, pi, R, threads, second_kernel::batch_setup<Pr>());
+}
+
+template <bool Pr>
+void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A,
+                               const Vec4Batch<CGAL::Interval_nt<Pr>>& planes, Method method,
+                               AffineBatch<CGAL::Interval_nt<Pr>>& M, SymBatch<CGAL::Interval_nt<Pr>>& B, int threads) {
+  if (method == Method::direct && second_kernel_here()) {
+    const Eigen::Index n = A.rows();
+    M.resize(n, 12), B.resize(n, 10);
+    second_kernel::reflection(A, planes, M, B, threads);
+    return;
+  }
+  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, method, M, B, threads, false, second_kernel::batch_setup<Pr>());
+}
+
+template void interval_shadow_batch<true>(const SymBatch<CGAL::Interval_nt<true>>&,
+                                          const Vec4Batch<CGAL::Interval_nt<true>>&, Method,
+                                          SymBatch<CGAL::Interval_nt<true>>&, Vec4Batch<CGAL::Interval_nt<true>>&,
+                                          SymBatch<CGAL::Interval_nt<true>>&, int);
+template void interval_shadow_batch<false>(const SymBatch<CGAL::Interval_nt<false>>&,
+                                           const Vec4Batch<CGAL::Interval_nt<false>>&, Method,
+                                           SymBatch<CGAL::Interval_nt<false>>&, Vec4Batch<CGAL::Interval_nt<false>>&,
+                                           SymBatch<CGAL::Interval_nt<false>>&, int);
+template void interval_reflection_batch<true>(const SymBatch<CGAL::Interval_nt<true>>&,
+                                              const Vec4Batch<CGAL::Interval_nt<true>>&, Method,
+                                              AffineBatch<CGAL::Interval_nt<true>>&, SymBatch<CGAL::Interval_nt<true>>&,
+                                              int);
+template void interval_reflection_batch<false>(const SymBatch<CGAL::Interval_nt<false>>&,
+                                               const Vec4Batch<CGAL::Interval_nt<false>>&, Method,
+                                               AffineBatch<CGAL::Interval_nt<false>>&,
+                                               SymBatch<CGAL::Interval_nt<false>>&, int);
+
+const char* build_instruction_set() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__)
+  return "AVX2";
+#elif defined(__AVX__)
+  return "AVX";
+#elif defined(__SSE2__)
+  return "SSE2";
+#else
+  return "scalar";
+#endif
+}
+
+const char* interval_batch_kernel() {
+#if defined(QVERIFY_INTERVAL_SECOND_KERNEL)
+  if (second_kernel_here()) {
+    static const std::string name = std::string(QVERIFY_INTERVAL_SECOND_KERNEL_NAME) + " (run-time dispatch)";
+    return name.c_str();
+  }
+#endif
+  return build_instruction_set();
+}
+
+}  // namespace qverify
