@@ -13,7 +13,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 using namespace qverify;
@@ -441,6 +443,31 @@ TEST_CASE("WideInt: + - * and comparisons equal GMP on random operands, carries 
   const W big = W::from_magnitude(1, false, 64 * W::max_limbs - 2);
   CHECK_THROWS_AS(big * big, WideIntOverflow);
   CHECK_THROWS_AS(W::from_magnitude(1, false, 64 * W::max_limbs), WideIntOverflow);
+}
+
+TEST_CASE("WideInt: a double read from its bits is exactly the double, subnormals and extremes included", "[wide]") {
+  const double tiny = std::numeric_limits<double>::denorm_min(), least_normal = std::numeric_limits<double>::min();
+  const double values[] = {1.0, -1.0, 0.5, 3.0, 0.1, -1e300, std::numeric_limits<double>::max(), least_normal,
+                           -least_normal, tiny, -tiny, 3 * tiny, least_normal - tiny, std::nextafter(1.0, 2.0),
+                           std::ldexp(1.0, -1000), -std::ldexp(0x1.fffffffffffffp0, 30)};
+  for (double x : values) {
+    INFO(x);
+    const int e = binary_exponent(x);
+    const Q q = Q(x);
+    // x = m 2^e with an integer m below 2^53, at e and at every smaller exponent
+    for (int e0 : {e, e - 1, e - 77}) {
+      const W m = wide_from_double<10>(x, e0);
+      CHECK(m.bits() <= 53 + (e - e0));
+      CHECK(m.to_rational() * pow2(e0) == q);
+    }
+  }
+  CHECK(binary_exponent(tiny) == -1074);
+  CHECK(binary_exponent(1.0) == -52);
+  CHECK(wide_from_double<10>(0.0, -5).sign() == 0);
+  CHECK(binary_exponent(0.0) > binary_exponent(std::numeric_limits<double>::max()));  // never the smallest
+  CHECK_THROWS_AS(binary_exponent(std::numeric_limits<double>::infinity()), std::invalid_argument);
+  CHECK_THROWS_AS(wide_from_double<10>(std::numeric_limits<double>::quiet_NaN(), 0), std::invalid_argument);
+  CHECK_THROWS_AS(wide_from_double<10>(1.0, 0), std::invalid_argument);  // e0 above the double's exponent
 }
 
 TEST_CASE("WideInt: the direct formulas on double-valued items equal GMP rationals", "[wide]") {
