@@ -4,18 +4,18 @@
 # when the build's own is the faster) and QVERIFY_ARCH_NOTE (how the choices were made, for the
 # configure message).
 #
-# The widest instruction set is not always the fastest: on AMD Zen 4 (this project's machine) the
+# The widest instruction set is not always the fastest: on AMD Zen 4 (one of this project's machines) the
 # AVX-512 build of the batch kernel measured 2-3x slower than the AVX2 one before the store order
 # of batch/batch.hpp was fixed (README, "bench"). So when this machine runs both x86-64-v4 (AVX-512)
 # and x86-64-v3 (AVX2), the choice is made by measurement: cmake/arch_probe.cpp, which times the
 # direct shadow batch in double and in certified intervals, is built with each -march and the
 # probes are run in turn, seven times each (best of each; a run takes 0.1-0.3 s); x86-64-v4 is taken
 # for the build only when its double kernel is more than 10% faster. The interval kernel is
-# measured on its own: it is bound by arithmetic and registers, not by memory, and on AMD Zen 4
-# and 5 the AVX-512 one takes 2/3 of the AVX2 one's time while the double kernel is 5-10% faster
-# with AVX2. When the build takes x86-64-v3 and the interval kernel is more than 10% faster with
-# x86-64-v4, the exact library carries a second copy of it compiled for x86-64-v4, which the batch
-# functions of exact/interval_batch.hpp run when the processor has AVX-512 (asked at run time).
+# measured on its own: it is bound by arithmetic and registers, not by memory, and on AMD Zen 5
+# (family 26) the AVX-512 one took 2/3 of the AVX2 one's time while the double kernel was 5-10%
+# faster with AVX2. When the other level's interval kernel is more than 10% faster than the
+# build's, the exact library carries a second copy of it compiled for that level, which the batch
+# functions of exact/interval_batch.hpp run when the processor has it (asked at run time).
 # The margin is the noise of the probe on a shared 2-core machine: after the store-order fix the two
 # are at parity on AMD Zen 4, and best-of-three with a 5% margin chose v4 at one configure and v3
 # at the next. Ties go to the narrower set: valgrind then runs the release CLI, and ./run-tests
@@ -67,10 +67,25 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   endif()
   if(NOT _qv_measured AND NOT CMAKE_CROSSCOMPILING)
     find_package(Eigen3 3.4 QUIET NO_MODULE)
+    # the interval probe needs CGAL's headers and, through qverify's scalar headers, GMP and MPFR;
+    # without them only the double kernel is measured (and no second interval kernel is built)
     find_path(_qv_cgal_include CGAL/Interval_nt.h)
     find_library(_qv_gmp gmp)
     find_library(_qv_mpfr mpfr)
-    if(TARGET Eigen3::Eigen AND _qv_cgal_include AND _qv_gmp AND _qv_mpfr)
+    set(_qv_probe_kernels double)
+    set(_qv_probe_includes "${PROJECT_SOURCE_DIR}/core/include;${PROJECT_SOURCE_DIR}/batch/include")
+    set(_qv_probe_definitions "")
+    set(_qv_probe_libraries Eigen3::Eigen)
+    if(_qv_cgal_include AND _qv_gmp AND _qv_mpfr)
+      list(APPEND _qv_probe_kernels interval)
+      string(APPEND _qv_probe_includes ";${PROJECT_SOURCE_DIR}/exact/include;${_qv_cgal_include}")
+      set(_qv_probe_definitions -DQVERIFY_PROBE_INTERVAL=1)
+      list(APPEND _qv_probe_libraries ${_qv_mpfr} ${_qv_gmp})
+    endif()
+    unset(_qv_cgal_include CACHE)
+    unset(_qv_gmp CACHE)
+    unset(_qv_mpfr CACHE)
+    if(TARGET Eigen3::Eigen)
       message(STATUS "qverify: timing the batch kernels with -march=x86-64-v3 and x86-64-v4 (QVERIFY_ARCH=auto)")
       set(_qv_ok TRUE)
       set(_qv_saved_config "${CMAKE_TRY_COMPILE_CONFIGURATION}")
@@ -79,9 +94,9 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         set(_qv_exe ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level})
         try_compile(_qv_compiled ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/v${_qv_level}
                     SOURCES ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
-                    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${PROJECT_SOURCE_DIR}/core/include;${PROJECT_SOURCE_DIR}/batch/include;${PROJECT_SOURCE_DIR}/exact/include;${_qv_cgal_include}"
-                    COMPILE_DEFINITIONS -O3 -DNDEBUG -march=x86-64-v${_qv_level} -ffp-contract=off
-                    LINK_LIBRARIES Eigen3::Eigen ${_qv_mpfr} ${_qv_gmp}
+                    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${_qv_probe_includes}"
+                    COMPILE_DEFINITIONS -O3 -DNDEBUG -march=x86-64-v${_qv_level} -ffp-contract=off ${_qv_probe_definitions}
+                    LINK_LIBRARIES ${_qv_probe_libraries}
                     CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON
                     OUTPUT_VARIABLE _qv_log
                     COPY_FILE ${_qv_exe})
@@ -100,15 +115,22 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
       foreach(_qv_kernel double interval)
         foreach(_qv_level 3 4)
           set(_qv_best_${_qv_kernel}_${_qv_level} "")
+          set(_qv_text_${_qv_kernel}_${_qv_level} failed)
         endforeach()
       endforeach()
+      set(_qv_interval_ok FALSE)
+      if("interval" IN_LIST _qv_probe_kernels)
+        set(_qv_interval_ok TRUE)
+      endif()
       if(_qv_ok)
         foreach(_qv_round 1 2 3 4 5 6 7)
           foreach(_qv_kernel double interval)
             if(_qv_kernel STREQUAL "double")
               set(_qv_passes 5)
-            else()
+            elseif(_qv_interval_ok)
               set(_qv_passes 3)
+            else()
+              continue()
             endif()
             foreach(_qv_level 3 4)
               execute_process(COMMAND ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level}
@@ -116,8 +138,13 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
                               RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_out ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE
                               TIMEOUT 60)
               if(NOT _qv_rc STREQUAL "0" OR NOT _qv_out MATCHES "^[0-9]+\\.[0-9]+$")
-                set(_qv_ok FALSE)
                 message(STATUS "qverify: the ${_qv_kernel} arch probe built with -march=x86-64-v${_qv_level} did not run (${_qv_rc})")
+                # a double probe that fails spoils the measurement; an interval one only the second kernel
+                if(_qv_kernel STREQUAL "double")
+                  set(_qv_ok FALSE)
+                else()
+                  set(_qv_interval_ok FALSE)
+                endif()
                 break()
               endif()
               # CMake compares only integers: hundredths of a ns
@@ -138,39 +165,53 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         endforeach()
       endif()
       if(_qv_ok)
-        # x86-64-v4 only when more than 10% faster: v4 * 100 < v3 * 90
-        foreach(_qv_kernel double interval)
-          math(EXPR _qv_v4_scaled "${_qv_best_${_qv_kernel}_4} * 100")
-          math(EXPR _qv_v3_scaled "${_qv_best_${_qv_kernel}_3} * 90")
-          if(_qv_v4_scaled LESS _qv_v3_scaled)
-            set(_qv_choice_${_qv_kernel} x86-64-v4)
-          else()
-            set(_qv_choice_${_qv_kernel} x86-64-v3)
+        # The build: x86-64-v4 only when its double kernel is more than 10% faster (v4 * 100 < v3 * 90).
+        math(EXPR _qv_v4_scaled "${_qv_best_double_4} * 100")
+        math(EXPR _qv_v3_scaled "${_qv_best_double_3} * 90")
+        if(_qv_v4_scaled LESS _qv_v3_scaled)
+          set(_qv_choice x86-64-v4)
+          set(_qv_other 3)
+          set(_qv_own 4)
+        else()
+          set(_qv_choice x86-64-v3)
+          set(_qv_other 4)
+          set(_qv_own 3)
+        endif()
+        # A second interval kernel: only when the other level's is more than 10% faster than the build's.
+        set(_qv_second none)
+        if(_qv_interval_ok)
+          math(EXPR _qv_other_scaled "${_qv_best_interval_${_qv_other}} * 100")
+          math(EXPR _qv_own_scaled "${_qv_best_interval_${_qv_own}} * 90")
+          if(_qv_other_scaled LESS _qv_own_scaled)
+            set(_qv_second x86-64-v${_qv_other})
           endif()
-        endforeach()
-        set(_qv_measured "${_qv_key};${_qv_choice_double};${_qv_text_double_3};${_qv_text_double_4};${_qv_choice_interval};${_qv_text_interval_3};${_qv_text_interval_4}")
+        else()
+          set(_qv_text_interval_3 failed)
+          set(_qv_text_interval_4 failed)
+        endif()
+        set(_qv_measured "${_qv_key};${_qv_choice};${_qv_text_double_3};${_qv_text_double_4};${_qv_second};${_qv_text_interval_3};${_qv_text_interval_4}")
         set(_qv_how "measured now")
       else()
         # remembered too, so that every reconfigure does not try again (-U QVERIFY_ARCH_MEASURED does)
-        set(_qv_measured "${_qv_key};x86-64-v4;failed;failed;x86-64-v4;failed;failed")
+        set(_qv_measured "${_qv_key};x86-64-v4;failed;failed;none;failed;failed")
       endif()
       set(QVERIFY_ARCH_MEASURED "${_qv_measured}" CACHE INTERNAL
-          "QVERIFY_ARCH=auto: key (compiler, kernel sources); choice, ns/item with x86-64-v3 and with x86-64-v4 of the double kernel; the same of the interval kernel")
+          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the build's -march; ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4")
     endif()
   endif()
   if(_qv_measured)
     list(GET _qv_measured 1 QVERIFY_MARCH)
     list(GET _qv_measured 2 _qv_v3_ns)
     list(GET _qv_measured 3 _qv_v4_ns)
-    list(GET _qv_measured 4 _qv_interval_choice)
+    list(GET _qv_measured 4 _qv_second)
     list(GET _qv_measured 5 _qv_interval_v3_ns)
     list(GET _qv_measured 6 _qv_interval_v4_ns)
   endif()
   if(_qv_measured AND NOT _qv_v3_ns STREQUAL "failed")
     set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_v3_ns} ns/item, v4 ${_qv_v4_ns}; interval v3 ${_qv_interval_v3_ns}, v4 ${_qv_interval_v4_ns}; one thread; ${_qv_how}")
-    if(NOT _qv_interval_choice STREQUAL QVERIFY_MARCH)
-      set(QVERIFY_INTERVAL_MARCH ${_qv_interval_choice})
-      string(APPEND QVERIFY_ARCH_NOTE "; interval batches: a second kernel for ${_qv_interval_choice}, run where the processor has it")
+    if(NOT _qv_second STREQUAL "none")
+      set(QVERIFY_INTERVAL_MARCH ${_qv_second})
+      string(APPEND QVERIFY_ARCH_NOTE "; interval batches: a second kernel for ${_qv_second}, run where the processor has it")
     endif()
   else()
     set(QVERIFY_MARCH x86-64-v4)

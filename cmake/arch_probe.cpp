@@ -5,9 +5,11 @@
 // `qverify bench`), one thread, best of several runs of the thread's CPU time (a shared machine
 // preempting the probe does not count against either instruction set). Prints the ns per item;
 // exits non-zero when a result is not finite (a kernel that does not work is not timed).
-//   arch_probe double|interval [items] [runs]
+//   arch_probe double|interval [items] [runs]   (interval: built with -DQVERIFY_PROBE_INTERVAL=1)
 #include <qverify/batch/batch.hpp>
+#if QVERIFY_PROBE_INTERVAL  // where CGAL, GMP and MPFR were found (cmake/ChooseArch.cmake)
 #include <qverify/exact/interval_pack.hpp>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -62,7 +64,9 @@ int main(int argc, char** argv) {
   const int runs = argc > 3 ? std::atoi(argv[3]) : 5;
   if (n < 1 || runs < 1) return 2;
   if (kind == "double") return time_kernel<double>(n, runs, [] { return 0; });
+#if QVERIFY_PROBE_INTERVAL
   if (kind == "interval")
     return time_kernel<CGAL::Interval_nt<false>>(n, runs, [] { return CGAL::Protect_FPU_rounding<true>(); });
+#endif
   return 2;
 }

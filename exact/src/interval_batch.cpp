@@ -4,17 +4,32 @@
 
 #include "interval_batch_kernel.hpp"
 
+#ifndef QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL  // set by exact/CMakeLists.txt where the build has a second kernel
+#define QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL 0
+#endif
+
 #include <string>
 
 namespace qverify {
 namespace {
 
 /// Does the second interval kernel exist in this build and run on this processor? (Asked once.)
+/// The features of the level one by one: clang 14 knows no level names in __builtin_cpu_supports.
 bool second_kernel_here() {
-#if defined(QVERIFY_INTERVAL_SECOND_KERNEL)
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4
   static const bool here = [] {
     __builtin_cpu_init();
-    return __builtin_cpu_supports(QVERIFY_INTERVAL_SECOND_KERNEL) != 0;
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+           __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+           __builtin_cpu_supports("bmi2");
+  }();
+  return here;
+#elif QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 3
+  static const bool here = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2") &&
+           __builtin_cpu_supports("f16c") && __builtin_cpu_supports("movbe");
   }();
   return here;
 #else
@@ -28,26 +43,30 @@ template <bool Pr>
 void interval_shadow_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& L,
                            Method method, SymBatch<CGAL::Interval_nt<Pr>>& P, Vec4Batch<CGAL::Interval_nt<Pr>>& pi,
                            SymBatch<CGAL::Interval_nt<Pr>>& R, int threads) {
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL  // (else no call to it, not even an unreachable one: -O0 keeps those)
   if (method == Method::direct && second_kernel_here()) {
     const Eigen::Index n = A.rows();
     P.resize(n, 10), pi.resize(n, 4), R.resize(n, 10);
     second_kernel::shadow(A, L, P, pi, R, threads);
     return;
   }
-  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, method, P, pi, R, threads, second_kernel::batch_setup<Pr>());
+#endif
+  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, method, P, pi, R, threads, interval_batch_setup<Pr>());
 }
 
 template <bool Pr>
 void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A,
                                const Vec4Batch<CGAL::Interval_nt<Pr>>& planes, Method method,
                                AffineBatch<CGAL::Interval_nt<Pr>>& M, SymBatch<CGAL::Interval_nt<Pr>>& B, int threads) {
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
   if (method == Method::direct && second_kernel_here()) {
     const Eigen::Index n = A.rows();
     M.resize(n, 12), B.resize(n, 10);
     second_kernel::reflection(A, planes, M, B, threads);
     return;
   }
-  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, method, M, B, threads, false, second_kernel::batch_setup<Pr>());
+#endif
+  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, method, M, B, threads, false, interval_batch_setup<Pr>());
 }
 
 template void interval_shadow_batch<true>(const SymBatch<CGAL::Interval_nt<true>>&,
@@ -81,8 +100,18 @@ const char* build_instruction_set() {
 #endif
 }
 
+bool interval_batch_dispatched() { return second_kernel_here(); }
+
+const char* interval_batch_second_kernel() {
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
+  return QVERIFY_INTERVAL_SECOND_KERNEL_MARCH;
+#else
+  return "";
+#endif
+}
+
 const char* interval_batch_kernel() {
-#if defined(QVERIFY_INTERVAL_SECOND_KERNEL)
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
   if (second_kernel_here()) {
     static const std::string name = std::string(QVERIFY_INTERVAL_SECOND_KERNEL_NAME) + " (run-time dispatch)";
     return name.c_str();

@@ -5,6 +5,14 @@
 
 #include <qverify/exact/interval_pack.hpp>
 
+// The point of this file is its instruction set: a -march lost or overridden on the way (a later
+// flag wins) must fail the build, not give a second copy of the build's own kernel.
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4 && !defined(__AVX512F__)
+#error "the second interval kernel must be compiled with AVX-512 (-march=x86-64-v4)"
+#elif QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 3 && !defined(__AVX2__)
+#error "the second interval kernel must be compiled with AVX2 (-march=x86-64-v3)"
+#endif
+
 namespace qverify::second_kernel {
 namespace {
 
@@ -12,13 +20,13 @@ template <bool Pr>
 void shadow_of(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& L,
                SymBatch<CGAL::Interval_nt<Pr>>& P, Vec4Batch<CGAL::Interval_nt<Pr>>& pi,
                SymBatch<CGAL::Interval_nt<Pr>>& R, int threads) {
-  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, Method::direct, P, pi, R, threads, batch_setup<Pr>());
+  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, Method::direct, P, pi, R, threads, interval_batch_setup<Pr>());
 }
 
 template <bool Pr>
 void reflection_of(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& planes,
                    AffineBatch<CGAL::Interval_nt<Pr>>& M, SymBatch<CGAL::Interval_nt<Pr>>& B, int threads) {
-  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, Method::direct, M, B, threads, false, batch_setup<Pr>());
+  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, Method::direct, M, B, threads, false, interval_batch_setup<Pr>());
 }
 
 }  // namespace

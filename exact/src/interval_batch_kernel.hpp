@@ -11,14 +11,19 @@
 
 #include <CGAL/Interval_nt.h>
 
-namespace qverify::second_kernel {
+namespace qverify {
 
 /// What every thread of an interval batch sets up first: the rounding mode upward for unprotected
-/// intervals (the protected ones set it per operation, the packs per run of packs).
-template <bool Pr> auto batch_setup() {
+/// intervals (the protected ones set it per operation, the packs per run of packs). Outside
+/// second_kernel: that namespace holds the entry points alone, the symbols kept global.
+template <bool Pr> auto interval_batch_setup() {
   if constexpr (Pr) return [] { return 0; };
   else return [] { return CGAL::Protect_FPU_rounding<true>(); };
 }
+
+}  // namespace qverify
+
+namespace qverify::second_kernel {
 
 using Protected = CGAL::Interval_nt<true>;
 using Unprotected = CGAL::Interval_nt<false>;

@@ -243,16 +243,15 @@ template <int R, int C> int max_bits(const Eigen::Matrix<W, R, C>& m) {
 /// matrix shifted to the smallest binary exponent of its entries). False when
 /// an entry does not fit (WideIntOverflow).
 bool wide_item(const double* a, const double* l, Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) {
-  eA = binary_exponent(a[0]);
-  for (int k = 1; k < 10; ++k) eA = std::min(eA, binary_exponent(a[k]));
-  eL = binary_exponent(l[0]);
-  for (int k = 1; k < 4; ++k) eL = std::min(eL, binary_exponent(l[k]));
+  W ai[10], li[4];
   try {
-    for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = wide_from_double<10>(a[k], eA);
-    for (int k = 0; k < 4; ++k) L(k) = wide_from_double<10>(l[k], eL);
+    eA = wide_from_doubles<10>(a, 10, ai);
+    eL = wide_from_doubles<10>(l, 4, li);
   } catch (const WideIntOverflow&) {
     return false;
   }
+  for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = ai[k];
+  for (int k = 0; k < 4; ++k) L(k) = li[k];
   return true;
 }
 

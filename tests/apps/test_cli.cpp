@@ -1,6 +1,7 @@
 // The CLI contract (README "Command line", docs/json-documents.md): JSON shapes, number encodings, exit codes.
 #include "cli_run.hpp"
 
+#include <qverify/exact/interval_batch.hpp>
 #include <qverify/scene/files.hpp>
 
 #include <nlohmann/json.hpp>
@@ -317,6 +318,10 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
     CHECK(row["ns_per_item"].get<double>() == Approx(*std::min_element(runs.begin(), runs.end())));
   }
   CHECK(doc["memory_bandwidth_gbps_runs"].size() == 4);  // two copies a round
+  // what the interval rows ran on: the library's own answer (exact/interval_batch.hpp), in both places
+  CHECK(doc["processor"]["interval_kernel"] == std::string(qverify::interval_batch_kernel()));
+  CHECK(doc["simd"]["interval_instruction_set"] == doc["processor"]["interval_kernel"]);
+  CHECK(doc["processor"]["instruction_set"] == std::string(qverify::build_instruction_set()));
   for (const char* k : {"shadow/double/direct", "shadow/double/paper", "shadow/interval/direct", "shadow/exact/direct",
                         "reflection/double/direct", "reflection/double/paper", "reflection/interval/direct",
                         "reflection/exact/direct"})

@@ -10,6 +10,7 @@
 #include <cfenv>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace qverify;
@@ -272,6 +273,19 @@ TEST_CASE("interval batches: non-finite inputs, overflow and a divisor around 0 
 TEST_CASE("the fastest interval kernel here (exact/interval_batch.hpp) gives the same bounds, faults included",
           "[batch][pack][dispatch]") {
   INFO("interval kernel: " << interval_batch_kernel() << "; the build's: " << build_instruction_set());
+  // The second kernel runs wherever the build has one and the processor its instruction set: a
+  // dispatch that silently fell back to the build's kernel would pass the comparisons below.
+  const std::string second = interval_batch_second_kernel();
+  __builtin_cpu_init();
+  const bool v4 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                  __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+                  __builtin_cpu_supports("avx512vl");
+  const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+  if (second == "x86-64-v4") CHECK(interval_batch_dispatched() == v4);
+  else if (second == "x86-64-v3") CHECK(interval_batch_dispatched() == v3);
+  else CHECK(!interval_batch_dispatched());
+  CHECK((std::string(interval_batch_kernel()).find("(run-time dispatch)") != std::string::npos) ==
+        interval_batch_dispatched());
   check_interval_batch<false>(false, true);
   check_interval_batch<true>(false, true);
   check_interval_batch<false>(true, true);
@@ -297,8 +311,10 @@ TEST_CASE("interval batches of the paper method go through the generic template"
   interval_shadow_batch<true>(A, L, Method::paper, P1, pi1, R1, 1);
   shadow_batch<I>(A, L, Method::paper, P2, pi2, R2, 1);
   bool same = true;
-  for (Eigen::Index i = 0; i < n; ++i)
+  for (Eigen::Index i = 0; i < n; ++i) {
     for (int k = 0; k < 10; ++k) same &= same_bounds(P1(i, k), P2(i, k)) && same_bounds(R1(i, k), R2(i, k));
+    for (int k = 0; k < 4; ++k) same &= same_bounds(pi1(i, k), pi2(i, k));
+  }
   CHECK(same);
 }
 

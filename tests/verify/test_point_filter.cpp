@@ -373,13 +373,11 @@ template <int R, int C> Eigen::Matrix<Q, R, C> rational(const Eigen::Matrix<W, R
 
 /// The double-valued item as integers (as `qverify bench` does): A = A_int 2^eA, L = L_int 2^eL.
 void to_wide(const double (&a)[10], const double (&l)[4], Mat4<W>& A, Vec4<W>& L, int& eA, int& eL) {
-  eA = binary_exponent(a[0]), eL = binary_exponent(l[0]);
-  for (double v : a) eA = std::min(eA, binary_exponent(v));
-  for (double v : l) eL = std::min(eL, binary_exponent(v));
-  for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = wide_from_double<10>(a[k], eA);
-  for (int k = 0; k < 4; ++k) L(k) = wide_from_double<10>(l[k], eL);
-  if (eA > 100000) eA = 0;  // all zero
-  if (eL > 100000) eL = 0;
+  W ai[10], li[4];
+  eA = wide_from_doubles<10>(a, 10, ai);
+  eL = wide_from_doubles<10>(l, 4, li);
+  for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = ai[k];
+  for (int k = 0; k < 4; ++k) L(k) = li[k];
 }
 
 void check_against_rationals(const double (&a)[10], const double (&l)[4]) {
@@ -468,6 +466,18 @@ TEST_CASE("WideInt: a double read from its bits is exactly the double, subnormal
   CHECK_THROWS_AS(binary_exponent(std::numeric_limits<double>::infinity()), std::invalid_argument);
   CHECK_THROWS_AS(wide_from_double<10>(std::numeric_limits<double>::quiet_NaN(), 0), std::invalid_argument);
   CHECK_THROWS_AS(wide_from_double<10>(1.0, 0), std::invalid_argument);  // e0 above the double's exponent
+  // a matrix's entries at one scale: the smallest exponent among them
+  W out[3];
+  const double mixed[3] = {0.75, -3.0, 0.0};
+  const int e = wide_from_doubles<10>(mixed, 3, out);
+  CHECK(e == binary_exponent(0.75));
+  for (int k = 0; k < 3; ++k) CHECK(out[k].to_rational() * pow2(e) == Q(mixed[k]));
+  const double zeros[2] = {0.0, -0.0};
+  CHECK(wide_from_doubles<10>(zeros, 2, out) == 0);
+  CHECK(out[0].sign() == 0);
+  CHECK(out[1].sign() == 0);
+  const double spread[2] = {1.0, std::ldexp(1.0, -700)};  // 700 + 53 bits: beyond 640, refused
+  CHECK_THROWS_AS(wide_from_doubles<10>(spread, 2, out), WideIntOverflow);
 }
 
 TEST_CASE("WideInt: the direct formulas on double-valued items equal GMP rationals", "[wide]") {

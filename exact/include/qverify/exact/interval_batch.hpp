@@ -7,9 +7,9 @@
 /// for the build's instruction set. Unlike the double batches, which are
 /// bound by memory, interval packs are bound by arithmetic and registers: a
 /// product is about a dozen vector operations (sign-selected corners) on two
-/// registers per value. On AMD Zen 4 and 5 the AVX-512 kernel (8 lanes, 32
-/// registers) takes about 2/3 of the AVX2 one's time, while the double
-/// kernel is 5-10% faster with AVX2, which the build therefore takes.
+/// registers per value. On AMD Zen 5 (family 26) the AVX-512 kernel (8 lanes,
+/// 32 registers) took about 2/3 of the AVX2 one's time, while the double
+/// kernel was 5-10% faster with AVX2, which the build therefore takes.
 ///
 /// These functions are those batches, with one difference: a build that
 /// measured a faster interval kernel for another instruction set than its
@@ -24,7 +24,10 @@
 /// its entry points made local (exact/CMakeLists.txt): else the linker could
 /// pick its AVX-512 instantiation of an inline function (Eigen's, CGAL's,
 /// the standard library's) for the rest of the program, which would fault on
-/// a processor without AVX-512.
+/// a processor without AVX-512. What of it runs on every processor: its
+/// static initializers (those of the standard streams and Boost's MPFR
+/// cleanup object, calls only); the valgrind tests of a release build with a
+/// second kernel run them on a virtual processor without AVX-512.
 ///
 /// Method paper runs item by item (batch.hpp) and is passed to the generic
 /// template. CGAL::Interval_nt<false> needs the rounding mode upward: the
@@ -54,6 +57,13 @@ void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Protected>>& A,
 /// The widest x86 vector extension the library was compiled for ("AVX-512", "AVX2", "AVX",
 /// "SSE2", "scalar"): what the double batches run.
 const char* build_instruction_set();
+
+/// Whether the two functions above run the second kernel here (it was built, and this processor
+/// has its instruction set).
+bool interval_batch_dispatched();
+
+/// The -march of the build's second interval kernel ("x86-64-v4"), "" when it has none.
+const char* interval_batch_second_kernel();
 
 /// Which kernel the two functions above run on this processor: the build's instruction set
 /// ("AVX2", "AVX-512", ...), or that of the second copy, e.g. "AVX-512 (run-time dispatch)".

@@ -348,6 +348,20 @@ template <int N> WideInt<N> wide_from_double(double x, int e0) {
   return WideInt<N>::from_magnitude(m, (b >> 63) != 0, e - e0);
 }
 
+/// The doubles x[0 .. n) as integers: out[k] = x[k] 2^-e with e the smallest
+/// binary exponent among them (one matrix's entries share one scale: a
+/// positive factor, the results of the division-free formulas are
+/// projective). Returns e; throws WideIntOverflow when an entry does not fit
+/// in N limbs (a spread of exponents beyond them), std::invalid_argument for
+/// inf or NaN. All zero: 0.
+template <int N> int wide_from_doubles(const double* x, int n, WideInt<N>* out) {
+  int e = binary_exponent(x[0]);
+  for (int k = 1; k < n; ++k) e = std::min(e, binary_exponent(x[k]));
+  if (e == binary_exponent(0.0)) e = 0;
+  for (int k = 0; k < n; ++k) out[k] = wide_from_double<N>(x[k], e);
+  return e;
+}
+
 namespace wide_detail {
 /// 10^k for k = 0..38, as 128-bit integers.
 struct Pow10Table {
