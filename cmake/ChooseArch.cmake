@@ -110,8 +110,8 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
       endforeach()
       set(CMAKE_TRY_COMPILE_CONFIGURATION "${_qv_saved_config}")
       # Seven runs of each kernel and level, in turn (a shared machine's speed drifts; each run is
-      # itself the best of five passes over 2^20 items, three for the slower intervals), and the best
-      # of each.
+      # itself the best of five passes over 2^20 items, of three over 2^18 for the slower intervals,
+      # whose batches take twice the memory), and the best of each.
       foreach(_qv_kernel double interval)
         foreach(_qv_level 3 4)
           set(_qv_best_${_qv_kernel}_${_qv_level} "")
@@ -126,15 +126,17 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         foreach(_qv_round 1 2 3 4 5 6 7)
           foreach(_qv_kernel double interval)
             if(_qv_kernel STREQUAL "double")
+              set(_qv_items 1048576)
               set(_qv_passes 5)
             elseif(_qv_interval_ok)
+              set(_qv_items 262144)  # 160 MB of intervals, still far beyond the caches
               set(_qv_passes 3)
             else()
               continue()
             endif()
             foreach(_qv_level 3 4)
               execute_process(COMMAND ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level}
-                                      ${_qv_kernel} 1048576 ${_qv_passes}
+                                      ${_qv_kernel} ${_qv_items} ${_qv_passes}
                               RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_out ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE
                               TIMEOUT 60)
               if(NOT _qv_rc STREQUAL "0" OR NOT _qv_out MATCHES "^[0-9]+\\.[0-9]+$")
