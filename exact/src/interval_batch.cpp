@@ -16,20 +16,18 @@ namespace {
 /// Does the second interval kernel exist in this build and run on this processor? (Asked once.)
 /// The features of the level one by one: clang 14 knows no level names in __builtin_cpu_supports.
 bool second_kernel_here() {
-#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
   static const bool here = [] {
     __builtin_cpu_init();
+#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4
     return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
            __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
            __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
            __builtin_cpu_supports("bmi2");
-  }();
-  return here;
-#elif QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 3
-  static const bool here = [] {
-    __builtin_cpu_init();
+#else
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2") &&
            __builtin_cpu_supports("f16c") && __builtin_cpu_supports("movbe");
+#endif
   }();
   return here;
 #else

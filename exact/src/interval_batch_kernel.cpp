@@ -14,38 +14,22 @@
 #endif
 
 namespace qverify::second_kernel {
-namespace {
-
-template <bool Pr>
-void shadow_of(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& L,
-               SymBatch<CGAL::Interval_nt<Pr>>& P, Vec4Batch<CGAL::Interval_nt<Pr>>& pi,
-               SymBatch<CGAL::Interval_nt<Pr>>& R, int threads) {
-  shadow_batch<CGAL::Interval_nt<Pr>>(A, L, Method::direct, P, pi, R, threads, interval_batch_setup<Pr>());
-}
-
-template <bool Pr>
-void reflection_of(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4Batch<CGAL::Interval_nt<Pr>>& planes,
-                   AffineBatch<CGAL::Interval_nt<Pr>>& M, SymBatch<CGAL::Interval_nt<Pr>>& B, int threads) {
-  reflection_batch<CGAL::Interval_nt<Pr>>(A, planes, Method::direct, M, B, threads, false, interval_batch_setup<Pr>());
-}
-
-}  // namespace
 
 void shadow(const SymBatch<Protected>& A, const Vec4Batch<Protected>& L, SymBatch<Protected>& P,
             Vec4Batch<Protected>& pi, SymBatch<Protected>& R, int threads) {
-  shadow_of<true>(A, L, P, pi, R, threads);
+  shadow_batch<Protected>(A, L, Method::direct, P, pi, R, threads, interval_batch_setup<true>());
 }
 void shadow(const SymBatch<Unprotected>& A, const Vec4Batch<Unprotected>& L, SymBatch<Unprotected>& P,
             Vec4Batch<Unprotected>& pi, SymBatch<Unprotected>& R, int threads) {
-  shadow_of<false>(A, L, P, pi, R, threads);
+  shadow_batch<Unprotected>(A, L, Method::direct, P, pi, R, threads, interval_batch_setup<false>());
 }
 void reflection(const SymBatch<Protected>& A, const Vec4Batch<Protected>& planes, AffineBatch<Protected>& M,
                 SymBatch<Protected>& B, int threads) {
-  reflection_of<true>(A, planes, M, B, threads);
+  reflection_batch<Protected>(A, planes, Method::direct, M, B, threads, false, interval_batch_setup<true>());
 }
 void reflection(const SymBatch<Unprotected>& A, const Vec4Batch<Unprotected>& planes, AffineBatch<Unprotected>& M,
                 SymBatch<Unprotected>& B, int threads) {
-  reflection_of<false>(A, planes, M, B, threads);
+  reflection_batch<Unprotected>(A, planes, Method::direct, M, B, threads, false, interval_batch_setup<false>());
 }
 
 }  // namespace qverify::second_kernel
