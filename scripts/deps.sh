@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages qverify needs when any is missing (as root),
 # or says which ones to install. Sourced by ./qverify and ./run-tests.
-QVERIFY_PACKAGES=(g++ cmake make libeigen3-dev libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libpng-dev libcgal-dev
+QVERIFY_PACKAGES=(g++ cmake ninja-build make libeigen3-dev libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libpng-dev libcgal-dev
                   catch2 nlohmann-json3-dev libcli11-dev libfmt-dev libbenchmark-dev)
 
 qverify_install_deps() {
@@ -18,6 +18,21 @@ qverify_install_deps() {
   echo "qverify: installing ${missing[*]} ..." >&2
   export DEBIAN_FRONTEND=noninteractive
   { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >&2
+}
+
+# Configures the tree of a preset: cmake -S ROOT --preset PRESET [ARGS...]. The presets use Ninja (it
+# compiles the objects of a library while the one it depends on is still being built, where make waits
+# for it: the release tree builds about a fifth faster on 2 cores). A tree configured before with
+# another generator (make, before 2026-12) cannot be configured again in place: its cache is removed
+# first, and everything in it is built again.
+qverify_configure() {
+  local root="$1" preset="$2"; shift 2
+  local dir="$root/build/$preset"
+  if [ -f "$dir/CMakeCache.txt" ] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+    echo "qverify: build/$preset was configured for another generator: configuring it again for Ninja" >&2
+    rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
+  fi
+  cmake -S "$root" --preset "$preset" "$@"
 }
 
 # Runs a command with its output kept in a log that is shown (on stderr) only
@@ -80,7 +95,7 @@ qverify_build() {
   esac
   if [ -n "$reason" ]; then start=$SECONDS; fi
   if [ ! -f "$dir/CMakeCache.txt" ]; then
-    qverify_quietly cmake -S "$root" --preset release "${QVERIFY_CMAKE_ARGS[@]}" || return 1
+    qverify_quietly qverify_configure "$root" release "${QVERIFY_CMAKE_ARGS[@]}" || return 1
   fi
   # the stamp carries the time the build started: a source changed during the build stays newer
   local next="$dir/qverify-built-$stamp.stamp.$$"
