@@ -299,10 +299,11 @@ Attributes:
     polar_plane: A L up to a positive factor; it cuts A in the terminator.
     R: the plane pair of the polar plane and the paper's second plane h.
     status: "ok" or the first special case (degenerate-quadric,
-        light-on-surface, no-real-silhouette, singular-frame, non-finite):
-        decided exactly from the exact inputs.
-    flags: every special case that applies, and "inaccurate" when
-        error_bound exceeds the accuracy target.
+        light-on-surface, no-real-silhouette, singular-frame): decided
+        exactly from the exact inputs, whatever the precision.
+    flags: every special case that applies, "inaccurate" when error_bound
+        exceeds the accuracy target, and "non-finite" (with "inaccurate")
+        when the result overflowed the precision (its entries are NaN).
     error_bound: the geometric error (distance of exact terminator points
         from the results, relative to the object size) measured exactly on
         64 seeded points, times 2; 0 for precision "exact"; None with
@@ -342,7 +343,7 @@ precision="exact"; in local coordinates x - origin when origin is not None).
 Attributes:
     M: the reflection in the mirror plane (last row 0 0 0 1).
     B: the mirror image M^T A M, up to a positive factor.
-    status: "ok", "degenerate-quadric" or "non-finite".
+    status: "ok" or "degenerate-quadric" (flags may add "non-finite").
     flags, error_bound, reason, origin, escalated, precision, method, frame,
     inputs_rounded, item: as in ShadowResult.
 )")

@@ -116,7 +116,7 @@ def test_an_empty_batch_checks_nothing():
 
 @pytest.mark.parametrize("change, path", [
     (lambda a: a["P"].__setitem__((7, 0, 1), np.nan), "P[7][0][1]"),
-    (lambda a: a["A"].__setitem__((3, 0, 1), 5.0), "A[3][0][1]"),
+    (lambda a: a["A"].__setitem__((3, 0, 1), 5.0), "A[3][1][0]"),  # a pair named below the diagonal
     (lambda a: a["L"].__setitem__(4, np.zeros(4)), "L[4]"),
     (lambda a: a.__setitem__("L", a["L"][:5]), "L"),
     (lambda a: a.__setitem__("P", np.zeros((12, 3, 4))), "P[0]"),

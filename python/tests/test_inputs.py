@@ -47,7 +47,8 @@ def test_input_error_is_a_value_error():
         ([[1, 0, 0, 0]] * 3, "A"),
         ([[1, 0, 0, 0], [0, 1, 0], [0, 0, 1, 0], [0, 0, 0, -1]], "A[1]"),
         ("not a matrix", "A"),
-        (with_entry(3, 1, 0.5), "A[1][3]"),  # not symmetric: named at the first pair, row by row
+        (with_entry(3, 1, 0.5), "A[3][1]"),  # not symmetric: named below the diagonal (the message gives both)
+        (with_entry(1, 3, 0.5), "A[3][1]"),
         (with_entry(2, 2, float("nan")), "A[2][2]"),
         (with_entry(0, 3, float("inf"), symmetric=True), "A[0][3]"),
         (with_entry(0, 0, ZeroDenominator()), "A[0][0]"),
@@ -57,13 +58,19 @@ def test_input_error_is_a_value_error():
         (with_entry(1, 1, True), "A[1][1]"),
         (with_entry(1, 1, Decimal("NaN")), "A[1][1]"),
         (with_entry(1, 1, np.float32("nan")), "A[1][1]"),
-        (np.zeros((4, 4)), "A"),  # the zero matrix is no quadric
     ],
 )
 def test_bad_quadric(A, path):
     assert path_of(lambda: qverify.shadow(A, LIGHT)) == path
     assert path_of(lambda: qverify.check_shadow(A, LIGHT, P=np.eye(4))) == path
     assert path_of(lambda: qverify.reflection(A, [0, 0, 1, 0])) == path
+
+
+def test_the_zero_matrix_is_a_degenerate_quadric_as_in_a_scene():
+    zero = np.zeros((4, 4))
+    assert qverify.shadow(zero, LIGHT).status == "degenerate-quadric"
+    assert qverify.shadow(zero, LIGHT, precision="exact").status == "degenerate-quadric"
+    assert qverify.reflection(zero, [0, 0, 1, 0]).status == "degenerate-quadric"
 
 
 @pytest.mark.parametrize(

@@ -86,8 +86,10 @@ class Reader {
     return out;
   }
 
-  void positive(const Num& x) const {
-    if (!(x.value > 0)) fail(x.path, "must be > 0, found " + x.value.str());
+  /// A radius or a tangent: only its square enters the matrix, and 0 is legal (a point, a line: a
+  /// degenerate quadric, which is a status, not an error); a negative value is a mistake.
+  void nonnegative(const Num& x) const {
+    if (x.value < 0) fail(x.path, "must be >= 0, found " + x.value.str());
   }
   void nonzero_vector(const std::vector<Num>& v, const std::string& path, const char* what) const {
     if (std::all_of(v.begin(), v.end(), [](const Num& x) { return x.value == 0; }))
@@ -145,7 +147,7 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
       r.keys(*body, bp, {"center", "radius"});
       q.params = r.numbers(r.required(*body, bp, "center"), join(bp, "center"), 3);
       q.params.push_back(r.number(r.required(*body, bp, "radius"), join(bp, "radius")));
-      r.positive(q.params[3]);
+      r.nonnegative(q.params[3]);
       break;
     }
     case Shape::ellipsoid: {
@@ -153,15 +155,13 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
       r.keys(*body, bp, {"center", "radii", "axes"});
       q.params = r.numbers(r.required(*body, bp, "center"), join(bp, "center"), 3);
       auto radii = r.numbers(r.required(*body, bp, "radii"), join(bp, "radii"), 3);
-      for (const Num& x : radii) r.positive(x);
+      for (const Num& x : radii) r.nonnegative(x);
       q.params.insert(q.params.end(), radii.begin(), radii.end());
       std::vector<Num> axes;
       if (const JsonNode* a = body->find("axes")) {
+        // a singular axes matrix flattens the ellipsoid, as a zero radius does: a degenerate quadric (a
+        // status), not an error
         axes = r.square(*a, join(bp, "axes"), 3);
-        Mat3<Rational> G;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) G(i, j) = axes[static_cast<std::size_t>(3 * i + j)].value;
-        if (G.determinant() == 0) r.fail(join(bp, "axes"), "axes matrix is singular (its columns must be independent)");
       } else {
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) axes.push_back(Num{Rational(i == j ? 1 : 0), join(bp, "axes"), ""});
@@ -182,7 +182,7 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
       r.nonzero_vector(axis, join(bp, "axis"), "axis");
       q.params.insert(q.params.end(), axis.begin(), axis.end());
       q.params.push_back(r.number(r.required(*body, bp, last), join(bp, last)));
-      r.positive(q.params.back());
+      r.nonnegative(q.params.back());
       break;
     }
   }

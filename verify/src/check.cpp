@@ -473,14 +473,16 @@ std::string entry_name(const std::string& name, Eigen::Index i, Eigen::Index j, 
 }  // namespace
 
 void validate_quadric(const Mat4<Q>& A, const std::string& where, const std::string& name) {
+  // A pair that differs is named at its entry below the diagonal (A[3][1] for the pair (1, 3)), the
+  // message gives both. The zero matrix is no error: it is a degenerate quadric (status
+  // degenerate-quadric), as in a scene.
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
       if (A(i, j) != A(j, i))
-        throw InputError(where, entry_name(name, i, j, false),
-                         "not symmetric: " + name + "[" + std::to_string(i) + "][" + std::to_string(j) + "] = " +
-                             A(i, j).str() + " but " + name + "[" + std::to_string(j) + "][" + std::to_string(i) +
-                             "] = " + A(j, i).str() + " (a quadric's matrix is symmetric)");
-  if (A.isZero()) throw InputError(where, name, "the zero matrix is not a quadric");
+        throw InputError(where, entry_name(name, j, i, false),
+                         "not symmetric: " + name + "[" + std::to_string(j) + "][" + std::to_string(i) + "] = " +
+                             A(j, i).str() + " but " + name + "[" + std::to_string(i) + "][" + std::to_string(j) +
+                             "] = " + A(i, j).str() + " (a quadric's matrix is symmetric)");
 }
 
 void validate_light(const Vec4<Q>& L, const std::string& where, const std::string& name) {

@@ -34,7 +34,7 @@ struct StageCertificate {
 /// One requested item: a shadow (quadric, light) or a reflection (quadric, mirror).
 struct EvalItem {
   std::string quadric, other;  ///< the ids of the quadric and of the light or mirror
-  std::string status;          ///< the status word of the exact inputs, or "non-finite"
+  std::string status;          ///< the status word of the exact inputs (also when the result overflowed: flag "non-finite")
   std::optional<std::array<double, 3>> origin;  ///< the results' frame (local coordinates x - origin)
   const char* escalated = nullptr;              ///< the wider type the item was recomputed in, if any
   std::vector<NamedMatrix> results;             ///< P, polar_plane, R (shadow) or M, B (reflection)
@@ -83,7 +83,7 @@ template <class S> EvalItem shadow_item(const Scene& sc, const ShadowItem<S>& it
   e.other = sc.lights[it.pair.other].id;
   const ShadowResult<S>& r = it.result;
   const bool finite = all_finite(r.P) && all_finite(r.polar_plane) && all_finite(r.R);
-  e.status = finite ? r.status() : "non-finite";
+  e.status = r.status();  // a predicate of the exact inputs, whatever the precision made of the result
   if (it.origin)
     e.origin = {(*it.origin)(0).template convert_to<double>(), (*it.origin)(1).template convert_to<double>(),
                 (*it.origin)(2).template convert_to<double>()};
@@ -113,7 +113,7 @@ EvalItem reflection_item(const Scene& sc, const ReflectionItem<S>& it, const Ite
   e.quadric = sc.quadrics[it.pair.quadric].id;
   e.other = sc.mirrors[it.pair.other].id;
   const bool finite = all_finite(it.M) && all_finite(it.result.B);
-  e.status = finite ? it.result.status() : "non-finite";
+  e.status = it.result.status();
   if (it.origin)
     e.origin = {(*it.origin)(0).template convert_to<double>(), (*it.origin)(1).template convert_to<double>(),
                 (*it.origin)(2).template convert_to<double>()};

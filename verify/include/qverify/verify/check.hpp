@@ -150,9 +150,10 @@ std::string exact_reflection_word(const Mat4<Rational>& A);
 
 /// Machine epsilon of a precision (0 for exact), without touching global state.
 Measure machine_epsilon(const Precision& p);
-/// Throws InputError(where, "NAME[i][j]", problem) for a non-finite entry,
-/// a non-symmetric matrix, a zero light or plane normal. Nothing is computed
-/// from rejected inputs.
+/// Throws InputError(where, "NAME[i][j]", problem) for a non-symmetric matrix
+/// (named at the entry below the diagonal, i > j), a zero light or plane
+/// normal. Nothing is computed from rejected inputs. The zero matrix is a
+/// degenerate quadric, not an error (as in a scene).
 void validate_quadric(const Mat4<Rational>& A, const std::string& where, const std::string& name);
 void validate_light(const Vec4<Rational>& L, const std::string& where, const std::string& name);
 void validate_plane(const Vec4<Rational>& plane, const std::string& where, const std::string& name);
