@@ -24,7 +24,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <chrono>
 #include <fstream>
 #include <vector>
@@ -47,6 +50,31 @@ constexpr int kOk = 0, kUsage = 2, kInternal = 3;
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// A value of --accuracy: a positive finite number, the whole text read (CLI11's own range check prints its
+/// bounds in full, 309 digits, and says nothing of NaN).
+const CLI::Validator kPositiveFinite(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      errno = 0;
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v) || !(v > 0))
+        return "expected a positive finite number, found \"" + text + "\"";
+      return "";
+    },
+    "POSITIVE");
+
+/// A value of --seed: an integer from 0 to 2^64 - 1, the whole text read (a conversion to unsigned alone
+/// takes -1 and 2^64 both as 2^64 - 1).
+const CLI::Validator kSeedText(
+    [](std::string& text) -> std::string {
+      const std::string problem = "expected an integer from 0 to 18446744073709551615, found \"" + text + "\"";
+      if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos) return problem;
+      errno = 0;
+      std::strtoull(text.c_str(), nullptr, 10);
+      return errno == ERANGE ? problem : "";
+    },
+    "UINT64");
 
 Precision precision_of(const std::string& text) {
   const auto p = parse_precision(text);
@@ -206,7 +234,7 @@ Commands declare_commands(CLI::App& app, Options& o) {
                     "Accuracy target T: largest geometric error (distance of exact points from the result, relative "
                     "to the object's size) that passes; items whose error bound exceeds it are flagged inaccurate")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositiveFinite);
   };
   // Another program audited beside qverify's precisions (audit and stress --candidate-cmd).
   auto add_candidate = [&](CLI::App* sub) {
@@ -224,6 +252,7 @@ Commands declare_commands(CLI::App& app, Options& o) {
                     "The candidate's accuracy target T: a point where its geometric error exceeds T (relative to the "
                     "object's size), or its call failed, is written as a reproducer into DIR/failures/")
         ->capture_default_str()
+        ->check(kPositiveFinite)
         ->needs(cmd);
     return cmd;
   };
@@ -241,7 +270,9 @@ Commands declare_commands(CLI::App& app, Options& o) {
                                 "reflected points on B (a proof in exact arithmetic)");
   add_common(c.verify);
   c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
-  c.verify->add_option("--seed", o.seed, "Seed of the deterministic sampler")->capture_default_str();
+  c.verify->add_option("--seed", o.seed, "Seed of the deterministic sampler (0 to 2^64 - 1)")
+      ->capture_default_str()
+      ->check(kSeedText);
   add_accuracy(c.verify);
   c.verify->add_option("--candidate", o.candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
 
@@ -334,10 +365,15 @@ void check_options(const Options& o, const Commands& c) {
   if ((c.eval->parsed() || c.verify->parsed() || c.audit->parsed() || c.stress->parsed()) &&
       !(std::isfinite(o.accuracy) && o.accuracy > 0))
     throw UsageError("--accuracy: expected a positive finite number");
+  if (c.audit->parsed() && o.out_dir.empty()) throw UsageError("audit: --out: expected a directory path, found \"\"");
+  if (c.render->parsed() && c.render->count("--out") > 0 && o.render.out.empty())
+    throw UsageError("render: --out: expected a file path, found \"\"");
   // --candidate-cmd of audit and stress
   if ((c.audit->parsed() && c.audit_candidate->count() > 0) ||
       (c.stress->parsed() && c.stress_candidate->count() > 0 && !o.list_families)) {
     if (const std::string p = candidate_command_problem(o.candidate_cmd); !p.empty()) throw UsageError("--candidate-cmd: " + p);
+    if (const std::string w = candidate_command_warning(o.candidate_cmd); !w.empty())
+      std::cerr << "qverify: warning: --candidate-cmd: " << w << "\n";
     if (const std::string p = candidate_name_problem(o.candidate_name); !p.empty())
       throw UsageError("--candidate-name \"" + o.candidate_name + "\": " + p);
     if (!(std::isfinite(o.candidate_timeout) && o.candidate_timeout > 0 && o.candidate_timeout <= 1e6))
@@ -499,5 +535,14 @@ int main(int argc, char** argv) {
     std::cerr << "qverify: " << e.what() << "\n(run 'qverify --help' for usage)\n";
     return kUsage;
   }
-  return run_command(options, commands);
+  const int code = run_command(options, commands);
+  // Output that did not reach stdout (a full disk, a closed pipe's reader gone) is an error like a file
+  // that cannot be written: never a silent success.
+  std::cout.flush();
+  if (!std::cout) {
+    std::cerr << "qverify: error: cannot write to standard output" << (errno ? std::string(": ") + std::strerror(errno) : "")
+              << "\n";
+    return code == kInternal ? kInternal : kUsage;
+  }
+  return code;
 }

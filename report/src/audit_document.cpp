@@ -34,6 +34,7 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   r["batches"] = f.batches;
   r["inputs_rounded"] = f.inputs_rounded;
   if (f.working_bits) r["working_bits"] = *f.working_bits;
+  if (!f.not_computed.empty()) r["not_computed"] = f.not_computed;
   return r;
 }
 
@@ -152,6 +153,10 @@ std::string audit_text(const AuditReport& a, const std::string& dir) {
   auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : std::string("-"); };
   for (const AuditRow& r : a.rows) {
     const double bits = -std::log2(r.stats.max);
+    if (r.ladder && !r.ladder->not_computed.empty()) {
+      out += fmt::format("{:<12} {:<9} not computed: {}\n", r.precision, r.method, r.ladder->not_computed);
+      continue;
+    }
     out += fmt::format("{:<12} {:<9} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r.precision, r.method, r.ns_per_item,
                        num(r.stats.max), num(r.stats.median), r.stats.max == 0 ? std::string("exact") : num(bits),
                        r.ladder ? fmt::format("{}/{}", r.ladder->inaccurate_items, a.items.size()) : std::string("-"),

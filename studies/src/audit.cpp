@@ -131,10 +131,22 @@ class SceneAudit {
  private:
   /// One precision and method of the ladder: timed (timed_results), its errors against exact, eval's flags.
   AuditRow ladder_row(const Precision& prec, Method m) const {
-    const TimedResult tr = timed_results(sc_, prec, m, opt_.batch_seconds, opt_.batches);
     AuditRow r;
     r.precision = prec.name();
     r.method = method_name(m);
+    std::optional<TimedResult> timed;
+    try {
+      timed = timed_results(sc_, prec, m, opt_.batch_seconds, opt_.batches);
+    } catch (const InputError& e) {  // a scene number beyond the precision's range: this row only
+      r.ns_per_item = NAN;
+      r.errors.assign(n_items_, INFINITY);
+      r.stats = error_stats(r.errors);
+      LadderFacts f;
+      f.not_computed = e.path + ": " + e.problem;
+      r.ladder = f;
+      return r;
+    }
+    const TimedResult& tr = *timed;
     r.ns_per_item = tr.ns_per_item;
     r.errors = item_errors(tr.results, ref_);
     r.stats = error_stats(r.errors);
@@ -204,12 +216,14 @@ class SceneAudit {
   }
 
   /// The rows not dominated in (time, error): no other row is as fast and as accurate and better in one.
-  /// A row without a finite error counts as infinitely wrong.
+  /// A row without a finite error (a missing or non-finite result, a precision that cannot hold the
+  /// scene) is on no front, however fast.
   std::vector<std::string> pareto_front() const {
     auto error = [](const AuditRow& r) { return std::isfinite(r.stats.max) ? r.stats.max : INFINITY; };
     std::vector<std::string> front;
     for (std::size_t i = 0; i < rows_.size(); ++i) {
       const double ti = rows_[i].ns_per_item, ei = error(rows_[i]);
+      if (!std::isfinite(ei) || !std::isfinite(ti)) continue;  // no result to trade time against: never on the front
       bool dominated = false;
       for (std::size_t j = 0; j < rows_.size() && !dominated; ++j) {
         if (i == j) continue;

@@ -439,3 +439,122 @@ TEST_CASE("write_file replaces its target whole and leaves no temporary", "[cli]
   CHECK_NOTHROW(qverify::create_output_directory(dir / "a" / "b"));
   CHECK(std::filesystem::is_directory(dir / "a" / "b"));
 }
+
+TEST_CASE("a result that overflows keeps the exact status, and says so in flags", "[cli][status]") {
+  // The paper's frame and interval arithmetic overflow double with a light at 1e200; exact says ok.
+  const std::string far = temp_file("far-light.json", R"({"format": "qverify-scene/1", "name": "far light",
+    "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}}],
+    "lights": [{"id": "lamp", "position": [1e200, 2e200, 3e200]}]})");
+  REQUIRE(nlohmann::json::parse(run("eval " + far + " --json --precision exact").out)["shadows"][0]["status"] == "ok");
+  for (const std::string mode : {"--method paper", "--precision interval"}) {
+    INFO(mode);
+    const Run r = run("eval " + far + " --json " + mode);
+    REQUIRE(r.code == 0);
+    const auto item = nlohmann::json::parse(r.out)["shadows"][0];
+    CHECK(item["status"] == "ok");
+    const auto flags = item["flags"].get<std::vector<std::string>>();
+    CHECK(std::count(flags.begin(), flags.end(), "non-finite") == 1);
+    CHECK(std::count(flags.begin(), flags.end(), "inaccurate") == 1);
+    CHECK(item["error_bound"].is_null());
+    CHECK(item["reason"].is_string());
+  }
+}
+
+TEST_CASE("output that cannot reach stdout is an error, not a silent success", "[cli][files]") {
+  for (const std::string& cmd : {"eval " + scene("ball-lamp-floor.json") + " --json", std::string("paper --json"),
+                                 "verify " + scene("ball-lamp-floor.json")}) {
+    INFO(cmd);
+    CHECK(run(cmd + " > /dev/full").code == 2);
+  }
+  // an empty --out names no directory (it once wrote into the working directory)
+  const Run empty = run("audit " + scene("ball-lamp-floor.json") + " --batch-ms 1 --out ''");
+  CHECK(empty.code == 2);
+  CHECK(empty.out.empty());
+}
+
+TEST_CASE("seed and accuracy options: out of range or not a number is exit 2 with a plain message", "[cli]") {
+  const std::string v = "verify " + scene("ball-lamp-floor.json") + " --json --samples 4";
+  for (const char* seed : {"-1", "18446744073709551616", "1.5", "x", "1e3"}) {
+    INFO("seed '" << seed << "'");
+    const RunBoth r = run_both(v + " --seed '" + seed + "'");
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("expected an integer from 0 to 18446744073709551615") != std::string::npos);
+  }
+  const Run top = run(v + " --seed 18446744073709551615");
+  REQUIRE(top.code == 0);
+  CHECK(nlohmann::json::parse(top.out)["seed"] == 18446744073709551615ull);
+  for (const char* t : {"0", "-1e-9", "abc", "nan", "inf", "1e-400", "1e999"}) {
+    INFO("accuracy '" << t << "'");
+    const RunBoth r = run_both(v + " --accuracy " + t);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("expected a positive finite number") != std::string::npos);
+    CHECK(r.err.size() < 300);  // no 309-digit bound
+  }
+}
+
+TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors, at every door", "[cli][status]") {
+  const std::string zero = temp_file("zero-shapes.json", R"({"format": "qverify-scene/1", "name": "zero shapes",
+    "quadrics": [{"id": "point", "sphere": {"center": [1, 2, 3], "radius": 0}},
+                 {"id": "line", "cylinder": {"point": [0, 0, 0], "axis": [0, 0, 1], "radius": 0}},
+                 {"id": "axis", "cone": {"apex": [0, 0, 0], "axis": [1, 1, 0], "tan_half_angle": 0}},
+                 {"id": "flat", "ellipsoid": {"center": [0, 0, 0], "radii": [1, 0, 2]}},
+                 {"id": "sheared", "ellipsoid": {"center": [0, 0, 0], "radii": [1, 1, 1],
+                                                 "axes": [[1, 2, 0], [0, 0, 0], [0, 0, 1]]}}],
+    "lights": [{"id": "lamp", "position": [5, 6, 7]}, {"id": "sun", "direction": [1, 2, -3]}],
+    "mirrors": [{"id": "m", "plane": [1, 2, 2, 3]}]})");
+  const std::map<std::string, std::string> expected = {
+      {"line", "degenerate-quadric"}, {"axis", "degenerate-quadric"}, {"flat", "degenerate-quadric"},
+      {"sheared", "degenerate-quadric"}};
+  std::map<std::string, std::string> exact_status;
+  for (const std::string mode : {"--precision exact", "", "--method paper", "--precision interval", "--precision float"}) {
+    INFO(mode);
+    const Run r = run("eval " + zero + " --json " + mode);
+    REQUIRE(r.code == 0);
+    const auto doc = nlohmann::json::parse(r.out);
+    REQUIRE(doc["shadows"].size() == 10);
+    for (const auto& s : doc["shadows"]) {
+      const std::string q = s["quadric"], key = q + "/" + s["light"].get<std::string>();
+      if (expected.count(q)) CHECK(s["status"] == expected.at(q));
+      if (mode == "--precision exact") exact_status[key] = s["status"];
+      else CHECK(s["status"] == exact_status[key]);
+    }
+    for (const auto& m : doc["reflections"])
+      if (expected.count(m["quadric"])) CHECK(m["status"] == "degenerate-quadric");
+  }
+  for (const std::string mode : {"--precision exact", ""}) {
+    INFO("verify " << mode);
+    const Run v = run("verify " + zero + " --json --samples 8 " + mode);
+    CHECK(v.code == 0);
+    CHECK(nlohmann::json::parse(v.out)["failed"] == 0);
+  }
+}
+
+TEST_CASE("audit: a precision that cannot hold the scene's numbers is a row that says so, the others are there",
+          "[cli][audit]") {
+  const std::string far = temp_file("far-light-audit.json", R"({"format": "qverify-scene/1", "name": "far light",
+    "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}}],
+    "lights": [{"id": "lamp", "position": [1e200, 2e200, 3e200]}]})");
+  const auto dir = fresh_dir("audit-far");
+  const Run r = run("audit " + far + " --batch-ms 1 --json --out " + dir.string());
+  REQUIRE(r.code == 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  int not_computed = 0;
+  for (const auto& row : doc["rows"]) {
+    INFO(row.dump());
+    if (row["precision"] == "float") {
+      ++not_computed;
+      CHECK(row["not_computed"].get<std::string>().find("lights[0].position[0]") != std::string::npos);
+      CHECK(row["max_rel_error"].is_null());
+      CHECK(row["ns_per_item"].is_null());
+    } else {
+      CHECK_FALSE(row.contains("not_computed"));
+    }
+    const std::string key = row["precision"].get<std::string>() + "/" + row["method"].get<std::string>();
+    const auto& front = doc["pareto"];
+    if (std::find(front.begin(), front.end(), key) != front.end()) CHECK(row["max_rel_error"].is_number());
+  }
+  CHECK(not_computed == 2);  // float by both methods
+  CHECK(doc["rows"][2]["max_rel_error"].is_number());  // double/direct
+  std::filesystem::remove_all(dir);
+}

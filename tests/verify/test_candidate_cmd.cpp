@@ -113,8 +113,13 @@ TEST_CASE("candidate commands: paths substituted as shell words, names and comma
   CHECK(candidate_command_problem("prog {scene} {out}").empty());
   CHECK_FALSE(candidate_command_problem("").empty());
   CHECK_FALSE(candidate_command_problem("   ").empty());
-  CHECK_FALSE(candidate_command_problem("prog {scene}").empty());
-  CHECK_FALSE(candidate_command_problem("prog > {out}").empty());
+  // a command without the placeholders is still run (its calls fail and are recorded), with a warning
+  CHECK(candidate_command_problem("false").empty());
+  CHECK(candidate_command_problem("prog {scene}").empty());
+  CHECK(candidate_command_warning("prog {scene} {out}").empty());
+  CHECK(candidate_command_warning("prog {scene}").find("does not name {out}") != std::string::npos);
+  CHECK(candidate_command_warning("prog > {out}").find("does not name {scene}") != std::string::npos);
+  CHECK(candidate_command_warning("false").find("{scene} nor {out}") != std::string::npos);
 }
 
 TEST_CASE("stress --candidate-cmd: crash, garbage, missing items, hang and signal are recorded and the sweep completes",
@@ -204,8 +209,9 @@ TEST_CASE("stress and audit --candidate-cmd: a right candidate passes with no re
 
 TEST_CASE("audit --candidate-cmd: a failing candidate is a row with its reason and a reproducer", "[cli][candidate]") {
   const auto dir = fresh_dir("audit-fail");
+  // a command that names neither placeholder is run all the same (a warning on stderr): it fails on purpose
   const Run a = run("audit " + std::string(QVERIFY_SCENES) + "/ball-lamp-floor.json --batch-ms 1 --out " + dir.string() +
-                    " --candidate-cmd 'echo nothing useful; exit 4 # {scene} {out}' --json");
+                    " --candidate-cmd 'echo nothing useful; exit 4' --json");
   REQUIRE(a.code == 0);
   const auto ad = nlohmann::json::parse(a.out);
   const auto& row = ad["rows"].back();
@@ -225,7 +231,7 @@ TEST_CASE("usage errors of --candidate-cmd exit 2 before any work", "[cli][candi
   for (const std::string bad : {" --candidate-cmd 'p {scene} {out}' --candidate-timeout 0",
                                 " --candidate-cmd 'p {scene} {out}' --candidate-timeout -1",
                                 " --candidate-cmd 'p {scene} {out}' --candidate-timeout nan",
-                                " --candidate-cmd ''", " --candidate-cmd 'p {scene}'",
+                                " --candidate-cmd ''", " --candidate-cmd '  '",
                                 " --candidate-cmd 'p {scene} {out}' --candidate-name a/b",
                                 " --candidate-cmd 'p {scene} {out}' --accuracy 0",
                                 " --candidate-name x", " --candidate-timeout 5"}) {

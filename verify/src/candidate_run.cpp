@@ -238,10 +238,16 @@ std::string candidate_name_problem(const std::string& name) {
 std::string candidate_command_problem(const std::string& command) {
   if (std::all_of(command.begin(), command.end(), [](unsigned char c) { return std::isspace(c); }))
     return "the command is empty";
-  if (command.find("{scene}") == std::string::npos) return "the command must name {scene} (the scene file to read)";
-  if (command.find("{out}") == std::string::npos)
-    return "the command must name {out} (the file to write the qverify-eval/1 document to)";
   return "";
+}
+
+std::string candidate_command_warning(const std::string& command) {
+  const bool scene = command.find("{scene}") != std::string::npos, out = command.find("{out}") != std::string::npos;
+  if (scene && out) return "";
+  std::string missing = !scene && !out ? "{scene} nor {out}" : !scene ? "{scene}" : "{out}";
+  return "the command does not name " + missing +
+         " (the scene file to read, the file to write the qverify-eval/1 document to): a call that writes no document "
+         "is recorded as candidate-failed";
 }
 
 namespace {

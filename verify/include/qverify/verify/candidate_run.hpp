@@ -79,9 +79,15 @@ CandidateCall call_candidate(const Candidate& c, const Scene& sc, const std::str
 /// not starting with '.' or '-'. Otherwise the problem, in words.
 std::string candidate_name_problem(const std::string& name);
 
-/// Empty when `command` can be a candidate command: not blank, and it names
-/// both {scene} and {out}. Otherwise the problem, in words.
+/// Empty when `command` can be a candidate command: not blank. Otherwise the
+/// problem, in words.
 std::string candidate_command_problem(const std::string& command);
+
+/// A warning when `command` names neither {scene} nor {out}, or only one: it is
+/// still run (a command that fails on purpose, `false` or `exit 3`, is a
+/// legitimate test of the recording of failed calls), but a call that writes
+/// no document to {out} is recorded as candidate-failed. Empty otherwise.
+std::string candidate_command_warning(const std::string& command);
 
 /// A reproducer of one failing case, as written: the case, why, and its files'
 /// paths relative to the report's directory ("failures/...").
