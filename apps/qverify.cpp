@@ -44,7 +44,7 @@ namespace {
 
 using namespace qverify;
 
-constexpr int kOk = 0, kUsage = 2, kInternal = 3;
+constexpr int kOk = 0, kFound = 1, kUsage = 2, kInternal = 3;
 
 /// Usage errors (bad flag values): exit 2 with a message.
 struct UsageError : std::runtime_error {
@@ -414,7 +414,7 @@ int run_verify(const Options& o) {
   const VerifyReport v = verify_results(sc, rs, vopt);
   if (o.as_json) std::cout << verify_document(sc, v).dump(2) << "\n";
   else std::cout << verify_text(sc, v);
-  return v.failed > 0 ? 1 : kOk;
+  return v.failed > 0 ? kFound : kOk;
 }
 
 /// The candidate program of audit and stress, after its --out directory exists (a bad --out fails
@@ -438,7 +438,11 @@ int run_audit_command(const Options& o, bool with_candidate) {
   write_audit_report(o.out_dir, report);
   if (o.as_json) std::cout << audit_json(report).dump(2) << "\n";
   else std::cout << audit_text(report, o.out_dir);
-  return kOk;
+  // exit 1: the audit found an error beyond tolerance, i.e. the audited program failed or missed its
+  // target (the ladder's own rows are measurements: float is beyond 1e-9 by design)
+  const bool candidate_bad = std::any_of(report.rows.begin(), report.rows.end(),
+                                         [](const AuditRow& r) { return r.candidate && r.candidate->bad; });
+  return candidate_bad ? kFound : kOk;
 }
 
 int run_stress_command(const Options& o, bool with_candidate) {
@@ -464,7 +468,12 @@ int run_stress_command(const Options& o, bool with_candidate) {
   write_stress_report(o.out_dir, report);
   if (o.as_json) std::cout << stress_json(report).dump(2) << "\n";
   else std::cout << stress_text(report, o.out_dir);
-  return kOk;
+  // exit 1: an error beyond tolerance found, in the audited program (a failed call, an item beyond its
+  // target) or in eval's own flag (a run beyond 1e-9 that eval did not flag inaccurate)
+  const bool candidate_bad = report.candidate && (report.candidate->failed_calls > 0 || report.candidate->beyond_accuracy > 0);
+  const bool flag_missed = std::any_of(report.families.begin(), report.families.end(),
+                                       [](const StressFamilyResult& f) { return !f.flag_check.ok(); });
+  return candidate_bad || flag_missed ? kFound : kOk;
 }
 
 int run_bench_command(const Options& o) {
@@ -486,7 +495,7 @@ int run_paper(const Options& o) {
   if (o.as_json) std::cout << paper_json(entries).dump(2) << "\n";
   else std::cout << paper_text(entries);
   const bool errata = std::any_of(entries.begin(), entries.end(), [](const AuditEntry& e) { return e.verdict == "fails"; });
-  return o.strict && errata ? 1 : kOk;
+  return o.strict && errata ? kFound : kOk;
 }
 
 /// Runs the parsed command; every refused input is exit 2 with its message, anything else exit 3.

@@ -140,7 +140,7 @@ exec )") + QVERIFY_EXE + " eval \"$scene\" --json > \"$out\"\n");
                     " {scene} {out}' --candidate-name flaky --candidate-timeout 1");
   // the hang was cut, not waited for (the whole sweep takes about 10 s here, 30 s under the sanitizers)
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 300);
-  CHECK(r.code == 0);  // stress measures and reports: exit 0 whatever it finds
+  CHECK(r.code == 1);  // stress measures and reports, and exits 1: it found a program failing
   CHECK(r.out.find("candidate flaky: breaks at d = 1") != std::string::npos);
   const auto doc = read_json(dir / "report.json");
   const auto& pts = doc["families"][0]["points"];
@@ -212,7 +212,7 @@ TEST_CASE("audit --candidate-cmd: a failing candidate is a row with its reason a
   // a command that names neither placeholder is run all the same (a warning on stderr): it fails on purpose
   const Run a = run("audit " + std::string(QVERIFY_SCENES) + "/ball-lamp-floor.json --batch-ms 1 --out " + dir.string() +
                     " --candidate-cmd 'echo nothing useful; exit 4' --json");
-  REQUIRE(a.code == 0);
+  REQUIRE(a.code == 1);  // the audit found the program failing
   const auto ad = nlohmann::json::parse(a.out);
   const auto& row = ad["rows"].back();
   CHECK(row["status"] == "candidate-failed");
