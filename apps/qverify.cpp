@@ -58,7 +58,8 @@ const CLI::Validator kPositiveFinite(
       char* end = nullptr;
       errno = 0;
       const double v = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v) || !(v > 0))
+      // (strtod sets ERANGE for a subnormal too: only a value that became 0 or infinite is refused)
+      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0))
         return "expected a positive finite number, found \"" + text + "\"";
       return "";
     },
@@ -545,8 +546,10 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   const int code = run_command(options, commands);
-  // Output that did not reach stdout (a full disk, a closed pipe's reader gone) is an error like a file
-  // that cannot be written: never a silent success.
+  // Output that did not reach stdout (a full disk, an I/O error) is an error like a file that cannot be
+  // written: never a silent success. (A pipe whose reader is gone ends the process with SIGPIPE.) The
+  // commands' exit 1 becomes 2: what they found was not delivered.
+  errno = 0;
   std::cout.flush();
   if (!std::cout) {
     std::cerr << "qverify: error: cannot write to standard output" << (errno ? std::string(": ") + std::strerror(errno) : "")

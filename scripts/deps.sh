@@ -20,19 +20,20 @@ qverify_install_deps() {
   { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >&2
 }
 
-# Configures the tree of a preset: cmake -S ROOT --preset PRESET [ARGS...]. The presets use Ninja (it
-# compiles the objects of a library while the one it depends on is still being built, where make waits
-# for it: the release tree builds about a fifth faster on 2 cores). A tree configured before with
-# another generator (make, before 2026-12) cannot be configured again in place: its cache is removed
-# first, and everything in it is built again.
+# Configures the tree of a preset quietly (the log is shown if it fails): cmake -S ROOT --preset PRESET
+# [ARGS...]. The presets use Ninja (it compiles a library's objects while the library it links against
+# is still being built, where make waits for it). A tree configured before with another generator (make,
+# before 2026-12) cannot be configured again in place: its cache is removed first (so are the -D settings
+# it held), it is said on stderr, and everything in it is built again.
 qverify_configure() {
   local root="$1" preset="$2"; shift 2
   local dir="$root/build/$preset"
   if [ -f "$dir/CMakeCache.txt" ] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
-    echo "qverify: build/$preset was configured for another generator: configuring it again for Ninja" >&2
+    echo "qverify: build/$preset was configured for make: configuring it again for Ninja (its -D settings are" \
+         "not kept; give them again: cmake --preset $preset -D...)" >&2
     rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
   fi
-  cmake -S "$root" --preset "$preset" "$@"
+  qverify_quietly cmake -S "$root" --preset "$preset" "$@"
 }
 
 # Runs a command with its output kept in a log that is shown (on stderr) only
@@ -50,8 +51,8 @@ qverify_quietly() {
 # or nothing when it is up to date: "unconfigured", "missing" (a product is not built yet), or
 # "changed" (a source or build file is newer than the last build: the oldest product, or the
 # stamp of the last qverify_build of these targets if newer, so that a change the products do not
-# depend on is announced once, not on every run). Only decides whether to announce a build: make
-# decides what to build.
+# depend on is announced once, not on every run). Only decides whether to announce a build: Ninja
+# decides what to build. A tree made by make before counts as unconfigured (qverify_configure).
 qverify_build_reason() {
   local root="$1"; shift
   local dir="$root/build/release" p ref=""
@@ -63,7 +64,10 @@ qverify_build_reason() {
   else
     products+=("$dir/tests/qverify_tests")
   fi
-  if [ ! -f "$dir/CMakeCache.txt" ]; then echo unconfigured; return; fi
+  if [ ! -f "$dir/CMakeCache.txt" ] || ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+    echo unconfigured
+    return
+  fi
   for p in "${products[@]}"; do
     if [ ! -e "$p" ]; then echo missing; return; fi
     if [ -z "$ref" ] || [ "$p" -ot "$ref" ]; then ref="$p"; fi
@@ -94,8 +98,8 @@ qverify_build() {
     changed) echo "qverify: rebuilding $what (sources changed; up to $minutes minutes on 2 cores) ..." >&2 ;;
   esac
   if [ -n "$reason" ]; then start=$SECONDS; fi
-  if [ ! -f "$dir/CMakeCache.txt" ]; then
-    qverify_quietly qverify_configure "$root" release "${QVERIFY_CMAKE_ARGS[@]}" || return 1
+  if [ "$reason" = unconfigured ]; then
+    qverify_configure "$root" release "${QVERIFY_CMAKE_ARGS[@]}" || return 1
   fi
   # the stamp carries the time the build started: a source changed during the build stays newer
   local next="$dir/qverify-built-$stamp.stamp.$$"

@@ -26,7 +26,7 @@ Functions:
     stress_families()             the families of stress
 
 Bad input raises qverify.InputError (a ValueError) whose `path` names the
-offending value: "A[1][3]", "L", "precision", or a scene's JSON path.
+offending value: "A[3][1]", "L", "precision", or a scene's JSON path.
 
 Example:
     >>> import numpy as np, qverify

@@ -391,7 +391,7 @@ Returns:
 Raises:
     qverify.InputError: a bad argument (not 4x4, not symmetric, NaN or inf,
         light (0, 0, 0, 0), zero denominator, unknown precision or method,
-        non-positive accuracy); `path` names it, e.g. "A[1][3]".
+        non-positive accuracy); `path` names it, e.g. "A[3][1]".
 
 Example:
     >>> s = qverify.shadow(np.diag([1.0, 1, 1, -1]), [3.0, 4, 8, 1])

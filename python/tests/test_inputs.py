@@ -143,7 +143,7 @@ def test_bad_scene_dict_names_the_json_path():
     bad = scene(quadrics=[{"id": "q", "matrix": with_entry(3, 1, 2).tolist()}])
     with pytest.raises(qverify.InputError) as e:
         qverify.eval_scene(bad)
-    assert e.value.path == "quadrics[0].matrix[1][3]" and e.value.file == "<dict>"
+    assert e.value.path == "quadrics[0].matrix[3][1]" and e.value.file == "<dict>"
     with pytest.raises(qverify.InputError) as e:
         qverify.verify_scene(scene(lights=[{"id": "l", "position": [0, float("nan"), 0]}]))
     assert e.value.path == "lights[0].position[1]"

@@ -237,3 +237,15 @@ def test_gil_is_released_during_a_long_check():
         t.join()
     assert rep.passed
     assert during >= 10
+
+
+@pytest.mark.parametrize("kwargs", [{"precision": "interval"}, {"method": "paper"}])
+def test_an_overflowed_result_keeps_the_exact_status(kwargs):
+    # a light at 1e200: interval arithmetic and the paper's frame overflow double, exact says "ok"
+    unit = np.diag([1.0, 1.0, 1.0, -1.0])
+    far = [1e200, 2e200, 3e200, 1]
+    assert qverify.shadow(unit, far, precision="exact").status == "ok"
+    r = qverify.shadow(unit, far, **kwargs)
+    assert r.status == "ok"
+    assert "non-finite" in r.flags and "inaccurate" in r.flags
+    assert r.error_bound is None and r.reason

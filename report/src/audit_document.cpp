@@ -29,12 +29,16 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   r["ns_per_item"] = row.ns_per_item;
   error_fields(r, row.stats);
   r["items"] = n_items;
+  if (!f.not_computed.empty()) {  // nothing was computed: no counts to give (null, not 0)
+    r["inaccurate_items"] = r["reps_per_batch"] = r["batches"] = r["inputs_rounded"] = nullptr;
+    r["not_computed"] = f.not_computed;
+    return r;
+  }
   r["inaccurate_items"] = f.inaccurate_items;
   r["reps_per_batch"] = f.reps_per_batch;
   r["batches"] = f.batches;
   r["inputs_rounded"] = f.inputs_rounded;
   if (f.working_bits) r["working_bits"] = *f.working_bits;
-  if (!f.not_computed.empty()) r["not_computed"] = f.not_computed;
   return r;
 }
 

@@ -126,9 +126,9 @@ QuadricSpec read_quadric(const Reader& r, const JsonNode& n, const std::string& 
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
           const Num &a = q.params[static_cast<std::size_t>(4 * i + j)], &b = q.params[static_cast<std::size_t>(4 * j + i)];
-          if (a.value != b.value)
-            r.fail(a.path, "matrix is not symmetric: " + a.path.substr(bp.size()) + " = " + a.value.str() + " but " +
-                               b.path.substr(bp.size()) + " = " + b.value.str());
+          if (a.value != b.value)  // named at the entry below the diagonal, as the library and Python do
+            r.fail(b.path, "matrix is not symmetric: " + b.path.substr(bp.size()) + " = " + b.value.str() + " but " +
+                               a.path.substr(bp.size()) + " = " + a.value.str());
         }
       break;
     }

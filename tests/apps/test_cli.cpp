@@ -491,6 +491,8 @@ TEST_CASE("seed and accuracy options: out of range or not a number is exit 2 wit
     CHECK(r.err.find("expected a positive finite number") != std::string::npos);
     CHECK(r.err.size() < 300);  // no 309-digit bound
   }
+  // a subnormal is a positive finite number
+  CHECK(run("eval " + scene("ball-lamp-floor.json") + " --json --accuracy 1e-310").code == 0);
 }
 
 TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors, at every door", "[cli][status]") {

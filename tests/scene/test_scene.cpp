@@ -152,7 +152,7 @@ TEST_CASE("every rule of the scene format is enforced - with the JSON path", "[s
       {wrap(R"({"id": "s", "sphere": {"center": [0, 0, 0]}})"), "quadrics[0].sphere.radius"},
       {wrap(R"({"id": "s", "sphere": {"center": [0, 0, 0], "radius": "1/0"}})"), "quadrics[0].sphere.radius"},
       {wrap(R"({"id": "s", "sphere": {"center": [0, 0, 0], "radius": 1e1000000000}})"), "quadrics[0].sphere.radius"},
-      {wrap(R"({"id": "m", "matrix": [[1, 2, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]})"), "quadrics[0].matrix[0][1]"},
+      {wrap(R"({"id": "m", "matrix": [[1, 2, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]})"), "quadrics[0].matrix[1][0]"},
       {wrap(R"({"id": "m", "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]})"), "quadrics[0].matrix"},
       {wrap(R"({"id": "m", "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, -1]]})"), "quadrics[0].matrix[3]"},
       {wrap(R"({"id": "k", "coefficients": {"xx": 1, "w": 2}})"), "quadrics[0].coefficients.w"},

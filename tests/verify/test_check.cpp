@@ -214,6 +214,8 @@ TEST_CASE("bad input at the check door: an InputError naming the argument, nothi
   Mat4<double> asym = A;
   asym(0, 3) = 0.5;
   CHECK(path_of([&] { check_shadow<double>(asym, L, c); }) == "A[3][0]");  // a pair is named below the diagonal
+  // the zero matrix is a degenerate quadric, not an input error (as in a scene)
+  CHECK(path_of([&] { check_shadow<double>(Mat4<double>::Zero(), L, c); }) == "(no error)");
   CHECK(path_of([&] { check_shadow<double>(A, Vec4<double>::Zero(), c); }) == "L");
   Vec4<double> infL = L;
   infL(2) = std::numeric_limits<double>::infinity();

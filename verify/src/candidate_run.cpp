@@ -244,10 +244,12 @@ std::string candidate_command_problem(const std::string& command) {
 std::string candidate_command_warning(const std::string& command) {
   const bool scene = command.find("{scene}") != std::string::npos, out = command.find("{out}") != std::string::npos;
   if (scene && out) return "";
-  std::string missing = !scene && !out ? "{scene} nor {out}" : !scene ? "{scene}" : "{out}";
-  return "the command does not name " + missing +
-         " (the scene file to read, the file to write the qverify-eval/1 document to): a call that writes no document "
-         "is recorded as candidate-failed";
+  const char* what = !scene && !out ? "{scene} nor {out} (the scene file to read, the file to write the "
+                                       "qverify-eval/1 document to)"
+                     : !scene         ? "{scene} (the scene file to read)"
+                                      : "{out} (the file to write the qverify-eval/1 document to)";
+  return std::string("the command does not name ") + what +
+         ": it is run all the same, and a call that writes no document is recorded as candidate-failed";
 }
 
 namespace {

@@ -56,9 +56,12 @@ template <class S> Mat3<S> adjugate3(const Mat3<S>& G) {
 }
 
 /// Ellipsoid: the image of the unit sphere under x = center + G u with
-/// G = axes * diag(radii) (axes need not be orthonormal, G must be invertible).
+/// G = axes * diag(radii) (axes need not be orthonormal).
 /// |G^{-1}(x - c)|^2 = 1, multiplied by det(G)^2 > 0 to stay division-free:
 ///   (x - c)^T adj(G)^T adj(G) (x - c) - det(G)^2 = 0.
+/// The same formula for a singular G (a zero radius, singular axes; legal in a
+/// scene): adj(G) of rank 1 gives the plane of the flattened ellipsoid counted
+/// twice (rank 1), rank 0 the zero matrix: degenerate quadrics, not errors.
 template <class S>
 Mat4<S> ellipsoid_quadric(const Vec3<S>& center, const Vec3<S>& radii, const Mat3<S>& axes) {
   const Mat3<S> G = axes * radii.asDiagonal();
