@@ -65,3 +65,15 @@ def test_help_of_check_shadow(capsys):
     help(qverify.CheckReport)
     text = capsys.readouterr().out
     assert "geometric_error" in text and "summary" in text
+
+
+def test_an_overflowed_reflection_keeps_the_exact_status():
+    # a mirror plane of 1e-300 coefficients: interval, the paper's route and the world frame overflow double
+    unit = np.diag([1.0, 1.0, 1.0, -1.0])
+    plane = [1e-300, 0, 1e-300, -1e-300]
+    assert qverify.reflection(unit, plane, precision="exact").status == "ok"
+    for kwargs in ({"precision": "interval"}, {"method": "paper"}, {"frame": "world"}):
+        r = qverify.reflection(unit, plane, **kwargs)
+        assert r.status == "ok", kwargs
+        assert "non-finite" in r.flags and "inaccurate" in r.flags, kwargs
+        assert r.error_bound is None and r.reason, kwargs
