@@ -363,9 +363,6 @@ std::optional<int> refuse_unknown_command(const CLI::App& app, int argc, char** 
 
 /// Checks of values that span options (CLI11 checks each option alone), before any work.
 void check_options(const Options& o, const Commands& c) {
-  if ((c.eval->parsed() || c.verify->parsed() || c.audit->parsed() || c.stress->parsed()) &&
-      !(std::isfinite(o.accuracy) && o.accuracy > 0))
-    throw UsageError("--accuracy: expected a positive finite number");
   if (c.audit->parsed() && o.out_dir.empty()) throw UsageError("audit: --out: expected a directory path, found \"\"");
   if (c.render->parsed() && c.render->count("--out") > 0 && o.render.out.empty())
     throw UsageError("render: --out: expected a file path, found \"\"");

@@ -20,6 +20,9 @@ qverify_install_deps() {
   { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >&2
 }
 
+# Whether the build tree DIR was configured for Ninja (the presets' generator).
+qverify_tree_is_ninja() { grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$1/CMakeCache.txt" 2>/dev/null; }
+
 # Configures the tree of a preset quietly (the log is shown if it fails): cmake -S ROOT --preset PRESET
 # [ARGS...]. The presets use Ninja (it compiles a library's objects while the library it links against
 # is still being built, where make waits for it). A tree configured before with another generator (make,
@@ -28,7 +31,7 @@ qverify_install_deps() {
 qverify_configure() {
   local root="$1" preset="$2"; shift 2
   local dir="$root/build/$preset"
-  if [ -f "$dir/CMakeCache.txt" ] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+  if [ -f "$dir/CMakeCache.txt" ] && ! qverify_tree_is_ninja "$dir"; then
     echo "qverify: build/$preset was configured for make: configuring it again for Ninja (its -D settings are" \
          "not kept; give them again: cmake --preset $preset -D...)" >&2
     rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
@@ -64,7 +67,7 @@ qverify_build_reason() {
   else
     products+=("$dir/tests/qverify_tests")
   fi
-  if [ ! -f "$dir/CMakeCache.txt" ] || ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+  if ! qverify_tree_is_ninja "$dir"; then  # no tree yet, or one made by make
     echo unconfigured
     return
   fi
