@@ -79,44 +79,45 @@ Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
   return best;
 }
 
-/// Points on the generator lines of the cone through the terminator points:
-/// x + rho d, d = L_xyz - L_w x (Cartesian x), for rho = tau * scale with
-/// tau = 1/2, -1/2, 1/4 and scale = min(size / |d|, 1 / |L_w|) (rounded to a
-/// double): offsets up to half the object's size along the generator, and at
-/// most half way to the apex (rho L_w = 1), where the cone's gradient vanishes.
-/// In
-/// homogeneous coordinates x = (X, w) maps to (X + rho (w L_xyz - L_w X), w), a
-/// linear map, so the point stays in x's field. At most 8 terminator points are used.
-std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
-  std::vector<RootPoint> out;
-  const Q taus[] = {Q(1, 2), Q(-1, 2), Q(1, 4)};
+/// The offsets rho of the generator points (ItemPoints::generator_offsets): x + rho d,
+/// d = L_xyz - L_w x (Cartesian x), for rho = tau * scale with tau = 1/2, -1/2, 1/4 and one
+/// scale for the item, min(size / max |d|, 1 / |L_w|) over (at most 8 of) the terminator
+/// points, rounded to a double: offsets up to half the object's size along the generators,
+/// and at most half way to the apex (rho L_w = 1), where the cone's gradient vanishes. One
+/// scale per item, not per point, so that the points of one offset are the terminator of one
+/// quadric (generator_map), over which P's error is also bounded (generator_geometries).
+std::vector<Q> generator_offsets(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
+  if (!(size > 0)) return {};
+  Measure dmax = 0;
   for (std::size_t i = 0; i < terminator.size() && i < 8; ++i) {
-    const RootPoint& x = terminator[i];
-    const auto c = x.coords();
+    const auto c = terminator[i].coords();
     const Measure w = to_measure(c[3]);
-    Measure d2 = 0;  // |L_xyz - L_w p|, p the Cartesian point
+    Measure d2 = 0;  // |L_xyz - L_w p|^2, p the Cartesian point
     for (int k = 0; k < 3; ++k) {
       const Measure dk = to_measure(L(k)) - to_measure(L(3)) * to_measure(c[k]) / w;
       d2 += dk * dk;
     }
-    if (!(d2 > 0) || !(size > 0)) continue;
-    Measure s = size / sqrt(d2);
-    if (L(3) != 0) {
-      const Measure apex = 1 / abs(to_measure(L(3)));
-      if (apex < s) s = apex;
-    }
-    const double scale = s.convert_to<double>();
-    if (!std::isfinite(scale) || scale == 0) continue;
-    for (const Q& tau : taus) {
-      const Q rho = tau * to_rational(scale);
-      Mat4<Q> M = Mat4<Q>::Identity();
-      for (int k = 0; k < 3; ++k) {
-        M(k, k) -= rho * L(3);
-        M(k, 3) += rho * L(k);
-      }
-      out.push_back(x.mapped(M));
-    }
+    dmax = mmax(dmax, sqrt(d2));
   }
+  if (!(dmax > 0)) return {};
+  Measure s = size / dmax;
+  if (L(3) != 0) {
+    const Measure apex = 1 / abs(to_measure(L(3)));
+    if (apex < s) s = apex;
+  }
+  const double scale = s.convert_to<double>();
+  if (!std::isfinite(scale) || scale == 0) return {};
+  const Q sq = to_rational(scale);
+  return {Q(1, 2) * sq, Q(-1, 2) * sq, Q(1, 4) * sq};
+}
+
+/// Points on the generator lines of the cone through (at most 8 of) the terminator points, at
+/// each offset: x mapped by generator_map, a linear map, so the point stays in x's field.
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L,
+                                        const std::vector<Q>& offsets) {
+  std::vector<RootPoint> out;
+  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i)
+    for (const Q& rho : offsets) out.push_back(terminator[i].mapped(generator_map(L, rho)));
   return out;
 }
 
@@ -148,7 +149,8 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.size = object_size(out.points, A);
   if (!out.points.empty())
     if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
-  out.generators = generator_points(out.points, L, out.size);
+  out.generator_offsets = generator_offsets(out.points, L, out.size);
+  out.generators = generator_points(out.points, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
   return out;
 }
@@ -622,6 +624,7 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
 ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
     : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {
   if (!pts_.points.empty() && !pts_.exhausted) geo_ = shadow_geometry(A, L);
+  if (geo_) generators_ = generator_geometries(A, L, pts_.generator_offsets);
 }
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
@@ -630,18 +633,27 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (!geo_)
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
-  const auto uncovered = [](const ShadowError& e, const Measure& size) {  // what the certified bound does not cover
-    return std::max({relative(e.R, size), relative(e.R_plane, size), relative(e.generators, size)});
+  // What the certified bound covers: P and the polar plane on the terminator, and P on its generator lines
+  // where their geometries are known (generator_geometries); the rest is measured on samples.
+  const bool generators = !generators_.empty();
+  const auto uncovered = [generators](const ShadowError& e, const Measure& size) {
+    const Measure r = std::max(relative(e.R, size), relative(e.R_plane, size));
+    return generators ? r : std::max(r, relative(e.generators, size));
   };
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
-  const Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
+  Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
+  if (generators) covered = std::max(covered, relative(e.generators, pts_.size));
   Measure other = uncovered(e, pts_.size);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
     other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size));
   }
-  const CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size_down(pts_.size), opt_.target);
-  return combined_accuracy(cb, covered, other, {"P", "polar_plane"}, opt_.target);
+  const double size = size_down(pts_.size);
+  CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size, opt_.target);
+  if (generators) cb = combined(cb, generators_bound(generators_, origin, P, size, opt_.target));
+  std::vector<std::string> certified = {"P", "polar_plane"};
+  if (generators) certified.push_back("P_generators");
+  return combined_accuracy(cb, covered, other, std::move(certified), opt_.target);
 }
 
 ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
@@ -663,8 +675,9 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size, the largest distance of those points from A's centre). Where A is an ellipsoid, P and the polar "
-      "plane on the terminator and B are bounded over every point of their geometry by interval branch and bound "
-      "(certified_for names them); R, P on its generator lines, and every result of other quadrics, are measured "
+      "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets) and B are "
+      "bounded over every point of their geometry by interval branch and bound (certified_for names them); R, and "
+      "every result of other quadrics, are measured "
       "exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +

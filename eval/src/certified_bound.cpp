@@ -601,6 +601,39 @@ CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>
   return branch_and_bound(*g.terminator, results, size, target);
 }
 
+Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {
+  Mat4<Q> M = Mat4<Q>::Identity();
+  for (int k = 0; k < 3; ++k) {
+    M(k, k) -= rho * L(3);
+    M(k, 3) += rho * L(k);
+  }
+  return M;
+}
+
+std::vector<ShadowGeometry> generator_geometries(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<Q>& offsets) {
+  std::vector<ShadowGeometry> out;
+  for (const Q& rho : offsets) {
+    if (!(1 - rho * L(3) > 0)) return {};
+    Mat4<Q> N = Mat4<Q>::Identity();
+    N.col(3) -= rho * L;
+    auto g = shadow_geometry(Mat4<Q>(N.transpose() * A * N), L);
+    if (!g) return {};
+    out.push_back(std::move(*g));
+  }
+  return out;
+}
+
+CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b) {
+  return {std::max(a.upper, b.upper), std::max(a.attained, b.attained), a.boxes + b.boxes};
+}
+
+CertifiedBound generators_bound(const std::vector<ShadowGeometry>& g, const std::optional<Vec3<Q>>& origin,
+                                const Mat4<Q>& P, double size, double target) {
+  CertifiedBound out;
+  for (const ShadowGeometry& piece : g) out = combined(out, shadow_bound(piece, origin, &P, nullptr, size, target));
+  return out;
+}
+
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B,
                                 double size, double target) {
   const BoundedResult bb = quadric_result(B, g.B_ref, *g.surface, origin, g.grad_floor);

@@ -123,6 +123,61 @@ TEST_CASE("certified bound: never below an error measured at an exact point, and
   CHECK(reflections == 40);
 }
 
+TEST_CASE("certified bound: P on its generator lines, over the terminator moved along them", "[accuracy][certified]") {
+  // The generator points at one offset are the terminator of the homothetic quadric (generator_map):
+  // the bound over that geometry is never below P's error measured at the exact generator points, is 0
+  // for the exact cone, and sees a quadric of the pencil s A + c (A L)(A L)^T (c != -1), which vanishes on
+  // the whole terminator (so the bound over it is 0) but is no cone from L.
+  test::RandomRationals rng(13);
+  std::mt19937_64 g(9);
+  int cases = 0;
+  for (int t = 0; t < 24; ++t) {
+    INFO("case " << t);
+    const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
+    Vec4<Q> L = rng.vec4();
+    L(3) = t % 3 == 0 ? Q(0) : Q(1);
+    if (L(3) != 0) {
+      const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+      L.head<3>() = c + 40 * L.head<3>();
+    }
+    const ItemPoints pts = terminator_points(A, L, 64, 300 + t);
+    const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
+    if (!geo) continue;
+    ++cases;
+    REQUIRE(pts.generator_offsets.size() == 3);
+    for (const Q& rho : pts.generator_offsets) {  // the map fixes L; at most half way to a point light
+      CHECK(Vec4<Q>(generator_map(L, rho) * L) == L);
+      CHECK(abs(rho * L(3)) <= Q(1, 2));
+    }
+    const auto gen = generator_geometries(A, L, pts.generator_offsets);
+    REQUIRE(gen.size() == 3);
+    const std::optional<Vec3<Q>> origin =
+        t % 2 ? std::nullopt : std::optional<Vec3<Q>>(Vec3<Q>(rng.next() / 3, rng.next() / 3, rng.next() / 3));
+    const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
+    const double size = size_down(pts.size);
+    const Mat4<Q> exact = 5 * in_frame_quadric(geo->P_ref, o);
+    const CertifiedBound zero = generators_bound(gen, origin, exact, size, 1e-9);
+    CHECK(zero.upper == 0);
+
+    const double rel = std::pow(10.0, -4 - (t % 8));
+    const Mat4<Q> P = perturbed(Mat4<Q>(in_frame_quadric(geo->P_ref, o)), rel, g);
+    const CertifiedBound b = generators_bound(gen, origin, P, size, 1e-9);
+    const ShadowError e = shadow_error(pts, origin, P, Vec4<Q>(A * L), P);
+    const Measure sampled = relative(e.generators, pts.size);
+    INFO("rel " << rel << " sampled " << sampled.str(6) << " bound " << b.upper << " attained " << b.attained);
+    CHECK(sampled <= Measure(b.upper));
+    CHECK(b.attained <= b.upper);
+    CHECK(Measure(b.upper) <= 1000 * sampled);
+
+    const Vec4<Q> pi = A * L;
+    const Mat4<Q> pencil = in_frame_quadric(Mat4<Q>(L.dot(pi) * A - Q(1, 2) * pi * pi.transpose()), o);
+    CHECK(shadow_error(pts, origin, pencil, pi, pencil).P.all_zero);  // exactly on it at every terminator point
+    const CertifiedBound wrong = generators_bound(gen, origin, pencil, size, 1e-9);
+    CHECK(wrong.attained > 1e-3);  // off the cone by a sizeable part of the object
+  }
+  CHECK(cases >= 18);
+}
+
 TEST_CASE("certified bound: the object size is the whole terminator's, not the samples'", "[accuracy][certified]") {
   // an ellipsoid 10^4 long, 1 wide and 10^-4 thin lit from the side: 64 random chords of its
   // terminator reach about 7 units from the centre; the terminator reaches 10^4

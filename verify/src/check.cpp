@@ -372,9 +372,16 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
       Measure sampled = 0;
       if (got.P) what.push_back("P"), sampled = relative(onP->metric, pts.size);
       if (got.polar_plane) what.push_back("polar_plane"), sampled = mmax(sampled, relative(onPolar->metric, pts.size));
-      certify(rep, shadow_bound(*geo, got.origin, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr,
-                                size_down(pts.size), opt.accuracy),
-              opt.accuracy, std::move(what), sampled);
+      const double size = size_down(pts.size);
+      CertifiedBound cb = shadow_bound(*geo, got.origin, got.P ? &*got.P : nullptr,
+                                       got.polar_plane ? &*got.polar_plane : nullptr, size, opt.accuracy);
+      if (got.P)  // P over the generator lines at the sampled points' offsets, where their geometries are known
+        if (const auto gen = generator_geometries(Aw, Lw, pts.generator_offsets); !gen.empty()) {
+          cb = combined(cb, generators_bound(gen, got.origin, *got.P, size, opt.accuracy));
+          what.push_back("P_generators");
+          sampled = mmax(sampled, relative(onGen->metric, pts.size));
+        }
+      certify(rep, cb, opt.accuracy, std::move(what), sampled);
     }
   rep.passed = problems.empty();
   return rep;

@@ -60,6 +60,9 @@ struct ItemPoints {
   /// terminator; only the cone P vanishes on these), and rational points of the polar plane
   /// inside the object (R, the plane pair through it, vanishes there; A does not).
   std::vector<RootPoint> generators, plane;
+  /// The offsets rho of `generators` (x + rho (L_xyz - L_w x), one scale for the item; accuracy.cpp):
+  /// at each, the points are the terminator of one quadric (generator_map).
+  std::vector<Rational> generator_offsets;
   /// Largest distance of the object's points from A's centre: over all of them where A is an
   /// ellipsoid (terminator_size, ellipsoid_size: a certified lower bound within 2^-19), else over
   /// the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
@@ -135,9 +138,9 @@ ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3
 Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
 /// error_bound of eval. Where A is an ellipsoid, P and the polar plane on the
-/// terminator and B are bounded over every point (certified_bound.hpp); what
-/// is measured on samples only (R, P on its generator lines, and every result
-/// of other quadrics) counts
+/// terminator, P on its generator lines (at the item's offsets) and B are
+/// bounded over every point (certified_bound.hpp); what is measured on samples
+/// only (R, and every result of other quadrics) counts
 /// twice its largest sampled error (kBoundMargin), a margin for the points
 /// between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
@@ -150,7 +153,8 @@ struct ItemAccuracy {
   std::string reason;
   bool inaccurate = false;
   /// The results whose part of the bound is certified over every point of their geometry
-  /// (certified_bound.hpp: "P", "polar_plane", "B"); the other parts are measured on samples.
+  /// (certified_bound.hpp: "P" and "polar_plane" on the terminator, "P_generators" for P on its
+  /// generator lines at the item's offsets, "B"); the other parts are measured on samples.
   std::vector<std::string> certified;
   /// A geometric error the result is known to reach (a lower bound of its true error, at most
   /// `bound`): the largest measured on the exact sample points, or, where the bound is certified,
@@ -190,9 +194,9 @@ std::string error_bound_rule(const AccuracyOptions& accuracy);
 ItemAccuracy non_finite_accuracy();
 
 /// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
-/// polar plane bounded over the whole terminator where A is an ellipsoid
-/// (shadow_bound); R, P on its generator lines, and every result of other
-/// quadrics, measured on the item's seeded sample points (shadow_error) and, in
+/// polar plane bounded over the whole terminator, and P over its generator
+/// lines at the item's offsets, where A is an ellipsoid (shadow_bound,
+/// generators_bound); R, and every result of other quadrics, measured on the item's seeded sample points (shadow_error) and, in
 /// the gray zone, again on kRefineFactor times as many other points, the larger
 /// measure counting, times kBoundMargin. A sampled error above the certified
 /// bound is a bug and throws std::logic_error. The points are sampled once per
@@ -212,6 +216,7 @@ class ShadowMeter {
   ItemPoints pts_;
   std::optional<ItemPoints> dense_;
   std::optional<ShadowGeometry> geo_;
+  std::vector<ShadowGeometry> generators_;  ///< P on its generator lines (generator_geometries)
 };
 
 /// The same for one reflection item: B bounded over the whole of A reflected by

@@ -96,10 +96,34 @@ std::optional<double> ellipsoid_size(const Mat4<Rational>& A);
 /// The certified bound of the returned P and polar plane (in the frame with
 /// `origin`; either may be absent) over the terminator. `target` (relative)
 /// steers the bisection only: it goes on while the bound is above the target
-/// and the distance attained below it. (P on its generator lines, and R, are
-/// measured on samples: accuracy.hpp.)
+/// and the distance attained below it. (R is measured on samples: accuracy.hpp.)
 CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Rational>>& origin,
                             const Mat4<Rational>* P, const Vec4<Rational>* polar, double size, double target);
+
+/// The map of a shadow item's terminator onto the generator lines of its cone P at offset
+/// rho: x = (X, w) -> (X + rho (w L_xyz - L_w X), w), i.e. M = (1 - rho L_w) I + rho L e_4^T,
+/// the homothety centred at L of ratio 1 - rho L_w for a point light, the translation by
+/// rho L_xyz for a parallel one. M L = L.
+Mat4<Rational> generator_map(const Vec4<Rational>& L, const Rational& rho);
+
+/// P on its generator lines, over every point at each offset rho (ItemPoints::generator_offsets).
+/// With N = I - rho L e_4^T (N M = (1 - rho L_w) I), M maps A's terminator onto the terminator
+/// of A_rho = N^T A N lit by the same L (y = M x: y^T A_rho y = a^2 x^T A x, (A_rho L) . y =
+/// a^2 (A L) . x, a = 1 - rho L_w), and the cone onto itself: P_ref of (A_rho, L) is a^2 P_ref
+/// (N L = a L, P_ref N = P_ref since P_ref L = 0). So shadow_bound of the geometry of
+/// (A_rho, L), P alone, bounds P's error over the whole terminator moved by rho along the
+/// generators. One geometry per offset; empty unless every offset has one (A an ellipsoid,
+/// a > 0, the terminator a real ellipse).
+std::vector<ShadowGeometry> generator_geometries(const Mat4<Rational>& A, const Vec4<Rational>& L,
+                                                 const std::vector<Rational>& offsets);
+
+/// The certified bound of the returned P over the generator geometries: the largest of their bounds.
+CertifiedBound generators_bound(const std::vector<ShadowGeometry>& g, const std::optional<Vec3<Rational>>& origin,
+                                const Mat4<Rational>& P, double size, double target);
+
+/// The bound of an item's results over two pieces of geometry: the larger upper bound and
+/// distance attained, the boxes of both.
+CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b);
 
 /// The certified bound of the returned B over A reflected.
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Rational>>& origin,
