@@ -633,16 +633,20 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (!geo_)
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
-  // What the certified bound covers: P and the polar plane on the terminator, and P on its generator lines
-  // where their geometries are known (generator_geometries); the rest is measured on samples.
-  const bool generators = !generators_.empty();
-  const auto uncovered = [generators](const ShadowError& e, const Measure& size) {
-    const Measure r = std::max(relative(e.R, size), relative(e.R_plane, size));
-    return generators ? r : std::max(r, relative(e.generators, size));
+  // What the certified bound covers: P and the polar plane on the terminator, P on its generator lines
+  // where their geometries are known (generator_geometries), and R on the terminator where h does not
+  // meet it; the rest (R on the polar plane, and R where h meets the terminator) is measured on samples.
+  const bool generators = !generators_.empty(), r_bounded = geo_->R_floor > 0;
+  const auto uncovered = [&](const ShadowError& e, const Measure& size) {
+    Measure r = relative(e.R_plane, size);
+    if (!r_bounded) r = std::max(r, relative(e.R, size));
+    if (!generators) r = std::max(r, relative(e.generators, size));
+    return r;
   };
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
   if (generators) covered = std::max(covered, relative(e.generators, pts_.size));
+  if (r_bounded) covered = std::max(covered, relative(e.R, pts_.size));
   Measure other = uncovered(e, pts_.size);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
@@ -650,9 +654,15 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   }
   const double size = size_down(pts_.size);
   CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size, opt_.target);
-  if (generators) cb = combined(cb, generators_bound(generators_, origin, P, size, opt_.target));
   std::vector<std::string> certified = {"P", "polar_plane"};
-  if (generators) certified.push_back("P_generators");
+  if (generators) {
+    cb = combined(cb, generators_bound(generators_, origin, P, size, opt_.target));
+    certified.push_back("P_generators");
+  }
+  if (r_bounded) {
+    cb = combined(cb, *terminator_quadric_bound(*geo_, origin, R, size, opt_.target));
+    certified.push_back("R");
+  }
   return combined_accuracy(cb, covered, other, std::move(certified), opt_.target);
 }
 
@@ -675,9 +685,10 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size, the largest distance of those points from A's centre). Where A is an ellipsoid, P and the polar "
-      "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets) and B are "
-      "bounded over every point of their geometry by interval branch and bound (certified_for names them); R, and "
-      "every result of other quadrics, are measured "
+      "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), R on the "
+      "terminator where its plane h does not meet it, and B are bounded over every point of their geometry by interval "
+      "branch and bound (certified_for names them); R where h meets the terminator, R on the polar plane, and every "
+      "result of other quadrics, are measured "
       "exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +

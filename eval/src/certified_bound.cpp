@@ -576,6 +576,26 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   g.P_ref = s * A - g.pi_ref * g.pi_ref.transpose();
   // on the terminator (P_ref x)_xyz = s (A x)_xyz, since pi.x = 0 there
   g.grad_floor = abs(to_measure(s)) * ell->grad_floor;
+  // R: the plane pair pi, h with h written out here (not the core's frame_plane, which is under test)
+  const Vec4<Q> h = L(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, L(3), -L(2));
+  g.R_ref = g.pi_ref * h.transpose() + h * g.pi_ref.transpose();
+  // On the terminator (R_ref x)_xyz = (h . x) pi_xyz (pi . x = 0), and h . x = a0 + c . u with
+  // a0 = h . (e + y0, 1) exact and c = R^T B^T h_xyz: on the circle |u| = 1, |h . x| >= |a0| - |c|.
+  const Geometry& t = *ellipse;
+  const Q a0 = Vec3<Q>(h.head<3>()).dot(Vec3<Q>(t.e + t.y0)) + h(3);
+  const Eigen::Matrix<Q, Eigen::Dynamic, 1> Bh = t.B.transpose() * Vec3<Q>(h.head<3>());
+  const double hfloor = upward([&] {
+    IA c2(0);
+    for (int j = 0; j < t.k; ++j) {
+      IA cj(0);
+      for (int l = 0; l < t.k; ++l) cj += t.R[l][j] * enc(Bh(l));
+      c2 += CGAL::square(cj);
+    }
+    const IA gap = CGAL::abs(enc(a0)) - CGAL::sqrt(c2);
+    const IA pn = CGAL::sqrt(CGAL::square(enc(g.pi_ref(0))) + CGAL::square(enc(g.pi_ref(1))) + CGAL::square(enc(g.pi_ref(2))));
+    return gap.inf() > 0 ? (gap * pn).inf() : 0.0;
+  });
+  g.R_floor = hfloor > 0 && std::isfinite(hfloor) ? Measure(hfloor) : Measure(0);
   return g;
 }
 
@@ -599,6 +619,13 @@ CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>
   if (polar) results.push_back(&bpi.emplace(plane_result(*polar, g.pi_ref, *g.terminator, origin)));
   if (results.empty()) return {};
   return branch_and_bound(*g.terminator, results, size, target);
+}
+
+std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>>& origin,
+                                                       const Mat4<Q>& R, double size, double target) {
+  if (!(g.R_floor > 0)) return std::nullopt;
+  const BoundedResult br = quadric_result(R, g.R_ref, *g.terminator, origin, g.R_floor);
+  return branch_and_bound(*g.terminator, {&br}, size, target);
 }
 
 Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {

@@ -44,7 +44,7 @@ def test_check_passes_for_qverify_result(sphere, light):
         assert isinstance(c["geometric_error"], float)
     assert isinstance(rep.summary, str) and rep.summary
     # a sphere: P and the polar plane are also bounded at every point of the terminator
-    assert rep.certified["results"] == ["P", "polar_plane", "P_generators"]
+    assert rep.certified["results"] == ["P", "polar_plane", "P_generators", "R"]
     assert 0 <= rep.certified["geometric_error_attained"] <= rep.certified["geometric_error_bound"] <= 1e-9
 
 

@@ -178,6 +178,63 @@ TEST_CASE("certified bound: P on its generator lines, over the terminator moved 
   CHECK(cases >= 18);
 }
 
+TEST_CASE("certified bound: R over the terminator, where the plane h does not meet it", "[accuracy][certified]") {
+  test::RandomRationals rng(17);
+  std::mt19937_64 g(11);
+  int bounded = 0;
+  for (int t = 0; t < 24; ++t) {
+    INFO("case " << t);
+    const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
+    const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+    Vec4<Q> L = rng.vec4();
+    L(3) = t % 3 == 0 ? Q(0) : Q(1);
+    if (L(3) != 0) L.head<3>() = c + 40 * L.head<3>();
+    const ItemPoints pts = terminator_points(A, L, 64, 500 + t);
+    const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
+    if (!geo) continue;
+    const std::optional<Vec3<Q>> origin =
+        t % 2 ? std::nullopt : std::optional<Vec3<Q>>(Vec3<Q>(rng.next() / 3, rng.next() / 3, rng.next() / 3));
+    const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
+    const double size = size_down(pts.size);
+    const Vec4<Q> pi = A * L;
+    const auto exact = terminator_quadric_bound(*geo, origin, Mat4<Q>(7 * in_frame_quadric(geo->R_ref, o)), size, 1e-9);
+    if (L(3) == 0) CHECK(exact);  // h is the plane at infinity: never meets the terminator
+    if (!exact) {  // h meets it: a terminator point on each side of h (the sampled points show it)
+      const Vec4<Q> h(0, 0, L(3), -L(2));
+      bool below = false, above = false;
+      for (const RootPoint& x : pts.points) {
+        const Measure v = to_measure(x.linear(h)) / to_measure(x.coords()[3]);  // h at the Cartesian point
+        below |= v < 0, above |= v > 0;
+      }
+      CHECK((below && above));
+      continue;
+    }
+    ++bounded;
+    CHECK(exact->upper == 0);
+    const double rel = std::pow(10.0, -4 - (t % 8));
+    const Mat4<Q> R = perturbed(Mat4<Q>(in_frame_quadric(geo->R_ref, o)), rel, g);
+    const auto b = terminator_quadric_bound(*geo, origin, R, size, 1e-9);
+    REQUIRE(b);
+    const Measure sampled = relative(shadow_error(pts, origin, R, pi, R).R, pts.size);
+    INFO("rel " << rel << " sampled " << sampled.str(6) << " bound " << b->upper << " attained " << b->attained);
+    CHECK(sampled <= Measure(b->upper));
+    CHECK(b->attained <= b->upper);
+    CHECK(Measure(b->upper) <= 1000 * sampled);
+  }
+  CHECK(bounded >= 12);
+  // a light level with the sphere's centre: h (z = 0) cuts the terminator in two points, where R's
+  // gradient vanishes
+  Mat4<Q> sphere = Mat4<Q>::Identity();
+  sphere(3, 3) = -1;
+  const auto level = shadow_geometry(sphere, Vec4<Q>(5, 0, 0, 1));
+  REQUIRE(level);
+  CHECK(level->R_floor == 0);
+  CHECK_FALSE(terminator_quadric_bound(*level, std::nullopt, level->R_ref, 1, 1e-9));
+  const auto above = shadow_geometry(sphere, Vec4<Q>(0, 0, 5, 1));
+  REQUIRE(above);
+  CHECK(above->R_floor > 0);
+}
+
 TEST_CASE("certified bound: the object size is the whole terminator's, not the samples'", "[accuracy][certified]") {
   // an ellipsoid 10^4 long, 1 wide and 10^-4 thin lit from the side: 64 random chords of its
   // terminator reach about 7 units from the centre; the terminator reaches 10^4

@@ -110,7 +110,7 @@ TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how m
     CHECK_FALSE(r.find("on_generators")->passed);
     // and the bound over every point of the generator lines at the sampled offsets certifies it
     REQUIRE(r.certified);
-    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators"});
+    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators", "R"});
     CHECK(r.certified->attained > 1e-3);
   }
   SECTION("P with the opposite sign") {

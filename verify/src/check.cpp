@@ -366,7 +366,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (!(pts.size > 0))
     rep.notes.push_back("the terminator is a single real point: no object size to measure distances against; judged by "
                         "the relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy");
-  if (!exact && (got.P || got.polar_plane) && !pts.exhausted)
+  if (!exact && (got.P || got.polar_plane || got.R) && !pts.exhausted)
     if (const auto geo = shadow_geometry(Aw, Lw)) {
       std::vector<std::string> what;
       Measure sampled = 0;
@@ -381,7 +381,13 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
           what.push_back("P_generators");
           sampled = mmax(sampled, relative(onGen->metric, pts.size));
         }
-      certify(rep, cb, opt.accuracy, std::move(what), sampled);
+      if (got.R)  // R over the terminator, where the plane h does not meet it
+        if (const auto br = terminator_quadric_bound(*geo, got.origin, *got.R, size, opt.accuracy)) {
+          cb = combined(cb, *br);
+          what.push_back("R");
+          sampled = mmax(sampled, relative(onR->metric, pts.size));
+        }
+      if (!what.empty()) certify(rep, cb, opt.accuracy, std::move(what), sampled);
     }
   rep.passed = problems.empty();
   return rep;

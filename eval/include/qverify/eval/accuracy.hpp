@@ -138,9 +138,11 @@ ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3
 Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
 /// error_bound of eval. Where A is an ellipsoid, P and the polar plane on the
-/// terminator, P on its generator lines (at the item's offsets) and B are
-/// bounded over every point (certified_bound.hpp); what is measured on samples
-/// only (R, and every result of other quadrics) counts
+/// terminator, P on its generator lines (at the item's offsets), R on the
+/// terminator where its plane h does not meet it, and B are bounded over every
+/// point (certified_bound.hpp); what is measured on samples only (R where h
+/// meets the terminator, R on the polar plane, and every result of other
+/// quadrics) counts
 /// twice its largest sampled error (kBoundMargin), a margin for the points
 /// between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
@@ -195,8 +197,10 @@ ItemAccuracy non_finite_accuracy();
 
 /// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
 /// polar plane bounded over the whole terminator, and P over its generator
-/// lines at the item's offsets, where A is an ellipsoid (shadow_bound,
-/// generators_bound); R, and every result of other quadrics, measured on the item's seeded sample points (shadow_error) and, in
+/// lines at the item's offsets, and R over the terminator where its plane h
+/// does not meet it, where A is an ellipsoid (shadow_bound, generators_bound,
+/// terminator_quadric_bound); R elsewhere, and every result of other quadrics,
+/// measured on the item's seeded sample points (shadow_error) and, in
 /// the gray zone, again on kRefineFactor times as many other points, the larger
 /// measure counting, times kBoundMargin. A sampled error above the certified
 /// bound is a bug and throws std::logic_error. The points are sampled once per

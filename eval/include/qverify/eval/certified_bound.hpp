@@ -75,6 +75,12 @@ struct ShadowGeometry {
   Vec4<Rational> pi_ref; ///< A L
   /// A lower bound of |(P_ref x)_xyz| on the terminator (0: none known).
   Measure grad_floor = 0;
+  /// pi h^T + h pi^T, h the plane the paper's frame sends to infinity (z = l_z for a point
+  /// light, the plane at infinity for a parallel one), world frame.
+  Mat4<Rational> R_ref;
+  /// A lower bound of |(R_ref x)_xyz| = |h . x| |pi_xyz| on the terminator; 0 where h meets it
+  /// (R's gradient vanishes there: no first-order bound of a rounded R exists).
+  Measure R_floor = 0;
 };
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
@@ -96,9 +102,16 @@ std::optional<double> ellipsoid_size(const Mat4<Rational>& A);
 /// The certified bound of the returned P and polar plane (in the frame with
 /// `origin`; either may be absent) over the terminator. `target` (relative)
 /// steers the bisection only: it goes on while the bound is above the target
-/// and the distance attained below it. (R is measured on samples: accuracy.hpp.)
+/// and the distance attained below it.
 CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Rational>>& origin,
                             const Mat4<Rational>* P, const Vec4<Rational>* polar, double size, double target);
+
+/// The certified bound of the returned R over the terminator, where h does not meet it
+/// (R_floor > 0); nullopt where it does (R is then measured on samples). R at points of the
+/// polar plane inside the object is measured on samples (accuracy.hpp).
+std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g,
+                                                       const std::optional<Vec3<Rational>>& origin,
+                                                       const Mat4<Rational>& R, double size, double target);
 
 /// The map of a shadow item's terminator onto the generator lines of its cone P at offset
 /// rho: x = (X, w) -> (X + rho (w L_xyz - L_w X), w), i.e. M = (1 - rho L_w) I + rho L e_4^T,
