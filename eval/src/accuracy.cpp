@@ -121,15 +121,16 @@ std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator
   return out;
 }
 
-/// Rational points of the polar plane inside the object: the rational parts p
-/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + 2q, where
-/// both lie on the plane.
+/// Rational points of the polar plane inside the terminator: the rational parts p
+/// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + q, where
+/// both lie on the plane (on the chord from p - sqrt(d) q to p + sqrt(d) q, since
+/// the radicand d is an integer >= 1: inside the disc terminator_quadric_bound covers).
 std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
   std::vector<RootPoint> out;
   for (const RootPoint& x : terminator) {
     if (out.size() >= 16) break;
     if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
-    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + 2 * x.q())})
+    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + x.q())})
       if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
   }
   return out;
@@ -634,19 +635,19 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
   // What the certified bound covers: P and the polar plane on the terminator, P on its generator lines
-  // where their geometries are known (generator_geometries), and R on the terminator where h does not
-  // meet it; the rest (R on the polar plane, and R where h meets the terminator) is measured on samples.
+  // where their geometries are known (generator_geometries), and R on the terminator and the polar plane
+  // inside it where h does not meet the terminator; the rest is measured on samples.
   const bool generators = !generators_.empty(), r_bounded = geo_->R_floor > 0;
   const auto uncovered = [&](const ShadowError& e, const Measure& size) {
-    Measure r = relative(e.R_plane, size);
-    if (!r_bounded) r = std::max(r, relative(e.R, size));
+    Measure r = 0;
+    if (!r_bounded) r = std::max(relative(e.R, size), relative(e.R_plane, size));
     if (!generators) r = std::max(r, relative(e.generators, size));
     return r;
   };
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
   if (generators) covered = std::max(covered, relative(e.generators, pts_.size));
-  if (r_bounded) covered = std::max(covered, relative(e.R, pts_.size));
+  if (r_bounded) covered = std::max({covered, relative(e.R, pts_.size), relative(e.R_plane, pts_.size)});
   Measure other = uncovered(e, pts_.size);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
@@ -686,9 +687,9 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size, the largest distance of those points from A's centre). Where A is an ellipsoid, P and the polar "
       "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), R on the "
-      "terminator where its plane h does not meet it, and B are bounded over every point of their geometry by interval "
-      "branch and bound (certified_for names them); R where h meets the terminator, R on the polar plane, and every "
-      "result of other quadrics, are measured "
+      "terminator and the polar plane inside it where its plane h does not meet the terminator, and B are bounded over "
+      "every point of their geometry by interval branch and bound (certified_for names them); R where h meets the "
+      "terminator, and every result of other quadrics, are measured "
       "exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +

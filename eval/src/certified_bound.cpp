@@ -50,11 +50,14 @@ struct ParamBox {
 
 /// A piece of geometry as the image of the unit circle (k = 2) or sphere (k = 3):
 ///   p - e = y0 + B R u,   |u| = 1,
+/// or, `filled` (k = 2), of the unit disc |u| <= 1 (the polar plane inside the terminator),
 /// with y0 and B (3 x k) exact and R (k x k) known only in intervals (it has square roots), so
 /// that every coefficient of a result's form in u is exact up to the factor R (BoundedResult).
 class Geometry {
  public:
   int k = 2;
+  /// The disc: u = r v / |v| with r = (p[1] + 1) / 2 in [0, 1], the box's second parameter.
+  bool filled = false;
   Vec3<Q> e;                            ///< the exact expansion point
   Vec3<Q> y0;                           ///< exact
   Eigen::Matrix<Q, 3, Eigen::Dynamic> B;  ///< exact, 3 x k
@@ -74,7 +77,7 @@ class Geometry {
   }
 
   int faces() const { return 2 * k; }
-  int dims() const { return k - 1; }
+  int dims() const { return filled ? 2 : k - 1; }
   /// u = v / |v|, v the point of the box's face (v[axis] = +-1, the others the box's coordinates).
   std::array<IA, 3> unit(const ParamBox& b) const {
     std::array<IA, 3> v{IA(0), IA(0), IA(0)};
@@ -86,7 +89,8 @@ class Geometry {
       n2 += CGAL::square(v[i]);
     }
     const IA n = CGAL::sqrt(n2);
-    for (int i = 0; i < k; ++i) v[i] /= n;
+    const IA r = filled ? (b.p[1] + IA(1)) / IA(2) : IA(1);
+    for (int i = 0; i < k; ++i) v[i] = v[i] / n * r;
     return v;
   }
   /// The box shrunk to its centre.
@@ -596,6 +600,11 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
     return gap.inf() > 0 ? (gap * pn).inf() : 0.0;
   });
   g.R_floor = hfloor > 0 && std::isfinite(hfloor) ? Measure(hfloor) : Measure(0);
+  // The polar plane inside the terminator, where R_ref vanishes too; h . x is linear, so where it
+  // keeps its sign on the ellipse it keeps it on the disc, and R_floor holds there as well.
+  auto disc = std::make_shared<Geometry>(*ellipse);
+  disc->filled = true;
+  g.polar_disc = disc;
   return g;
 }
 
@@ -624,8 +633,10 @@ CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>
 std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g, const std::optional<Vec3<Q>>& origin,
                                                        const Mat4<Q>& R, double size, double target) {
   if (!(g.R_floor > 0)) return std::nullopt;
-  const BoundedResult br = quadric_result(R, g.R_ref, *g.terminator, origin, g.R_floor);
-  return branch_and_bound(*g.terminator, {&br}, size, target);
+  const BoundedResult on_terminator = quadric_result(R, g.R_ref, *g.terminator, origin, g.R_floor);
+  const BoundedResult on_disc = quadric_result(R, g.R_ref, *g.polar_disc, origin, g.R_floor);
+  return combined(branch_and_bound(*g.terminator, {&on_terminator}, size, target),
+                  branch_and_bound(*g.polar_disc, {&on_disc}, size, target));
 }
 
 Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {

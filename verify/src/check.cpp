@@ -381,11 +381,11 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
           what.push_back("P_generators");
           sampled = mmax(sampled, relative(onGen->metric, pts.size));
         }
-      if (got.R)  // R over the terminator, where the plane h does not meet it
+      if (got.R)  // R over the terminator and the polar plane inside it, where the plane h does not meet it
         if (const auto br = terminator_quadric_bound(*geo, got.origin, *got.R, size, opt.accuracy)) {
           cb = combined(cb, *br);
           what.push_back("R");
-          sampled = mmax(sampled, relative(onR->metric, pts.size));
+          sampled = mmax(sampled, mmax(relative(onR->metric, pts.size), relative(onPlane->metric, pts.size)));
         }
       if (!what.empty()) certify(rep, cb, opt.accuracy, std::move(what), sampled);
     }

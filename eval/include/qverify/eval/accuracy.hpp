@@ -139,10 +139,10 @@ Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
 /// error_bound of eval. Where A is an ellipsoid, P and the polar plane on the
 /// terminator, P on its generator lines (at the item's offsets), R on the
-/// terminator where its plane h does not meet it, and B are bounded over every
-/// point (certified_bound.hpp); what is measured on samples only (R where h
-/// meets the terminator, R on the polar plane, and every result of other
-/// quadrics) counts
+/// terminator and the polar plane inside it where its plane h does not meet the
+/// terminator, and B are bounded over every point (certified_bound.hpp); what
+/// is measured on samples only (R where h meets the terminator, and every
+/// result of other quadrics) counts
 /// twice its largest sampled error (kBoundMargin), a margin for the points
 /// between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
@@ -197,8 +197,8 @@ ItemAccuracy non_finite_accuracy();
 
 /// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
 /// polar plane bounded over the whole terminator, and P over its generator
-/// lines at the item's offsets, and R over the terminator where its plane h
-/// does not meet it, where A is an ellipsoid (shadow_bound, generators_bound,
+/// lines at the item's offsets, and R over the terminator and the polar plane
+/// inside it where its plane h does not meet the terminator, where A is an ellipsoid (shadow_bound, generators_bound,
 /// terminator_quadric_bound); R elsewhere, and every result of other quadrics,
 /// measured on the item's seeded sample points (shadow_error) and, in
 /// the gray zone, again on kRefineFactor times as many other points, the larger

@@ -71,6 +71,7 @@ class Geometry;
 /// real ellipse; nullopt otherwise (the error is then measured on samples only).
 struct ShadowGeometry {
   std::shared_ptr<const Geometry> terminator;
+  std::shared_ptr<const Geometry> polar_disc;  ///< the polar plane inside the terminator
   Mat4<Rational> P_ref;  ///< (L^T A L) A - (A L)(A L)^T, world frame
   Vec4<Rational> pi_ref; ///< A L
   /// A lower bound of |(P_ref x)_xyz| on the terminator (0: none known).
@@ -106,9 +107,9 @@ std::optional<double> ellipsoid_size(const Mat4<Rational>& A);
 CertifiedBound shadow_bound(const ShadowGeometry& g, const std::optional<Vec3<Rational>>& origin,
                             const Mat4<Rational>* P, const Vec4<Rational>* polar, double size, double target);
 
-/// The certified bound of the returned R over the terminator, where h does not meet it
-/// (R_floor > 0); nullopt where it does (R is then measured on samples). R at points of the
-/// polar plane inside the object is measured on samples (accuracy.hpp).
+/// The certified bound of the returned R over the terminator and over the polar plane inside it
+/// (where R_ref, the plane pair, vanishes too), where h does not meet the terminator
+/// (R_floor > 0); nullopt where it does (R is then measured on samples: accuracy.hpp).
 std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g,
                                                        const std::optional<Vec3<Rational>>& origin,
                                                        const Mat4<Rational>& R, double size, double target);
