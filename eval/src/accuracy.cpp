@@ -123,15 +123,16 @@ std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator
 
 /// Rational points of the polar plane inside the terminator: the rational parts p
 /// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + q, where
-/// both lie on the plane (on the chord from p - sqrt(d) q to p + sqrt(d) q, since
-/// the radicand d is an integer >= 1: inside the disc terminator_quadric_bound covers).
+/// both lie on the plane. Where q's w is 0 (the sampler's points) and p's is
+/// not, both lie on the chord from p - sqrt(d) q to p + sqrt(d) q (the radicand
+/// d is an integer >= 1): inside the disc that terminator_quadric_bound covers.
 std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
   std::vector<RootPoint> out;
   for (const RootPoint& x : terminator) {
     if (out.size() >= 16) break;
-    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0) continue;
-    for (const Vec4<Q>& y : {x.p(), Vec4<Q>(x.p() + x.q())})
-      if (y(3) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
+    if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0 || x.p()(3) == 0 || x.q()(3) != 0) continue;
+    out.emplace_back(x.p(), Vec4<Q>::Zero(), Q(0));
+    if (!x.q().isZero()) out.emplace_back(Vec4<Q>(x.p() + x.q()), Vec4<Q>::Zero(), Q(0));
   }
   return out;
 }
@@ -638,20 +639,21 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   // where their geometries are known (generator_geometries), and R on the terminator and the polar plane
   // inside it where h does not meet the terminator; the rest is measured on samples.
   const bool generators = !generators_.empty(), r_bounded = geo_->R_floor > 0;
-  const auto uncovered = [&](const ShadowError& e, const Measure& size) {
+  // (The denser points' generator points lie at other offsets, which the bound does not cover.)
+  const auto uncovered = [&](const ShadowError& e, const Measure& size, bool same_offsets) {
     Measure r = 0;
     if (!r_bounded) r = std::max(relative(e.R, size), relative(e.R_plane, size));
-    if (!generators) r = std::max(r, relative(e.generators, size));
+    if (!generators || !same_offsets) r = std::max(r, relative(e.generators, size));
     return r;
   };
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
   if (generators) covered = std::max(covered, relative(e.generators, pts_.size));
   if (r_bounded) covered = std::max({covered, relative(e.R, pts_.size), relative(e.R_plane, pts_.size)});
-  Measure other = uncovered(e, pts_.size);
+  Measure other = uncovered(e, pts_.size, true);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
-    other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size));
+    other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size, false));
   }
   const double size = size_down(pts_.size);
   CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size, opt_.target);

@@ -78,7 +78,8 @@ class Geometry {
 
   int faces() const { return 2 * k; }
   int dims() const { return filled ? 2 : k - 1; }
-  /// u = v / |v|, v the point of the box's face (v[axis] = +-1, the others the box's coordinates).
+  /// u = v / |v|, v the point of the box's face (v[axis] = +-1, the others the box's coordinates);
+  /// filled, times r = (p[1] + 1) / 2.
   std::array<IA, 3> unit(const ParamBox& b) const {
     std::array<IA, 3> v{IA(0), IA(0), IA(0)};
     const int axis = b.face / 2;
@@ -139,11 +140,15 @@ class BoundedResult {
   /// quadric: a lower bound of |lambda (Q3 (p - e) + g_e)| at every point of the geometry, 0 where
   /// none is known
   double floor = 0;
+  /// A zero result where the reference is not: it vanishes everywhere, but it is no such quadric
+  /// (its gradient vanishes too): no bound.
+  bool zero = false;
 
   /// Upper and lower bounds of the first-order distance over a box. One-parameter geometries are
   /// also enclosed by the mean-value form (value at the centre + derivative times [-h, h]),
   /// intersected with the natural one: its overestimate shrinks with the square of the box.
   std::pair<double, double> distance(const Geometry& geo, const ParamBox& box) const {
+    if (zero) return {kInf, 0.0};
     const auto u = geo.unit(box);
     IA f;
     V3 grad, err;
@@ -310,6 +315,7 @@ BoundedResult quadric_result(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const
     r.g0 = enc3(g0), r.h0 = enc3(h0);
     r.G = times_R(GB, geo), r.H = times_R(EB, geo);
     r.floor = scaled_floor;
+    r.zero = hat_in.isZero() && !ref_in.isZero();
     return r;
   });
 }
@@ -334,6 +340,7 @@ BoundedResult plane_result(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const G
         for (int l = 0; l < geo.k; ++l) r.b[j] += geo.R[l][j] * enc(bB(l));
     }
     r.g0 = enc3(Vec3<Q>(hat.head<3>()));
+    r.zero = hat_in.isZero() && !ref_in.isZero();
     return r;
   });
 }
@@ -585,9 +592,14 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   g.R_ref = g.pi_ref * h.transpose() + h * g.pi_ref.transpose();
   // On the terminator (R_ref x)_xyz = (h . x) pi_xyz (pi . x = 0), and h . x = a0 + c . u with
   // a0 = h . (e + y0, 1) exact and c = R^T B^T h_xyz: on the circle |u| = 1, |h . x| >= |a0| - |c|.
+  // pi and h are scaled exactly to entries near 1 first (a light 10^200 away, or a tiny homogeneous
+  // L, would otherwise overflow or underflow the doubles), and the floor scaled back in 80 digits.
   const Geometry& t = *ellipse;
-  const Q a0 = Vec3<Q>(h.head<3>()).dot(Vec3<Q>(t.e + t.y0)) + h(3);
-  const Eigen::Matrix<Q, Eigen::Dynamic, 1> Bh = t.B.transpose() * Vec3<Q>(h.head<3>());
+  const Q sh = unit_scale(h), spi = unit_scale(Vec3<Q>(g.pi_ref.head<3>()));
+  const Vec4<Q> hs = sh * h;
+  const Vec3<Q> pis = spi * Vec3<Q>(g.pi_ref.head<3>());
+  const Q a0 = Vec3<Q>(hs.head<3>()).dot(Vec3<Q>(t.e + t.y0)) + hs(3);
+  const Eigen::Matrix<Q, Eigen::Dynamic, 1> Bh = t.B.transpose() * Vec3<Q>(hs.head<3>());
   const double hfloor = upward([&] {
     IA c2(0);
     for (int j = 0; j < t.k; ++j) {
@@ -596,10 +608,11 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
       c2 += CGAL::square(cj);
     }
     const IA gap = CGAL::abs(enc(a0)) - CGAL::sqrt(c2);
-    const IA pn = CGAL::sqrt(CGAL::square(enc(g.pi_ref(0))) + CGAL::square(enc(g.pi_ref(1))) + CGAL::square(enc(g.pi_ref(2))));
+    const IA pn = CGAL::sqrt(CGAL::square(enc(pis(0))) + CGAL::square(enc(pis(1))) + CGAL::square(enc(pis(2))));
     return gap.inf() > 0 ? (gap * pn).inf() : 0.0;
   });
-  g.R_floor = hfloor > 0 && std::isfinite(hfloor) ? Measure(hfloor) : Measure(0);
+  // (a0 - |c| may also be 0 where h only nearly misses the terminator, by less than the enclosures' width)
+  g.R_floor = hfloor > 0 && std::isfinite(hfloor) ? Measure(Measure(hfloor) / to_measure(Q(sh * spi))) : Measure(0);
   // The polar plane inside the terminator, where R_ref vanishes too; h . x is linear, so where it
   // keeps its sign on the ellipse it keeps it on the disc, and R_floor holds there as well.
   auto disc = std::make_shared<Geometry>(*ellipse);

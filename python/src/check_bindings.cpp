@@ -443,10 +443,12 @@ Attributes:
         d["geometric_error_attained"] = r.certified->attained;
         d["boxes"] = r.certified->boxes;
         return std::move(d);
-      }, "Floating candidates of an ellipsoid: the geometric error of P and the polar plane (over the whole "
-         "terminator) or of B (over all of A reflected) bounded at every point, not only the samples: a dict "
-         "(results, geometric_error_bound, geometric_error_attained, boxes), or None. A pass needs the bound "
-         "within the accuracy target.")
+      }, "Floating candidates of an ellipsoid: the geometric error of the results named in 'results' bounded "
+         "at every point, not only the samples: P and the polar plane over the whole terminator, P_generators "
+         "(P over the terminator moved along its generator lines by the sampled offsets), R (over the terminator "
+         "and the polar plane inside it, where R's second plane does not meet the terminator), B over all of A "
+         "reflected. A dict (results, geometric_error_bound, geometric_error_attained, boxes), or None. A pass "
+         "needs the bound within the accuracy target.")
       .def_readonly("notes", &CheckReport::notes, "Remarks (few real points, one-point terminator, ...).")
       .def_property_readonly("origin", [](const CheckReport& r) {
         return r.origin ? py::object(doubles(*r.origin)) : py::object(py::none());

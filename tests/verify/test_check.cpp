@@ -113,6 +113,31 @@ TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how m
     CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators", "R"});
     CHECK(r.certified->attained > 1e-3);
   }
+  SECTION("the same on a hyperboloid, where no bound covers the generator lines: their sampled points see it") {
+    Mat4<double> H = Mat4<double>::Zero();  // x^2 + y^2 - z^2 - 1 = 0, one sheet
+    H(0, 0) = 1, H(1, 1) = 1, H(2, 2) = -1, H(3, 3) = -1;
+    const Vec4<double> Lh(5, 1, 2, 1);
+    const ShadowResult<double> gh = shadow<double>(H, Lh, Method::direct);
+    ShadowCandidate<double> c = candidate_of(gh);
+    const Vec4<double> AL = H * Lh;
+    c.P = Mat4<double>(Lh.dot(AL) * H + AL * AL.transpose());
+    const CheckReport r = check_shadow<double>(H, Lh, c);
+    INFO(r.summary());
+    CHECK_FALSE(r.certified);
+    CHECK_FALSE(r.passed);
+    CHECK(r.find("on_P")->passed);
+    CHECK_FALSE(r.find("on_generators")->passed);
+    CHECK_THAT(r.summary(), Catch::Contains("on_generators (P is not the cone"));
+  }
+  SECTION("an all-zero R vanishes at every point, but is no plane pair: it fails and is not certified") {
+    ShadowCandidate<double> c = candidate_of(good);
+    c.R = Mat4<double>::Zero();
+    const CheckReport r = check_shadow<double>(A, L, c);
+    CHECK_FALSE(r.passed);
+    CHECK_THAT(r.summary(), Catch::Contains("R is zero"));
+    REQUIRE(r.certified);
+    CHECK(r.certified->upper == std::numeric_limits<double>::infinity());
+  }
   SECTION("P with the opposite sign") {
     ShadowCandidate<double> c = candidate_of(good);
     c.P = Mat4<double>(-good.P);
@@ -185,6 +210,14 @@ TEST_CASE("check_reflection: qverify's reflection passes, wrong ones fail", "[ch
   ReflectionCandidate<double> wrongM = c;
   wrongM.M = Mat4<double>::Identity();
   CHECK_FALSE(check_reflection<double>(A, plane, wrongM).passed);
+
+  ReflectionCandidate<double> zeroB;  // vanishes at every point, but is no quadric
+  zeroB.B = Mat4<double>::Zero();
+  const CheckReport rz = check_reflection<double>(A, plane, zeroB);
+  CHECK_FALSE(rz.passed);
+  CHECK_THAT(rz.summary(), Catch::Contains("B is zero"));
+  REQUIRE(rz.certified);
+  CHECK(rz.certified->upper == std::numeric_limits<double>::infinity());
 
   ReflectionCandidate<double> onlyB;
   onlyB.B = c.B;

@@ -323,6 +323,8 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (got.polar_plane && !pi_ref.isZero() && !same_orientation(*got.polar_plane, pi_ref))
     problems.push_back("polar_plane has the wrong orientation (must be A L up to a positive factor)");
   if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
+  if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
+    problems.push_back("R is zero where it should not be (or the converse)");
   if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
   if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
     problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
@@ -429,6 +431,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
     if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
   }
   if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
+  if (got.B && got.B->isZero() != Aw.isZero()) problems.push_back("B is zero where it should not be (or the converse)");
   if (got.B && !same_sign_as(*got.B, [&](const Vec4<Q>& y) { return form(B_ref, y); }))
     problems.push_back("B has the wrong sign (must be M^T A M up to a positive factor)");
   if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")

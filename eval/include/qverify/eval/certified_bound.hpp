@@ -11,7 +11,11 @@
 ///    (s t 1) C (s t 1)^T, C = G^T A G; with its centre m and S = C2 / (-C(m))
 ///    = R^T R (Cholesky, in intervals), x = c + y0 + [e1 e2] R^-1 u;
 ///  - A reflected: x = c + R3^-1 u with K / (-A(c)) = R3^T R3, carried by the
-///    exact mirror M (the reflected point minus M c is H R3^-1 u).
+///    exact mirror M (the reflected point minus M c is H R3^-1 u);
+///  - the polar plane inside the terminator: the same map of the unit disc
+///    (|u| <= 1, u = r v / |v|, r in [0, 1] a second parameter), where R vanishes;
+///  - P's generator lines at an offset rho: the terminator of the homothetic
+///    quadric A_rho (generator_geometries).
 ///
 /// For a returned quadric Q^ (in the frame with origin o) and an exact quadric
 /// Q that vanishes on the geometry (the reference, computed from A and L or the
@@ -35,7 +39,8 @@
 /// times longer than wide is otherwise not bounded within any budget), the
 /// gradient also from below by a floor that holds on the whole geometry (on A,
 /// |K (x - c)| >= sqrt(mu |A(c)|), mu <= the smallest eigenvalue of +-K, proved
-/// exactly; P on the terminator is (L^T A L) times A's gradient there), so that
+/// exactly; P on the terminator is (L^T A L) times A's gradient there; R on the
+/// polar plane is (h . x) pi_xyz, and |h . x| >= |a0| - |c| on the disc), so that
 /// a thin object's wide boxes, whose gradient enclosure contains 0, are still
 /// bounded; and below at the box's centre (a point of the geometry lies in the
 /// thin box evaluated there). The box with the largest upper bound is bisected until the
@@ -79,8 +84,9 @@ struct ShadowGeometry {
   /// pi h^T + h pi^T, h the plane the paper's frame sends to infinity (z = l_z for a point
   /// light, the plane at infinity for a parallel one), world frame.
   Mat4<Rational> R_ref;
-  /// A lower bound of |(R_ref x)_xyz| = |h . x| |pi_xyz| on the terminator; 0 where h meets it
-  /// (R's gradient vanishes there: no first-order bound of a rounded R exists).
+  /// A lower bound of |(R_ref x)_xyz| = |h . x| |pi_xyz| on the terminator and on the polar plane
+  /// inside it; 0 where h meets the terminator (R's gradient vanishes there: no first-order bound
+  /// of a rounded R exists) or misses it by less than the enclosures can tell.
   Measure R_floor = 0;
 };
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);

@@ -103,8 +103,9 @@ struct CheckReport {
   std::optional<double> M_error;
   int proved_exactly = 0;  ///< exact mode: points at which every residual is exactly 0
   /// Floating candidates of an ellipsoid: the geometric error of the results in certified_for
-  /// ("P", "polar_plane", "B") bounded over every point of their geometry, not only the samples
-  /// (certified_bound.hpp); a pass needs its upper bound within the accuracy target.
+  /// ("P", "polar_plane", "P_generators", "R", "B") bounded over every point of their geometry,
+  /// not only the samples (certified_bound.hpp); a pass needs its upper bound within the accuracy
+  /// target.
   std::optional<CertifiedBound> certified;
   std::vector<std::string> certified_for;
   /// The rounding verdict of earlier versions (64 eps kappa), information only.
