@@ -28,6 +28,17 @@ Mat4<Q> random_ellipsoid(test::RandomRationals& rng, const Q& far) {
   return A;
 }
 
+/// A light for A: parallel (a random direction) or a point 40 random units from A's centre.
+Vec4<Q> random_light(test::RandomRationals& rng, const Mat4<Q>& A, bool parallel) {
+  Vec4<Q> L = rng.vec4();
+  L(3) = parallel ? Q(0) : Q(1);
+  if (!parallel) {
+    const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+    L.head<3>() = c + 40 * L.head<3>();
+  }
+  return L;
+}
+
 /// m with every entry perturbed by a random relative amount up to rel, then rounded to double.
 template <int R, int C> Eigen::Matrix<Q, R, C> perturbed(const Eigen::Matrix<Q, R, C>& m, double rel, std::mt19937_64& g) {
   std::uniform_real_distribution<double> u(-1, 1);
@@ -79,12 +90,7 @@ TEST_CASE("certified bound: never below an error measured at an exact point, and
     Mat4<Q> T = Mat4<Q>::Identity();
     if (origin) T.topRightCorner<3, 1>() = *origin;
     {  // shadow: P and the polar plane perturbed, in the frame
-      Vec4<Q> L = rng.vec4();
-      L(3) = t % 5 == 0 ? Q(0) : Q(1);
-      if (L(3) != 0) {
-        const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-        L.head<3>() = c + 40 * L.head<3>();
-      }
+      const Vec4<Q> L = random_light(rng, A, t % 5 == 0);
       const ItemPoints pts = terminator_points(A, L, 256, 100 + t);
       const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
       if (geo) {
@@ -134,12 +140,7 @@ TEST_CASE("certified bound: P on its generator lines, over the terminator moved 
   for (int t = 0; t < 24; ++t) {
     INFO("case " << t);
     const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
-    Vec4<Q> L = rng.vec4();
-    L(3) = t % 3 == 0 ? Q(0) : Q(1);
-    if (L(3) != 0) {
-      const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-      L.head<3>() = c + 40 * L.head<3>();
-    }
+    const Vec4<Q> L = random_light(rng, A, t % 3 == 0);
     const ItemPoints pts = terminator_points(A, L, 64, 300 + t);
     const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
     if (!geo) continue;
@@ -186,10 +187,7 @@ TEST_CASE("certified bound: R over the terminator and the polar plane inside it,
   for (int t = 0; t < 24; ++t) {
     INFO("case " << t);
     const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
-    const Vec3<Q> c = -(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-    Vec4<Q> L = rng.vec4();
-    L(3) = t % 3 == 0 ? Q(0) : Q(1);
-    if (L(3) != 0) L.head<3>() = c + 40 * L.head<3>();
+    const Vec4<Q> L = random_light(rng, A, t % 3 == 0);
     const ItemPoints pts = terminator_points(A, L, 64, 500 + t);
     const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
     if (!geo) continue;
