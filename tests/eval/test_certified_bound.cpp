@@ -152,6 +152,11 @@ TEST_CASE("certified bound: P on its generator lines, over the terminator moved 
     }
     const auto gen = generator_geometries(A, L, pts.generator_offsets);
     REQUIRE(gen.size() == 3);
+    // the bounded geometries are those of the sampled generator points: each offset's points lie
+    // exactly on the polar plane of its homothetic quadric (points: per terminator point, per offset)
+    REQUIRE(pts.generators.size() % 3 == 0);
+    for (std::size_t i = 0; i < pts.generators.size(); ++i)
+      CHECK(CGAL::is_zero(pts.generators[i].linear(gen[i % 3].pi_ref)));
     const std::optional<Vec3<Q>> origin =
         t % 2 ? std::nullopt : std::optional<Vec3<Q>>(Vec3<Q>(rng.next() / 3, rng.next() / 3, rng.next() / 3));
     const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
