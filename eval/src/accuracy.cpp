@@ -687,11 +687,12 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
-      "object size, the largest distance of those points from A's centre). Where A is an ellipsoid, P and the polar "
+      "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and the polar "
       "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), R on the "
-      "terminator and the polar plane inside it where its plane h does not meet the terminator, and B are bounded over "
-      "every point of their geometry by interval branch and bound (certified_for names them); R where h meets the "
-      "terminator, and every result of other quadrics, are measured "
+      "terminator and the polar plane inside it where its plane h does not meet the terminator, and, where A is an "
+      "ellipsoid, B are bounded over every point of their geometry by interval branch and bound (certified_for names "
+      "them); R where h meets the terminator, shadows of other terminators and reflections of other quadrics are "
+      "measured "
       "exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +

@@ -461,8 +461,9 @@ std::optional<EllipsoidParts> ellipsoid(const Mat4<Q>& A) {
 
 namespace {
 
-/// The terminator ellipse of an ellipsoid A lit from L (nullptr: not an ellipse with real points).
-std::shared_ptr<Geometry> make_ellipse(const Mat4<Q>& A, const Vec4<Q>& L, const EllipsoidParts& ell) {
+/// The terminator of A lit from L where it is a real ellipse (nullptr otherwise), expanded about
+/// `centre` (A's, for an ellipsoid) or else about the ellipse's own centre.
+std::shared_ptr<Geometry> make_ellipse(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& centre) {
   const Vec4<Q> pi = A * L;
   if (pi.head<3>().isZero()) return nullptr;
   // the normal scaled (exactly) to about 1, so that e1, e2 and the conic's entries stay near the
@@ -488,8 +489,9 @@ std::shared_ptr<Geometry> make_ellipse(const Mat4<Q>& A, const Vec4<Q>& L, const
   const Q S00 = C(0, 0) / -r0, S01 = C(0, 1) / -r0, S11 = C(1, 1) / -r0;
   auto geo = std::make_shared<Geometry>();
   geo->k = 2;
-  geo->e = ell.c;
-  geo->y0 = p0 + m0 * e1 + m1 * e2 - ell.c;
+  const Vec3<Q> m = p0 + m0 * e1 + m1 * e2;
+  geo->e = centre ? *centre : m;
+  geo->y0 = m - geo->e;
   geo->B.resize(3, 2);
   geo->B.col(0) = e1;
   geo->B.col(1) = e2;
@@ -562,7 +564,7 @@ double largest_offset(const Geometry& geo) {
 std::optional<double> terminator_size(const Mat4<Q>& A, const Vec4<Q>& L) {
   const auto ell = ellipsoid(A);
   if (!ell) return std::nullopt;
-  const auto e = make_ellipse(A, L, *ell);
+  const auto e = make_ellipse(A, L, ell->c);
   if (!e) return std::nullopt;
   return largest_offset(*e);
 }
@@ -576,9 +578,11 @@ std::optional<double> ellipsoid_size(const Mat4<Q>& A) {
 }
 
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L) {
+  // Any quadric whose terminator is a real ellipse (a bounded curve): an ellipsoid's always is; a
+  // hyperboloid's or a paraboloid's where the polar plane cuts it so. A's gradient floor is known
+  // for an ellipsoid only; elsewhere the boxes' gradient enclosures alone bound it from below.
   const auto ell = ellipsoid(A);
-  if (!ell) return std::nullopt;
-  auto ellipse = make_ellipse(A, L, *ell);
+  auto ellipse = make_ellipse(A, L, ell ? std::optional<Vec3<Q>>(ell->c) : std::nullopt);
   if (!ellipse) return std::nullopt;
   ShadowGeometry g;
   g.terminator = ellipse;
@@ -586,7 +590,7 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   const Q s = L.dot(g.pi_ref);
   g.P_ref = s * A - g.pi_ref * g.pi_ref.transpose();
   // on the terminator (P_ref x)_xyz = s (A x)_xyz, since pi.x = 0 there
-  g.grad_floor = abs(to_measure(s)) * ell->grad_floor;
+  g.grad_floor = ell ? Measure(abs(to_measure(s)) * ell->grad_floor) : Measure(0);
   // R: the plane pair pi, h with h written out here (not the core's frame_plane, which is under test)
   const Vec4<Q> h = L(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, L(3), -L(2));
   g.R_ref = g.pi_ref * h.transpose() + h * g.pi_ref.transpose();

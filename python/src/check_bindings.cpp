@@ -404,7 +404,8 @@ Attributes:
     exhausted, second_plane_error, M_error, proved_exactly,
     consistent_with_precision, rounding_tolerance, kappa, reference (the
     exact expected matrix as Fractions, or None), notes, origin, certified
-    (floating candidates of an ellipsoid: the bound over every point, or None).
+    (floating candidates whose terminator is a real ellipse, or reflections of an ellipsoid: the
+    bound over every point, or None).
 )")
       .def_readonly("kind", &CheckReport::kind, "'shadow' or 'reflection'.")
       .def_readonly("passed", &CheckReport::passed, "True when the check passes.")
@@ -443,7 +444,8 @@ Attributes:
         d["geometric_error_attained"] = r.certified->attained;
         d["boxes"] = r.certified->boxes;
         return std::move(d);
-      }, "Floating candidates of an ellipsoid: the geometric error of the results named in 'results' bounded "
+      }, "Floating candidates whose terminator is a real ellipse (shadows) or of an ellipsoid (reflections): the "
+         "geometric error of the results named in 'results' bounded "
          "at every point, not only the samples: P and the polar plane over the whole terminator, P_generators "
          "(P over the terminator moved along its generator lines by the sampled offsets), R (over the terminator "
          "and the polar plane inside it, where R's second plane does not meet the terminator), B over all of A "

@@ -301,7 +301,7 @@ class FamilySweep {
     predicted_.push_back(p.predicted_double_error);
     floors_.push_back(p.rounded_exact_error);
     // Judged on the whole item and from above: eval's error bound (certified over every point of the
-    // geometry for what its certified_for names, for an ellipsoid; measured on samples, with a
+    // geometry for what its certified_for names, where the terminator is an ellipse; measured on samples, with a
     // margin, for the rest) within the target, and no error beyond it on these points or in what eval
     // proves the item reaches. (P's error on these points alone only bounds the truth from below.)
     const StressRun& def = p.runs[kDefaultRun];

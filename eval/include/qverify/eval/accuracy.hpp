@@ -137,12 +137,13 @@ ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3
 /// core's mirror_matrix, which is under test): x - 2 (n.x + d) n / (n.n).
 Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
-/// error_bound of eval. Where A is an ellipsoid, P and the polar plane on the
+/// error_bound of eval. Where the terminator is a real ellipse, P and the polar plane on the
 /// terminator, P on its generator lines (at the item's offsets), R on the
 /// terminator and the polar plane inside it where its plane h does not meet the
-/// terminator, and B are bounded over every point (certified_bound.hpp); what
-/// is measured on samples only (R where h meets the terminator, and every
-/// result of other quadrics) counts
+/// terminator, and, where A is an ellipsoid, B are bounded over every point
+/// (certified_bound.hpp); what is measured on samples only (R where h meets
+/// the terminator, shadows of other terminators, reflections of other
+/// quadrics) counts
 /// twice its largest sampled error (kBoundMargin), a margin for the points
 /// between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
@@ -198,9 +199,9 @@ ItemAccuracy non_finite_accuracy();
 /// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
 /// polar plane bounded over the whole terminator, and P over its generator
 /// lines at the item's offsets, and R over the terminator and the polar plane
-/// inside it where its plane h does not meet the terminator, where A is an ellipsoid (shadow_bound, generators_bound,
-/// terminator_quadric_bound); R elsewhere, and every result of other quadrics,
-/// measured on the item's seeded sample points (shadow_error) and, in
+/// inside it where its plane h does not meet the terminator, where the terminator is a real ellipse
+/// (shadow_bound, generators_bound, terminator_quadric_bound); R elsewhere, and every result
+/// where the terminator is not an ellipse, measured on the item's seeded sample points (shadow_error) and, in
 /// the gray zone, again on kRefineFactor times as many other points, the larger
 /// measure counting, times kBoundMargin. A sampled error above the certified
 /// bound is a bug and throws std::logic_error. The points are sampled once per

@@ -3,7 +3,9 @@
 /// A certified upper bound of a result's geometric error over *every* exact
 /// point of its geometry, not only over sampled ones: interval branch and bound.
 ///
-/// Where A is an ellipsoid (K definite, real points) the geometry of an item is
+/// Where the terminator is a real ellipse (A an ellipsoid, K definite with real
+/// points; or a hyperboloid or paraboloid cut so by the polar plane), and for a
+/// reflection where A is an ellipsoid, the geometry of an item is
 /// the image of the unit circle or sphere, u = v / |v| with v on the faces of
 /// the square or cube [-1, 1]^k, so that its pieces are boxes of parameters:
 ///  - the terminator A ∩ {pi . x = 0}, pi = A L, an ellipse: in plane
@@ -72,8 +74,9 @@ class BoundedResult;
 /// A parametrised piece of an item's geometry (the terminator, A reflected).
 class Geometry;
 
-/// The geometry of a shadow item where A is an ellipsoid and the terminator a
-/// real ellipse; nullopt otherwise (the error is then measured on samples only).
+/// The geometry of a shadow item where the terminator is a real ellipse (any quadric; A's
+/// gradient floor, and with it grad_floor, is known where A is an ellipsoid only, 0 elsewhere);
+/// nullopt otherwise (the error is then measured on samples only).
 struct ShadowGeometry {
   std::shared_ptr<const Geometry> terminator;
   std::shared_ptr<const Geometry> polar_disc;  ///< the polar plane inside the terminator
@@ -132,8 +135,8 @@ Mat4<Rational> generator_map(const Vec4<Rational>& L, const Rational& rho);
 /// a^2 (A L) . x, a = 1 - rho L_w), and the cone onto itself: P_ref of (A_rho, L) is a^2 P_ref
 /// (N L = a L, P_ref N = P_ref since P_ref L = 0). So shadow_bound of the geometry of
 /// (A_rho, L), P alone, bounds P's error over the whole terminator moved by rho along the
-/// generators. One geometry per offset; empty unless every offset has one (A an ellipsoid,
-/// a > 0, the terminator a real ellipse).
+/// generators. One geometry per offset; empty unless every offset has one (a > 0,
+/// the terminator a real ellipse).
 std::vector<ShadowGeometry> generator_geometries(const Mat4<Rational>& A, const Vec4<Rational>& L,
                                                  const std::vector<Rational>& offsets);
 

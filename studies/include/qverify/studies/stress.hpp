@@ -98,7 +98,7 @@ struct StressPoint {
   double rounded_exact_error = std::numeric_limits<double>::infinity();
   double target = 0;                  ///< max(1e-9, 10 rounded_exact_error)
   /// The default (robust) double run is within the target from above: eval's error bound of the item
-  /// (certified for P, the polar plane and B of an ellipsoid) and its error on these points and in what
+  /// (certified for what its certified_for names, accuracy.hpp) and its error on these points and in what
   /// eval proves it reaches (item_geometric_error) are at most `target`.
   bool default_meets_target = false;
   std::vector<StressRun> runs;        ///< qverify's runs, then the candidate's

@@ -102,7 +102,8 @@ struct CheckReport {
   /// Reflection: largest entry of M - M_ref relative to max(1, |M_ref|_max).
   std::optional<double> M_error;
   int proved_exactly = 0;  ///< exact mode: points at which every residual is exactly 0
-  /// Floating candidates of an ellipsoid: the geometric error of the results in certified_for
+  /// Floating candidates whose terminator is a real ellipse (shadows) or of an ellipsoid
+  /// (reflections): the geometric error of the results in certified_for
   /// ("P", "polar_plane", "P_generators", "R", "B") bounded over every point of their geometry,
   /// not only the samples (certified_bound.hpp); a pass needs its upper bound within the accuracy
   /// target.
