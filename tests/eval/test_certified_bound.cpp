@@ -133,7 +133,7 @@ TEST_CASE("certified bound: P on its generator lines, over the terminator moved 
   // The generator points at one offset are the terminator of the homothetic quadric (generator_map):
   // the bound over that geometry is never below P's error measured at the exact generator points, is 0
   // for the exact cone, and sees a quadric of the pencil s A + c (A L)(A L)^T (c != -1), which vanishes on
-  // the whole terminator (so the bound over it is 0) but is no cone from L.
+  // every terminator point (exactly, at the samples) but is no cone from L.
   test::RandomRationals rng(13);
   std::mt19937_64 g(9);
   int cases = 0;
