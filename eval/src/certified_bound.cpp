@@ -577,7 +577,14 @@ std::optional<double> ellipsoid_size(const Mat4<Q>& A) {
   return largest_offset(*s);
 }
 
-std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L) {
+Vec4<Q> reference_second_plane(const Vec4<Q>& L) {
+  return L(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, L(3), -L(2));
+}
+
+namespace {
+
+/// The terminator and P's parts of a shadow geometry (shadow_geometry adds R's).
+std::optional<ShadowGeometry> cone_geometry(const Mat4<Q>& A, const Vec4<Q>& L) {
   // Any quadric whose terminator is a real ellipse (a bounded curve): an ellipsoid's always is; a
   // hyperboloid's or a paraboloid's where the polar plane cuts it so. A's gradient floor is known
   // for an ellipsoid only; elsewhere the boxes' gradient enclosures alone bound it from below.
@@ -591,8 +598,18 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   g.P_ref = s * A - g.pi_ref * g.pi_ref.transpose();
   // on the terminator (P_ref x)_xyz = s (A x)_xyz, since pi.x = 0 there
   g.grad_floor = ell ? Measure(abs(to_measure(s)) * ell->grad_floor) : Measure(0);
-  // R: the plane pair pi, h with h written out here (not the core's frame_plane, which is under test)
-  const Vec4<Q> h = L(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, L(3), -L(2));
+  return g;
+}
+
+}  // namespace
+
+std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L) {
+  auto cone = cone_geometry(A, L);
+  if (!cone) return std::nullopt;
+  ShadowGeometry& g = *cone;
+  const auto& ellipse = g.terminator;
+  // R: the plane pair pi, h
+  const Vec4<Q> h = reference_second_plane(L);
   g.R_ref = g.pi_ref * h.transpose() + h * g.pi_ref.transpose();
   // On the terminator (R_ref x)_xyz = (h . x) pi_xyz (pi . x = 0), and h . x = a0 + c . u with
   // a0 = h . (e + y0, 1) exact and c = R^T B^T h_xyz: on the circle |u| = 1, |h . x| >= |a0| - |c|.
@@ -622,7 +639,7 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   auto disc = std::make_shared<Geometry>(*ellipse);
   disc->filled = true;
   g.polar_disc = disc;
-  return g;
+  return cone;
 }
 
 std::optional<ReflectionGeometry> reflection_geometry(const Mat4<Q>& A, const Mat4<Q>& M) {
@@ -671,7 +688,7 @@ std::vector<ShadowGeometry> generator_geometries(const Mat4<Q>& A, const Vec4<Q>
     if (!(1 - rho * L(3) > 0)) return {};
     Mat4<Q> N = Mat4<Q>::Identity();
     N.col(3) -= rho * L;
-    auto g = shadow_geometry(Mat4<Q>(N.transpose() * A * N), L);
+    auto g = cone_geometry(Mat4<Q>(N.transpose() * A * N), L);  // P alone is bounded there
     if (!g) return {};
     out.push_back(std::move(*g));
   }

@@ -336,7 +336,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     const Vec4<Q> absL = abs_matrix(Le);
     const Vec4<Q> absAL = absA * absL;
     const Mat4<Q> Pabs = absL.dot(absAL) * absA + absAL * absAL.transpose();
-    const Vec4<Q> h = Le(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, Le(3), -Le(2));
+    const Vec4<Q> h = reference_second_plane(Le);
     const Mat4<Q> Rabs = abs_matrix(Vec4<Q>(h)) * absAL.transpose() + absAL * abs_matrix(h).transpose();
     const Mat4<Q> Rref = h * pi_ref.transpose() + pi_ref * h.transpose();
     const Measure nP = frobenius(P_ref), nR = frobenius(Rref), nPi = frobenius(pi_ref);

@@ -94,6 +94,11 @@ struct ShadowGeometry {
 };
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
+/// h, R's second plane, written out here (not the core's frame_plane, which is under test): the
+/// plane the paper's frame sends to infinity, z = l_z for a point light, the plane at infinity
+/// (0, 0, 0, 1) for a parallel one.
+Vec4<Rational> reference_second_plane(const Vec4<Rational>& L);
+
 /// The geometry of a reflection item where A is an ellipsoid; nullopt otherwise.
 struct ReflectionGeometry {
   std::shared_ptr<const Geometry> surface;
@@ -135,7 +140,7 @@ Mat4<Rational> generator_map(const Vec4<Rational>& L, const Rational& rho);
 /// a^2 (A L) . x, a = 1 - rho L_w), and the cone onto itself: P_ref of (A_rho, L) is a^2 P_ref
 /// (N L = a L, P_ref N = P_ref since P_ref L = 0). So shadow_bound of the geometry of
 /// (A_rho, L), P alone, bounds P's error over the whole terminator moved by rho along the
-/// generators. One geometry per offset; empty unless every offset has one (a > 0,
+/// generators (the geometries carry the terminator and P's parts; R's are not built). One geometry per offset; empty unless every offset has one (a > 0,
 /// the terminator a real ellipse).
 std::vector<ShadowGeometry> generator_geometries(const Mat4<Rational>& A, const Vec4<Rational>& L,
                                                  const std::vector<Rational>& offsets);
