@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <random>
 
@@ -21,6 +23,15 @@ inline Rational pow10(int e) {
   boost::multiprecision::mpz_int p = 1;
   for (int k = 0; k < std::abs(e); ++k) p *= 10;
   return e >= 0 ? Rational(p) : Rational(1) / Rational(p);
+}
+
+/// A double with a full 53-bit significand and |x| in [2^e, 2^(e+1)), e uniform in
+/// [-spread, spread] ("double-valued" inputs: what another program computed).
+inline double random_double(std::mt19937_64& g, int spread = 30) {
+  const std::uint64_t m = (g() >> 11) | (std::uint64_t(1) << 52);
+  const int e = static_cast<int>(g() % static_cast<std::uint64_t>(2 * spread + 1)) - spread;
+  const double x = std::ldexp(static_cast<double>(m), e - 52);
+  return (g() & 1) ? -x : x;
 }
 
 /// Relative tolerance of the law checks: 2^12 eps (0 for exact types).
