@@ -42,6 +42,7 @@ json row_json(const BenchRow& row) {
   if (!row.arithmetic.empty()) r["arithmetic"] = row.arithmetic;
   if (!row.results.empty()) r["results"] = row.results;
   if (row.items_beyond_bit_bound) r["items_beyond_bit_bound"] = *row.items_beyond_bit_bound;
+  if (row.items_singly) r["items_singly"] = *row.items_singly;
   if (row.cost_vs_double_direct) r["cost_vs_double_direct"] = *row.cost_vs_double_direct;
   return r;
 }

@@ -1,5 +1,6 @@
 #include <qverify/batch/batch.hpp>
 #include <qverify/core/mirror_division_free.hpp>
+#include <qverify/exact/digit_pack.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/interval_batch.hpp>
 #include <qverify/exact/rounding.hpp>
@@ -223,7 +224,7 @@ constexpr std::size_t kReflectionBytes = (10 + 4) * 8 + (12 + 10) * 8;  ///< dou
 /// Exact rows on double-valued and decimal-17 inputs: WideInt<10> (640-bit
 /// integers in place, exact/wide_int.hpp) after aligning each matrix's exponents.
 using W = WideInt<10>;
-constexpr int kWideBits = 64 * W::max_limbs;
+constexpr int kWideBits = 64 * W::max_limbs - 1;  ///< two's complement: the top bit is the sign
 
 /// Bit bounds of the results from the bits of the integer inputs (bA for A,
 /// bL for the light or plane): |pi_i| < 2^(bA+bL+2), |L.pi| < 2^(bA+2bL+4),
@@ -296,6 +297,39 @@ void wide_reflection(const Mat4<W>& A, const Vec4<W>& plane, WideReflectionOut& 
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) o.M[4 * r + c] = M(r, c);
   for (int k = 0; k < 10; ++k) o.B[k] = B(kSymRow[k], kSymCol[k]);
+}
+
+/// The exact rows' arithmetic: W items at once (DigitPack<24>, exact/digit_pack.hpp: 24 signed
+/// digits of radix 2^28 per lane, 2^644 and beyond the results' bit bounds), each item at its own
+/// scale; results normalized (carries propagated) into a per-thread ring of blocks.
+using DP = DigitPack<24>;
+constexpr int kLanes = DP::lanes;
+struct DigitShadowOut {
+  DP P[10], pi[4], R[10];
+  int scale[kLanes] = {};  ///< lane l's results are its integers times base^scale[l]
+};
+struct DigitReflectionOut {
+  DP M[12], B[10];
+  int scale[kLanes] = {};
+};
+constexpr std::size_t kDigitRing = kRing / kLanes;  ///< blocks: as many items as the WideInt ring
+
+void digit_shadow(const Mat4<DP>& A, const Vec4<DP>& L, DigitShadowOut& o) {
+  const Vec4<DP> p = polar_plane<DP>(A, L);
+  const Mat4<DP> P = tangent_cone_from_polar<DP>(A, L, p);
+  const Mat4<DP> R = terminator_quadric_from_polar<DP>(L, p);
+  for (int k = 0; k < 10; ++k) {
+    o.P[k] = P(kSymRow[k], kSymCol[k]), o.P[k].normalize();
+    o.R[k] = R(kSymRow[k], kSymCol[k]), o.R[k].normalize();
+  }
+  for (int k = 0; k < 4; ++k) o.pi[k] = p(k), o.pi[k].normalize();
+}
+void digit_reflection(const Mat4<DP>& A, const Vec4<DP>& plane, DigitReflectionOut& o) {
+  const Mat4<DP> M = scaled_mirror_matrix<DP>(plane);
+  const Mat4<DP> B = mirror_image_division_free<DP>(A, plane);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) o.M[4 * r + c] = M(r, c), o.M[4 * r + c].normalize();
+  for (int k = 0; k < 10; ++k) o.B[k] = B(kSymRow[k], kSymCol[k]), o.B[k].normalize();
 }
 
 /// Items beyond the WideInt bound run on GMP rationals (counted; none in this benchmark).
@@ -629,13 +663,15 @@ struct SmallRationalExact {
 // ------------------------------------------- exact, double-valued and decimal-17 inputs
 
 /// The exact rows on double-valued or decimal-17 inputs: the first nx items drawn once (doubles, or decimal
-/// text as m 10^e), each item made integer by aligning its exponents (wide_item) and computed on WideInt<10>
-/// into a per-thread ring; items beyond the WideInt bound on GMP rationals (counted in `beyond`).
+/// text as m 10^e), each item made integer by aligning its exponents, W items at once on DigitPack (blocks)
+/// into a per-thread ring; an item whose block does not fit, or that ends a range, on WideInt<10> (counted in
+/// `singly`), and beyond WideInt's bound on GMP rationals (counted in `beyond`). WideInt one item at a time
+/// is also a candidate of its own (shadow_wide, reflection_wide).
 struct WideExact {
   Kind kind;
   std::vector<double> da, dl;    ///< double-valued: A's ten entries, the light's four, per item
   std::vector<Decimal> ca, cl;   ///< decimal-17: the same as decimals
-  std::atomic<long> beyond{0};
+  std::atomic<long> beyond{0}, singly{0};
 
   /// Draws the first nx items of kind k on `threads` threads (the lights (x, y, z, 1)).
   WideExact(Kind k, Eigen::Index nx, int threads) : kind(k) {
@@ -661,6 +697,40 @@ struct WideExact {
                                        : wide_item(&ca[u * 10], &cl[u * 4], A, L, eA, eL);
   }
 
+  /// Decimal entries x[l][0 .. count) of W items as DigitPacks: lane l times 10^k[l], its smallest exponent.
+  static bool decimal_lanes(const Decimal* const (&x)[kLanes], int count, DP* out, int (&k)[kLanes]) {
+    __int128 v[10][kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      k[l] = x[l][0].e;
+      for (int j = 1; j < count; ++j) k[l] = std::min(k[l], x[l][j].e);
+      for (int j = 0; j < count; ++j)
+        if (!decimal_to_int128(x[l][j].m, x[l][j].e - k[l], v[j][l])) return false;
+    }
+    const int bits = DP::bits_of(&v[0][0], count * kLanes);  // one bound, one digit count for the matrix
+    for (int j = 0; j < count; ++j) out[j] = DP::from_lanes(v[j], bits);
+    return true;
+  }
+
+  /// Items [i, i + W) as DigitPack matrices, lane l times base^eA[l] and base^eL[l]; false when one does not fit.
+  bool load_block(Eigen::Index i, Mat4<DP>& A, Vec4<DP>& L, int (&eA)[kLanes], int (&eL)[kLanes]) const {
+    DP a[10], l[4];
+    const auto u = static_cast<std::size_t>(i);
+    if (kind == Kind::double_valued) {
+      const double* xa[kLanes];
+      const double* xl[kLanes];
+      for (int j = 0; j < kLanes; ++j) xa[j] = &da[(u + j) * 10], xl[j] = &dl[(u + j) * 4];
+      if (!DP::from_doubles(xa, 10, a, eA) || !DP::from_doubles(xl, 4, l, eL)) return false;
+    } else {
+      const Decimal* xa[kLanes];
+      const Decimal* xl[kLanes];
+      for (int j = 0; j < kLanes; ++j) xa[j] = &ca[(u + j) * 10], xl[j] = &cl[(u + j) * 4];
+      if (!decimal_lanes(xa, 10, a, eA) || !decimal_lanes(xl, 4, l, eL)) return false;
+    }
+    for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = a[k];
+    for (int k = 0; k < 4; ++k) L(k) = l[k];
+    return true;
+  }
+
   /// GMP rationals for an item beyond the bound.
   void fallback(Eigen::Index i, bool shadow) {
     ++beyond;
@@ -671,48 +741,79 @@ struct WideExact {
     else generic_reflection<Rational>(A, L, X, Y);
   }
 
-  /// The shadows of items [b, e).
-  void shadow(Eigen::Index b, Eigen::Index e) {
-    std::vector<WideShadowOut> ring(kRing);
+  /// The shadow of item i on WideInt (GMP rationals beyond its bound) into o.
+  void shadow_item(Eigen::Index i, WideShadowOut& o) {
     Mat4<W> A;
     Vec4<W> L;
     int eA, eL;
-    for (Eigen::Index i = b; i < e; ++i) {
-      if (!load(i, A, L, eA, eL) || !shadow_fits(max_bits(A), max_bits(L))) {
-        fallback(i, true);
-        continue;
-      }
-      WideShadowOut& o = ring[static_cast<std::size_t>(i) % kRing];
-      try {
-        wide_shadow(A, L, o);
-      } catch (const WideIntOverflow&) {
-        fallback(i, true);
-        continue;
-      }
-      o.scale = 2 * eA + 2 * eL;
+    if (!load(i, A, L, eA, eL) || !shadow_fits(max_bits(A), max_bits(L))) return fallback(i, true);
+    try {
+      wide_shadow(A, L, o);
+    } catch (const WideIntOverflow&) {
+      return fallback(i, true);
     }
+    o.scale = 2 * eA + 2 * eL;
+  }
+  /// The reflection of item i on WideInt (the light as the mirror plane).
+  void reflection_item(Eigen::Index i, WideReflectionOut& o) {
+    Mat4<W> A;
+    Vec4<W> L;
+    int eA, eL;
+    if (!load(i, A, L, eA, eL) || !reflection_fits(max_bits(A), max_bits(L))) return fallback(i, false);
+    try {
+      wide_reflection(A, L, o);
+    } catch (const WideIntOverflow&) {
+      return fallback(i, false);
+    }
+    o.scale = eA + 4 * eL;
   }
 
-  /// The reflections of items [b, e) (the light as the mirror plane).
-  void reflection(Eigen::Index b, Eigen::Index e) {
+  /// The shadows of items [b, e) on WideInt, one item at a time (a candidate).
+  void shadow_wide(Eigen::Index b, Eigen::Index e) {
+    std::vector<WideShadowOut> ring(kRing);
+    for (Eigen::Index i = b; i < e; ++i) shadow_item(i, ring[static_cast<std::size_t>(i) % kRing]);
+  }
+  void reflection_wide(Eigen::Index b, Eigen::Index e) {
     std::vector<WideReflectionOut> ring(kRing);
-    Mat4<W> A;
-    Vec4<W> L;
-    int eA, eL;
-    for (Eigen::Index i = b; i < e; ++i) {
-      if (!load(i, A, L, eA, eL) || !reflection_fits(max_bits(A), max_bits(L))) {
-        fallback(i, false);
+    for (Eigen::Index i = b; i < e; ++i) reflection_item(i, ring[static_cast<std::size_t>(i) % kRing]);
+  }
+
+  /// Items [b, e) in blocks of W on DigitPack (Op: digit_shadow or digit_reflection; `scale` the
+  /// results' exponent from the inputs'), and singly on WideInt (`one`) where a block does not fit:
+  /// an entry beyond 126 bits, a result beyond the digits, lanes that disagree on a decision.
+  template <class Out, class WideOut, class Op, class One>
+  void blocks(Eigen::Index b, Eigen::Index e, Op&& op, int a_factor, int l_factor, One&& one) {
+    std::vector<Out> ring(kDigitRing);
+    WideOut single;
+    Mat4<DP> A;
+    Vec4<DP> L;
+    int eA[kLanes], eL[kLanes];
+    std::size_t slot = 0;
+    Eigen::Index i = b;
+    for (; i + kLanes <= e; i += kLanes) {
+      Out& o = ring[slot++ % kDigitRing];
+      bool done = false;
+      if (load_block(i, A, L, eA, eL)) try {
+          op(A, L, o);
+          done = true;
+        } catch (const DigitPackOverflow&) {
+        } catch (const MixedLanes&) {
+        }
+      if (done) {
+        for (int l = 0; l < kLanes; ++l) o.scale[l] = a_factor * eA[l] + l_factor * eL[l];
         continue;
       }
-      WideReflectionOut& o = ring[static_cast<std::size_t>(i) % kRing];
-      try {
-        wide_reflection(A, L, o);
-      } catch (const WideIntOverflow&) {
-        fallback(i, false);
-        continue;
-      }
-      o.scale = eA + 4 * eL;
+      for (int l = 0; l < kLanes; ++l) one(i + l, single);
+      singly += kLanes;
     }
+    for (; i < e; ++i, ++singly) one(i, single);  // the end of the range
+  }
+  void shadow(Eigen::Index b, Eigen::Index e) {
+    blocks<DigitShadowOut, WideShadowOut>(b, e, digit_shadow, 2, 2, [this](Eigen::Index i, WideShadowOut& o) { shadow_item(i, o); });
+  }
+  void reflection(Eigen::Index b, Eigen::Index e) {
+    blocks<DigitReflectionOut, WideReflectionOut>(b, e, digit_reflection, 1, 4,
+                                                  [this](Eigen::Index i, WideReflectionOut& o) { reflection_item(i, o); });
   }
 };
 
@@ -902,20 +1003,26 @@ class BenchRun {
                                      {[&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.shadow(b, e); }); },
                                       [&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.reflection(b, e); }); }},
                                      progress(std::string(kind_name(kind)) + ": exact rows"));
+    const std::string lanes = std::to_string(kLanes);
     const std::string how =
-        kind == Kind::double_valued
-            ? "WideInt<10> (640-bit integers in place, exact/wide_int.hpp) after shifting each matrix's doubles to the "
-              "smallest binary exponent among its entries: the exact results times a power of two; no gcd, no division, "
-              "no allocation (bit bound checked, GMP rationals beyond it)"
-            : "WideInt<10> after scaling each matrix's decimal text m 10^e to the smallest decimal exponent among its "
-              "entries (integers times a power of ten): the exact results times a power of ten (bit bound checked, "
-              "GMP rationals beyond it)";
+        (kind == Kind::double_valued
+             ? "integers after shifting each matrix's doubles to the smallest binary exponent among its entries (the "
+               "exact results times a power of two), "
+             : "integers after scaling each matrix's decimal text m 10^e to the smallest decimal exponent among its "
+               "entries (the exact results times a power of ten), ") +
+        lanes + " items at once: DigitPack<24> (exact/digit_pack.hpp), signed digits of radix 2^28 in SIMD lanes, "
+        "lazy carries, one 32x32-bit multiply per digit product for all lanes; results normalized. No gcd, no "
+        "division, no allocation; a block that does not fit item by item on WideInt<10> (items_singly), GMP "
+        "rationals beyond that (items_beyond_bit_bound)";
     const std::size_t in_bytes = (10 + 4) * (kind == Kind::double_valued ? 8 : sizeof(Decimal));
     rows_.push_back(batch_row(kind, "shadow", "exact", "direct", t[0], in_bytes + sizeof(WideShadowOut), nx_));
     rows_.back().arithmetic = how;
     rows_.push_back(batch_row(kind, "reflection", "exact", "direct", t[1], in_bytes + sizeof(WideReflectionOut), nx_));
     rows_.back().arithmetic = how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)";
-    for (int k : {2, 1}) rows_[rows_.size() - k].results = "kept in a ring of 1024 items per thread";
+    for (int k : {2, 1}) {
+      rows_[rows_.size() - k].results = "kept in a ring of 1024 items per thread (bytes_per_item: as WideInt<10>)";
+      rows_[rows_.size() - k].items_singly = w.singly.load() / (2 * rounds_);
+    }
     mark_beyond_bound(w.beyond.load());
     if (kind == Kind::double_valued) exact_candidates(w);
   }
@@ -1033,7 +1140,7 @@ class BenchRun {
     }
   }
 
-  /// The candidates for exact arithmetic on doubles (WideInt<10>, CGAL::Mpzf, GMP rationals), on the same
+  /// The candidates for exact arithmetic on doubles (DigitPack<24>, WideInt<10>, CGAL::Mpzf, GMP rationals), on the same
   /// first items, one thread, all of them in every round (a shared machine: each round samples the same
   /// moments for all): the report's exact_arithmetic.
   void exact_candidates(WideExact& w) {
@@ -1041,14 +1148,20 @@ class BenchRun {
     say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
     const auto mpzf = generic_inputs<CGAL::Mpzf>(w, m);
     const auto mpq = generic_inputs<Rational>(w, m);
-    std::vector<std::function<void()>> jobs{[&] { w.shadow(0, m); }, [&] { w.reflection(0, m); }};
+    const long singly = w.singly.load();
+    std::vector<std::function<void()>> jobs{[&] { w.shadow(0, m); }, [&] { w.reflection(0, m); },
+                                            [&] { w.shadow_wide(0, m); }, [&] { w.reflection_wide(0, m); }};
     for (auto& j : generic_jobs(mpzf, m)) jobs.push_back(j);
     for (auto& j : generic_jobs(mpq, m)) jobs.push_back(j);
     const auto tc = interleaved_times(rounds_, jobs, [](int) {});
-    const char* names[] = {"WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
-    const char* notes[] = {"integers in place after aligning exponents (the exact rows' arithmetic)",
+    w.singly = singly;  // the rows' count, not the candidates'
+    const std::string digit_note = std::to_string(kLanes) +
+                                   " items at once in SIMD lanes, signed digits of radix 2^28 after aligning exponents "
+                                   "(the exact rows' arithmetic)";
+    const char* names[] = {"DigitPack<24>", "WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
+    const char* notes[] = {digit_note.c_str(), "640-bit integers in place after aligning exponents, one item at a time",
                            "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 4; ++c)
       candidates_.push_back({names[c], notes[c], 1e9 * best_of(tc[2 * c]) / static_cast<double>(m),
                              1e9 * best_of(tc[2 * c + 1]) / static_cast<double>(m)});
   }

@@ -316,7 +316,17 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
     REQUIRE(row["ns_per_item_runs"].size() == 2);
     const auto runs = row["ns_per_item_runs"].get<std::vector<double>>();
     CHECK(row["ns_per_item"].get<double>() == Approx(*std::min_element(runs.begin(), runs.end())));
+    // exact rows on doubles and decimals: SIMD blocks of items, singly only at the ends of the threads' ranges
+    if (row["precision"] == "exact" && row.value("inputs", "") != "small-rational" && row["op"] != "verify-shadow" &&
+        row["op"] != "verify-reflection") {
+      REQUIRE(row.contains("items_singly"));
+      CHECK(row["items_singly"].get<long>() < doc["threads"].get<long>() * doc["simd"]["lanes"].get<long>());
+    }
   }
+  // the candidates for exact arithmetic on doubles, the rows' own first
+  REQUIRE(doc["exact_arithmetic"]["candidates"].size() == 4);
+  CHECK(doc["exact_arithmetic"]["candidates"][0]["arithmetic"] == "DigitPack<24>");
+  for (const auto& c : doc["exact_arithmetic"]["candidates"]) CHECK(c["shadow_ns_per_item"].get<double>() > 0);
   CHECK(doc["memory_bandwidth_gbps_runs"].size() == 4);  // two copies a round
   // what the interval rows ran on: the library's own answer (exact/interval_batch.hpp), in both places
   CHECK(doc["processor"]["interval_kernel"] == std::string(qverify::interval_batch_kernel()));

@@ -75,6 +75,7 @@ struct BenchRow {
   std::size_t bytes_per_item = 0;
   std::string arithmetic, results;             ///< exact rows: how they compute, where the results go
   std::optional<long> items_beyond_bit_bound;  ///< exact rows: items that needed GMP rationals, when any
+  std::optional<long> items_singly;            ///< exact rows on doubles and decimals: items not in a SIMD block
   std::optional<VerifyRowFacts> verify;        ///< set for a verification row
   double roofline_fraction = 0;                ///< items/s x bytes/item against the memory bandwidth
   /// Time against double/direct of the same op and inputs (verification rows: against their double, filtered row).
