@@ -113,7 +113,10 @@ void BM_digit_shadow(benchmark::State& state) {
   Vec4<DP> L;
   int i = 0;
   for (auto _ : state) {
-    if (!load_pack(in, i, A, L)) state.SkipWithError("beyond 126 bits");
+    if (!load_pack(in, i, A, L)) {
+      state.SkipWithError("beyond 126 bits");
+      break;
+    }
     const Vec4<DP> p = polar_plane<DP>(A, L);
     const Mat4<DP> P = tangent_cone_from_polar<DP>(A, L, p);
     const Mat4<DP> R = terminator_quadric_from_polar<DP>(L, p);
@@ -131,7 +134,10 @@ void BM_digit_reflection(benchmark::State& state) {
   Vec4<DP> plane;
   int i = 0;
   for (auto _ : state) {
-    if (!load_pack(in, i, A, plane)) state.SkipWithError("beyond 126 bits");
+    if (!load_pack(in, i, A, plane)) {
+      state.SkipWithError("beyond 126 bits");
+      break;
+    }
     const Mat4<DP> M = scaled_mirror_matrix<DP>(plane);
     const Mat4<DP> B = mirror_image_division_free<DP>(A, plane);
     for (int k = 0; k < 12; ++k) M(k % 3, k / 3).normalize();

@@ -1,8 +1,9 @@
 # QVERIFY_ARCH=auto: which -march the build takes (included from the top-level CMakeLists.txt).
 # Sets QVERIFY_MARCH (empty: the compiler's default, the x86-64 baseline), QVERIFY_INTERVAL_MARCH
 # (the -march of a second copy of the interval batch kernel, run where the processor has it; empty
-# when the build's own is the faster) and QVERIFY_ARCH_NOTE (how the choices were made, for the
-# configure message).
+# when the build's own is the faster), QVERIFY_DIGIT_MARCH (the same for the exact digit blocks of
+# exact/digit_batch.hpp) and QVERIFY_ARCH_NOTE (how the choices were made, for the configure
+# message).
 #
 # The widest instruction set is not always the fastest: on AMD Zen 4 (one of this project's machines) the
 # AVX-512 build of the batch kernel measured 2-3x slower than the AVX2 one before the store order
@@ -15,7 +16,9 @@
 # (family 26) the AVX-512 one took 2/3 of the AVX2 one's time while the double kernel was 5-10%
 # faster with AVX2. When the other level's interval kernel is more than 10% faster than the
 # build's, the exact library carries a second copy of it compiled for that level, which the batch
-# functions of exact/interval_batch.hpp run when the processor has it (asked at run time).
+# functions of exact/interval_batch.hpp run when the processor has it (asked at run time). The exact
+# digit blocks (exact/digit_batch.hpp: integers of 4 or 8 items at once) are measured and chosen the
+# same way: on Zen 5 the AVX-512 ones took about 2/3 of the AVX2 ones' time.
 # The margin is the noise of the probe on a shared 2-core machine: after the store-order fix the two
 # are at parity on AMD Zen 4, and best-of-three with a 5% margin chose v4 at one configure and v3
 # at the next. Ties go to the narrower set: valgrind then runs the release CLI, and ./run-tests
@@ -45,12 +48,14 @@ check_cxx_source_runs([=[
 
 set(QVERIFY_MARCH "")
 set(QVERIFY_INTERVAL_MARCH "")
+set(QVERIFY_DIGIT_MARCH "")
 set(QVERIFY_ARCH_NOTE "")
 if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   # Both run here: measure (or take the cached measurement of the same compiler and kernels).
   set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
       ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/batch.hpp ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/pack.hpp
-      ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/interval_pack.hpp)
+      ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/interval_pack.hpp
+      ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/digit_pack.hpp ${PROJECT_SOURCE_DIR}/exact/src/digit_batch_impl.hpp)
   set(_qv_key "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_COMPILER}")
   foreach(_qv_file IN LISTS _qv_probe_sources)
     file(SHA256 ${_qv_file} _qv_hash)
@@ -78,7 +83,8 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
     set(_qv_probe_libraries Eigen3::Eigen)
     if(_qv_cgal_include AND _qv_gmp AND _qv_mpfr)
       list(APPEND _qv_probe_kernels interval)
-      string(APPEND _qv_probe_includes ";${PROJECT_SOURCE_DIR}/exact/include;${_qv_cgal_include}")
+      list(APPEND _qv_probe_kernels exact)
+      string(APPEND _qv_probe_includes ";${PROJECT_SOURCE_DIR}/exact/include;${PROJECT_SOURCE_DIR}/exact/src;${_qv_cgal_include}")
       set(_qv_probe_definitions -DQVERIFY_PROBE_INTERVAL=1)
       list(APPEND _qv_probe_libraries ${_qv_mpfr} ${_qv_gmp})
     endif()
@@ -112,24 +118,29 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
       # Seven runs of each kernel and level, in turn (a shared machine's speed drifts; each run is
       # itself the best of five passes over 2^20 items, of three over 2^18 for the slower intervals,
       # whose batches take twice the memory), and the best of each.
-      foreach(_qv_kernel double interval)
+      foreach(_qv_kernel double interval exact)
         foreach(_qv_level 3 4)
           set(_qv_best_${_qv_kernel}_${_qv_level} "")
           set(_qv_text_${_qv_kernel}_${_qv_level} failed)
         endforeach()
       endforeach()
       set(_qv_interval_ok FALSE)
+      set(_qv_exact_ok FALSE)
       if("interval" IN_LIST _qv_probe_kernels)
         set(_qv_interval_ok TRUE)
+        set(_qv_exact_ok TRUE)
       endif()
       if(_qv_ok)
         foreach(_qv_round 1 2 3 4 5 6 7)
-          foreach(_qv_kernel double interval)
+          foreach(_qv_kernel double interval exact)
             if(_qv_kernel STREQUAL "double")
               set(_qv_items 1048576)
               set(_qv_passes 5)
-            elseif(_qv_interval_ok)
+            elseif(_qv_kernel STREQUAL "interval" AND _qv_interval_ok)
               set(_qv_items 262144)  # 160 MB of intervals, still far beyond the caches
+              set(_qv_passes 3)
+            elseif(_qv_kernel STREQUAL "exact" AND _qv_exact_ok)
+              set(_qv_items 16384)  # bound by arithmetic: about 5 ms a pass
               set(_qv_passes 3)
             else()
               continue()
@@ -141,11 +152,11 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
                               TIMEOUT 60)
               if(NOT _qv_rc STREQUAL "0" OR NOT _qv_out MATCHES "^[0-9]+\\.[0-9]+$")
                 message(STATUS "qverify: the ${_qv_kernel} arch probe built with -march=x86-64-v${_qv_level} did not run (${_qv_rc})")
-                # a double probe that fails spoils the measurement; an interval one only the second kernel
+                # a double probe that fails spoils the measurement; another one only its second kernel
                 if(_qv_kernel STREQUAL "double")
                   set(_qv_ok FALSE)
                 else()
-                  set(_qv_interval_ok FALSE)
+                  set(_qv_${_qv_kernel}_ok FALSE)
                 endif()
                 break()
               endif()
@@ -191,14 +202,26 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
           set(_qv_text_interval_3 failed)
           set(_qv_text_interval_4 failed)
         endif()
-        set(_qv_measured "${_qv_key};${_qv_choice};${_qv_text_double_3};${_qv_text_double_4};${_qv_second};${_qv_text_interval_3};${_qv_text_interval_4}")
+        # A second exact (digit block) kernel: the same rule, measured on its own.
+        set(_qv_second_exact none)
+        if(_qv_exact_ok)
+          math(EXPR _qv_other_scaled "${_qv_best_exact_${_qv_other}} * 100")
+          math(EXPR _qv_own_scaled "${_qv_best_exact_${_qv_own}} * 90")
+          if(_qv_other_scaled LESS _qv_own_scaled)
+            set(_qv_second_exact x86-64-v${_qv_other})
+          endif()
+        else()
+          set(_qv_text_exact_3 failed)
+          set(_qv_text_exact_4 failed)
+        endif()
+        set(_qv_measured "${_qv_key};${_qv_choice};${_qv_text_double_3};${_qv_text_double_4};${_qv_second};${_qv_text_interval_3};${_qv_text_interval_4};${_qv_second_exact};${_qv_text_exact_3};${_qv_text_exact_4}")
         set(_qv_how "measured now")
       else()
         # remembered too, so that every reconfigure does not try again (-U QVERIFY_ARCH_MEASURED does)
-        set(_qv_measured "${_qv_key};x86-64-v4;failed;failed;none;failed;failed")
+        set(_qv_measured "${_qv_key};x86-64-v4;failed;failed;none;failed;failed;none;failed;failed")
       endif()
       set(QVERIFY_ARCH_MEASURED "${_qv_measured}" CACHE INTERNAL
-          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the build's -march; ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4")
+          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the build's -march; ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4; the same for the exact digit kernel")
     endif()
   endif()
   if(_qv_measured)
@@ -208,12 +231,19 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
     list(GET _qv_measured 4 _qv_second)
     list(GET _qv_measured 5 _qv_interval_v3_ns)
     list(GET _qv_measured 6 _qv_interval_v4_ns)
+    list(GET _qv_measured 7 _qv_second_exact)
+    list(GET _qv_measured 8 _qv_exact_v3_ns)
+    list(GET _qv_measured 9 _qv_exact_v4_ns)
   endif()
   if(_qv_measured AND NOT _qv_v3_ns STREQUAL "failed")
-    set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_v3_ns} ns/item, v4 ${_qv_v4_ns}; interval v3 ${_qv_interval_v3_ns}, v4 ${_qv_interval_v4_ns}; one thread; ${_qv_how}")
+    set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_v3_ns} ns/item, v4 ${_qv_v4_ns}; interval v3 ${_qv_interval_v3_ns}, v4 ${_qv_interval_v4_ns}; exact v3 ${_qv_exact_v3_ns}, v4 ${_qv_exact_v4_ns}; one thread; ${_qv_how}")
     if(NOT _qv_second STREQUAL "none")
       set(QVERIFY_INTERVAL_MARCH ${_qv_second})
       string(APPEND QVERIFY_ARCH_NOTE "; interval batches: a second kernel for ${_qv_second}, run where the processor has it")
+    endif()
+    if(NOT _qv_second_exact STREQUAL "none")
+      set(QVERIFY_DIGIT_MARCH ${_qv_second_exact})
+      string(APPEND QVERIFY_ARCH_NOTE "; exact digit blocks: a second kernel for ${_qv_second_exact}, run where the processor has it")
     endif()
   else()
     set(QVERIFY_MARCH x86-64-v4)

@@ -1,14 +1,17 @@
 // The configure-time probe of QVERIFY_ARCH=auto (cmake/ChooseArch.cmake): times the real batch
 // kernels, qverify::shadow_batch of direct items (batch/batch.hpp) in double and in certified
-// intervals (exact/interval_pack.hpp), built with the -march under test. 2^20 items in row-major
+// intervals (exact/interval_pack.hpp), and the exact shadows of double-valued items in digit blocks
+// (exact/src/digit_batch_impl.hpp, 2^14 items), built with the -march under test. 2^20 items in row-major
 // batches (about 320 MB of doubles, twice that of intervals: far beyond the caches, as in
 // `qverify bench`), one thread, best of several runs of the thread's CPU time (a shared machine
 // preempting the probe does not count against either instruction set). Prints the ns per item;
 // exits non-zero when a result is not finite (a kernel that does not work is not timed).
-//   arch_probe double|interval [items] [runs]   (interval: built with -DQVERIFY_PROBE_INTERVAL=1)
+//   arch_probe double|interval|exact [items] [runs]   (interval, exact: built with -DQVERIFY_PROBE_INTERVAL=1)
 #include <qverify/batch/batch.hpp>
 #if QVERIFY_PROBE_INTERVAL  // where CGAL, GMP and MPFR were found (cmake/ChooseArch.cmake)
 #include <qverify/exact/interval_pack.hpp>
+
+#include "digit_batch_impl.hpp"  // exact/src: the digit blocks themselves, compiled here
 #endif
 
 #include <algorithm>
@@ -18,6 +21,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <string>
+#include <vector>
 
 namespace {
 double thread_seconds() {
@@ -58,6 +62,35 @@ template <class S, class Setup> int time_kernel(Eigen::Index n, int runs, Setup 
   return 0;
 }
 
+#if QVERIFY_PROBE_INTERVAL
+/// The best time per item of `runs` runs of the exact digit-block shadows of n double-valued items
+/// (full 53-bit significands, exponents over 2^-30..2^30, as `qverify bench`'s).
+int time_exact(Eigen::Index n, int runs) {
+  using namespace qverify;
+  std::vector<double> a(static_cast<std::size_t>(10 * n)), l(static_cast<std::size_t>(4 * n));
+  std::uint64_t s = 0x9e3779b97f4a7c15ull;
+  auto next = [&s] {
+    s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+    const double m = std::ldexp(static_cast<double>((s >> 11) | (std::uint64_t(1) << 52)), -52);
+    return ((s & 1) ? -m : m) * std::ldexp(1.0, static_cast<int>((s >> 1) % 61) - 30);
+  };
+  for (double& x : a) x = next();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) l[static_cast<std::size_t>(4 * i + k)] = k == 3 ? 1.0 : next();
+  DigitBlocks out;
+  double best = HUGE_VAL;
+  long left = 0;
+  for (int r = 0; r < runs; ++r) {
+    const double t0 = thread_seconds();
+    left = run_blocks(DigitOp::shadow, DoubleItems{a.data(), l.data(), n}, out);
+    best = std::min(best, thread_seconds() - t0);
+  }
+  if (left != 0 || out.counts.empty() || out.counts[0] == 0) return 1;
+  std::printf("%.2f\n", 1e9 * best / static_cast<double>(n));
+  return 0;
+}
+#endif
+
 int main(int argc, char** argv) {
   const std::string kind = argc > 1 ? argv[1] : "double";
   const Eigen::Index n = argc > 2 ? std::atol(argv[2]) : (Eigen::Index(1) << 20);
@@ -67,6 +100,7 @@ int main(int argc, char** argv) {
 #if QVERIFY_PROBE_INTERVAL
   if (kind == "interval")
     return time_kernel<CGAL::Interval_nt<false>>(n, runs, [] { return CGAL::Protect_FPU_rounding<true>(); });
+  if (kind == "exact") return time_exact(n, runs);
 #endif
   return 2;
 }

@@ -131,11 +131,14 @@ json processor_json(const ProcessorInfo& p) {
           {"instruction_set", p.instruction_set},
           {"lanes", p.lanes},
           {"interval_kernel", p.interval_kernel},
+          {"exact_kernel", p.exact_kernel},
+          {"exact_lanes", p.exact_lanes},
           {"supports", p.supports},
           {"logical_cpus", p.logical_cpus},
           {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for; interval_kernel: what "
                      "the interval batches run here (a second kernel compiled for another instruction set, chosen at "
-                     "run time, where the build measured it faster)"}};
+                     "run time, where the build measured it faster); exact_kernel, exact_lanes: the same for the exact "
+                     "digit blocks (exact/digit_batch.hpp), and the items of a block"}};
 }
 
 }  // namespace
@@ -171,9 +174,10 @@ std::string bench_text(const BenchReport& b) {
   auto number = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("null"); };
   fmt::format_to(put,
                  "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({}; interval "
-                 "batches: {})\n"
+                 "batches: {}; exact digit blocks: {}, {} items at once)\n"
                  "processor: {} {} (family {}, model {})\n\n",
                  b.n, b.threads, b.memory_bandwidth_gbps, cpu.lanes, cpu.instruction_set, cpu.interval_kernel,
+                 cpu.exact_kernel, cpu.exact_lanes,
                  cpu.vendor.value_or("?"),
                  cpu.model_name.value_or("?"), number(cpu.family), number(cpu.model));
   fmt::format_to(put, "{:<17} {:<9} {:<8} {:<14} {:>12} {:>10} {:>6} {:>8} {:>9}\n", "op", "precision", "method", "inputs",

@@ -1,6 +1,6 @@
 #include <qverify/batch/batch.hpp>
 #include <qverify/core/mirror_division_free.hpp>
-#include <qverify/exact/digit_pack.hpp>
+#include <qverify/exact/digit_batch.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/interval_batch.hpp>
 #include <qverify/exact/rounding.hpp>
@@ -299,38 +299,10 @@ void wide_reflection(const Mat4<W>& A, const Vec4<W>& plane, WideReflectionOut& 
   for (int k = 0; k < 10; ++k) o.B[k] = B(kSymRow[k], kSymCol[k]);
 }
 
-/// The exact rows' arithmetic: W items at once (DigitPack<24>, exact/digit_pack.hpp: 24 signed
-/// digits of radix 2^28 per lane, 2^644 and beyond the results' bit bounds), each item at its own
-/// scale; results normalized (carries propagated) into a per-thread ring of blocks.
-using DP = DigitPack<24>;
-constexpr int kLanes = DP::lanes;
-struct DigitShadowOut {
-  DP P[10], pi[4], R[10];
-  int scale[kLanes] = {};  ///< lane l's results are its integers times base^scale[l]
-};
-struct DigitReflectionOut {
-  DP M[12], B[10];
-  int scale[kLanes] = {};
-};
-constexpr std::size_t kDigitRing = kRing / kLanes;  ///< blocks: as many items as the WideInt ring
-
-void digit_shadow(const Mat4<DP>& A, const Vec4<DP>& L, DigitShadowOut& o) {
-  const Vec4<DP> p = polar_plane<DP>(A, L);
-  const Mat4<DP> P = tangent_cone_from_polar<DP>(A, L, p);
-  const Mat4<DP> R = terminator_quadric_from_polar<DP>(L, p);
-  for (int k = 0; k < 10; ++k) {
-    o.P[k] = P(kSymRow[k], kSymCol[k]), o.P[k].normalize();
-    o.R[k] = R(kSymRow[k], kSymCol[k]), o.R[k].normalize();
-  }
-  for (int k = 0; k < 4; ++k) o.pi[k] = p(k), o.pi[k].normalize();
-}
-void digit_reflection(const Mat4<DP>& A, const Vec4<DP>& plane, DigitReflectionOut& o) {
-  const Mat4<DP> M = scaled_mirror_matrix<DP>(plane);
-  const Mat4<DP> B = mirror_image_division_free<DP>(A, plane);
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) o.M[4 * r + c] = M(r, c), o.M[4 * r + c].normalize();
-  for (int k = 0; k < 10; ++k) o.B[k] = B(kSymRow[k], kSymCol[k]), o.B[k].normalize();
-}
+/// The exact rows' arithmetic: W items at once in digit blocks (exact/digit_batch.hpp, on
+/// DigitPack<24>), in chunks of kDigitChunk items whose results stay in a per-thread buffer until
+/// the next chunk's.
+constexpr Eigen::Index kDigitChunk = 256;
 
 /// Items beyond the WideInt bound run on GMP rationals (counted; none in this benchmark).
 template <class S> void generic_shadow(const Mat4<S>& A, const Vec4<S>& L, Mat4<S>& P, Mat4<S>& R) {
@@ -439,6 +411,8 @@ ProcessorInfo processor_info() {
     if (flags.find(std::string(" ") + flag + " ") != std::string::npos) p.supports.push_back(name);
   p.instruction_set = build_instruction_set();
   p.interval_kernel = interval_batch_kernel();
+  p.exact_kernel = digit_blocks_kernel();
+  p.exact_lanes = digit_blocks_lanes();
   p.lanes = static_cast<int>(DoublePack::size());
   p.logical_cpus = std::thread::hardware_concurrency();
   return p;
@@ -663,15 +637,17 @@ struct SmallRationalExact {
 // ------------------------------------------- exact, double-valued and decimal-17 inputs
 
 /// The exact rows on double-valued or decimal-17 inputs: the first nx items drawn once (doubles, or decimal
-/// text as m 10^e), each item made integer by aligning its exponents, W items at once on DigitPack (blocks)
-/// into a per-thread ring; an item whose block does not fit, or that ends a range, on WideInt<10> (counted in
-/// `singly`), and beyond WideInt's bound on GMP rationals (counted in `beyond`). WideInt one item at a time
+/// text as m 10^e), each item made integer by aligning its exponents, W items at once in digit blocks
+/// (exact/digit_batch.hpp); an item whose block does not fit, or that ends a chunk, on WideInt<10> (counted in
+/// `singly`, per op), and beyond WideInt's bound on GMP rationals (counted in `beyond`). WideInt one item at a time
 /// is also a candidate of its own (shadow_wide, reflection_wide).
 struct WideExact {
   Kind kind;
   std::vector<double> da, dl;    ///< double-valued: A's ten entries, the light's four, per item
   std::vector<Decimal> ca, cl;   ///< decimal-17: the same as decimals
-  std::atomic<long> beyond{0}, singly{0};
+  std::vector<std::int64_t> cam, clm;  ///< decimal-17 apart, for the digit blocks: mantissas
+  std::vector<int> cae, cle;           ///< and exponents
+  std::atomic<long> beyond{0}, singly[2] = {0, 0};  ///< singly: [0] shadows, [1] reflections
 
   /// Draws the first nx items of kind k on `threads` threads (the lights (x, y, z, 1)).
   WideExact(Kind k, Eigen::Index nx, int threads) : kind(k) {
@@ -688,6 +664,11 @@ struct WideExact {
         else cl[u * 4 + 3] = Decimal{1, 0};
       }
     });
+    if (kind == Kind::decimal17) {
+      cam.resize(ca.size()), cae.resize(ca.size()), clm.resize(cl.size()), cle.resize(cl.size());
+      for (std::size_t k = 0; k < ca.size(); ++k) cam[k] = ca[k].m, cae[k] = ca[k].e;
+      for (std::size_t k = 0; k < cl.size(); ++k) clm[k] = cl[k].m, cle[k] = cl[k].e;
+    }
   }
 
   /// Item i as integers times base^eA and base^eL; false when an entry does not fit.
@@ -695,40 +676,6 @@ struct WideExact {
     const auto u = static_cast<std::size_t>(i);
     return kind == Kind::double_valued ? wide_item(&da[u * 10], &dl[u * 4], A, L, eA, eL)
                                        : wide_item(&ca[u * 10], &cl[u * 4], A, L, eA, eL);
-  }
-
-  /// Decimal entries x[l][0 .. count) of W items as DigitPacks: lane l times 10^k[l], its smallest exponent.
-  static bool decimal_lanes(const Decimal* const (&x)[kLanes], int count, DP* out, int (&k)[kLanes]) {
-    __int128 v[10][kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-      k[l] = x[l][0].e;
-      for (int j = 1; j < count; ++j) k[l] = std::min(k[l], x[l][j].e);
-      for (int j = 0; j < count; ++j)
-        if (!decimal_to_int128(x[l][j].m, x[l][j].e - k[l], v[j][l])) return false;
-    }
-    const int bits = DP::bits_of(&v[0][0], count * kLanes);  // one bound, one digit count for the matrix
-    for (int j = 0; j < count; ++j) out[j] = DP::from_lanes(v[j], bits);
-    return true;
-  }
-
-  /// Items [i, i + W) as DigitPack matrices, lane l times base^eA[l] and base^eL[l]; false when one does not fit.
-  bool load_block(Eigen::Index i, Mat4<DP>& A, Vec4<DP>& L, int (&eA)[kLanes], int (&eL)[kLanes]) const {
-    DP a[10], l[4];
-    const auto u = static_cast<std::size_t>(i);
-    if (kind == Kind::double_valued) {
-      const double* xa[kLanes];
-      const double* xl[kLanes];
-      for (int j = 0; j < kLanes; ++j) xa[j] = &da[(u + j) * 10], xl[j] = &dl[(u + j) * 4];
-      if (!DP::from_doubles(xa, 10, a, eA) || !DP::from_doubles(xl, 4, l, eL)) return false;
-    } else {
-      const Decimal* xa[kLanes];
-      const Decimal* xl[kLanes];
-      for (int j = 0; j < kLanes; ++j) xa[j] = &ca[(u + j) * 10], xl[j] = &cl[(u + j) * 4];
-      if (!decimal_lanes(xa, 10, a, eA) || !decimal_lanes(xl, 4, l, eL)) return false;
-    }
-    for (int k = 0; k < 10; ++k) A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) = a[k];
-    for (int k = 0; k < 4; ++k) L(k) = l[k];
-    return true;
   }
 
   /// GMP rationals for an item beyond the bound.
@@ -778,42 +725,29 @@ struct WideExact {
     for (Eigen::Index i = b; i < e; ++i) reflection_item(i, ring[static_cast<std::size_t>(i) % kRing]);
   }
 
-  /// Items [b, e) in blocks of W on DigitPack (Op: digit_shadow or digit_reflection; `scale` the
-  /// results' exponent from the inputs'), and singly on WideInt (`one`) where a block does not fit:
-  /// an entry beyond 126 bits, a result beyond the digits, lanes that disagree on a decision.
-  template <class Out, class WideOut, class Op, class One>
-  void blocks(Eigen::Index b, Eigen::Index e, Op&& op, int a_factor, int l_factor, One&& one) {
-    std::vector<Out> ring(kDigitRing);
+  /// Items [b, e) in digit blocks of W (exact/digit_batch.hpp), a chunk at a time, and singly on WideInt
+  /// (`one`) where a block does not fit (an entry beyond 126 bits, a result beyond the digits, lanes that
+  /// disagree on a decision) and at the end of a chunk that is not a whole number of blocks.
+  template <class WideOut, class One> void blocks(DigitOp op, Eigen::Index b, Eigen::Index e, One&& one) {
+    DigitBlocks out;
     WideOut single;
-    Mat4<DP> A;
-    Vec4<DP> L;
-    int eA[kLanes], eL[kLanes];
-    std::size_t slot = 0;
-    Eigen::Index i = b;
-    for (; i + kLanes <= e; i += kLanes) {
-      Out& o = ring[slot++ % kDigitRing];
-      bool done = false;
-      if (load_block(i, A, L, eA, eL)) try {
-          op(A, L, o);
-          done = true;
-        } catch (const DigitPackOverflow&) {
-        } catch (const MixedLanes&) {
+    for (Eigen::Index c = b; c < e; c += kDigitChunk) {
+      const Eigen::Index n = std::min(kDigitChunk, e - c);
+      const auto u = static_cast<std::size_t>(c);
+      if (kind == Kind::double_valued) digit_blocks(op, DoubleItems{&da[u * 10], &dl[u * 4], n}, out);
+      else digit_blocks(op, DecimalItems{&cam[u * 10], &cae[u * 10], &clm[u * 4], &cle[u * 4], n}, out);
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (i >= out.blocks() * out.lanes || !out.done[static_cast<std::size_t>(i / out.lanes)]) {
+          one(c + i, single);
+          ++singly[op == DigitOp::shadow ? 0 : 1];
         }
-      if (done) {
-        for (int l = 0; l < kLanes; ++l) o.scale[l] = a_factor * eA[l] + l_factor * eL[l];
-        continue;
-      }
-      for (int l = 0; l < kLanes; ++l) one(i + l, single);
-      singly += kLanes;
     }
-    for (; i < e; ++i, ++singly) one(i, single);  // the end of the range
   }
   void shadow(Eigen::Index b, Eigen::Index e) {
-    blocks<DigitShadowOut, WideShadowOut>(b, e, digit_shadow, 2, 2, [this](Eigen::Index i, WideShadowOut& o) { shadow_item(i, o); });
+    blocks<WideShadowOut>(DigitOp::shadow, b, e, [this](Eigen::Index i, WideShadowOut& o) { shadow_item(i, o); });
   }
   void reflection(Eigen::Index b, Eigen::Index e) {
-    blocks<DigitReflectionOut, WideReflectionOut>(b, e, digit_reflection, 1, 4,
-                                                  [this](Eigen::Index i, WideReflectionOut& o) { reflection_item(i, o); });
+    blocks<WideReflectionOut>(DigitOp::reflection, b, e, [this](Eigen::Index i, WideReflectionOut& o) { reflection_item(i, o); });
   }
 };
 
@@ -1003,25 +937,26 @@ class BenchRun {
                                      {[&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.shadow(b, e); }); },
                                       [&] { parallel_for(nx_, T_, [&](Eigen::Index b, Eigen::Index e) { w.reflection(b, e); }); }},
                                      progress(std::string(kind_name(kind)) + ": exact rows"));
-    const std::string lanes = std::to_string(kLanes);
+    const std::string lanes = std::to_string(digit_blocks_lanes());
     const std::string how =
         (kind == Kind::double_valued
              ? "integers after shifting each matrix's doubles to the smallest binary exponent among its entries (the "
                "exact results times a power of two), "
              : "integers after scaling each matrix's decimal text m 10^e to the smallest decimal exponent among its "
                "entries (the exact results times a power of ten), ") +
-        lanes + " items at once: DigitPack<24> (exact/digit_pack.hpp), signed digits of radix 2^28 in SIMD lanes, "
-        "lazy carries, one 32x32-bit multiply per digit product for all lanes; results normalized. No gcd, no "
-        "division, no allocation; a block that does not fit item by item on WideInt<10> (items_singly), GMP "
-        "rationals beyond that (items_beyond_bit_bound)";
+        lanes + " items at once in digit blocks (exact/digit_batch.hpp; " + digit_blocks_kernel() +
+        "): DigitPack<24>, signed digits of radix 2^28 in SIMD lanes, lazy carries, one 32x32-bit multiply per "
+        "digit product for all lanes; results normalized. No gcd, no division; a block that does not fit item by "
+        "item on WideInt<10> (items_singly), GMP rationals beyond that (items_beyond_bit_bound)";
     const std::size_t in_bytes = (10 + 4) * (kind == Kind::double_valued ? 8 : sizeof(Decimal));
     rows_.push_back(batch_row(kind, "shadow", "exact", "direct", t[0], in_bytes + sizeof(WideShadowOut), nx_));
     rows_.back().arithmetic = how;
     rows_.push_back(batch_row(kind, "reflection", "exact", "direct", t[1], in_bytes + sizeof(WideReflectionOut), nx_));
     rows_.back().arithmetic = how + "; the division-free mirror matrix (n.n) M and (n.n)^2 B in rank-one form (core/mirror_division_free.hpp)";
     for (int k : {2, 1}) {
-      rows_[rows_.size() - k].results = "kept in a ring of 1024 items per thread (bytes_per_item: as WideInt<10>)";
-      rows_[rows_.size() - k].items_singly = w.singly.load() / (2 * rounds_);
+      rows_[rows_.size() - k].results = "kept per thread until the next chunk of " + std::to_string(kDigitChunk) +
+                                        " items (bytes_per_item: the results as WideInt<10>)";
+      rows_[rows_.size() - k].items_singly = w.singly[2 - k].load() / rounds_;  // k = 2: the shadow row
     }
     mark_beyond_bound(w.beyond.load());
     if (kind == Kind::double_valued) exact_candidates(w);
@@ -1148,16 +1083,16 @@ class BenchRun {
     say("bench: exact arithmetic candidates on " + std::to_string(m) + " double-valued items");
     const auto mpzf = generic_inputs<CGAL::Mpzf>(w, m);
     const auto mpq = generic_inputs<Rational>(w, m);
-    const long singly = w.singly.load();
+    const long singly[2] = {w.singly[0].load(), w.singly[1].load()};
     std::vector<std::function<void()>> jobs{[&] { w.shadow(0, m); }, [&] { w.reflection(0, m); },
                                             [&] { w.shadow_wide(0, m); }, [&] { w.reflection_wide(0, m); }};
     for (auto& j : generic_jobs(mpzf, m)) jobs.push_back(j);
     for (auto& j : generic_jobs(mpq, m)) jobs.push_back(j);
     const auto tc = interleaved_times(rounds_, jobs, [](int) {});
-    w.singly = singly;  // the rows' count, not the candidates'
-    const std::string digit_note = std::to_string(kLanes) +
-                                   " items at once in SIMD lanes, signed digits of radix 2^28 after aligning exponents "
-                                   "(the exact rows' arithmetic)";
+    w.singly[0] = singly[0], w.singly[1] = singly[1];  // the rows' counts, not the candidates'
+    const std::string digit_note = std::to_string(digit_blocks_lanes()) + " items at once in SIMD lanes (" +
+                                   digit_blocks_kernel() +
+                                   "), signed digits of radix 2^28 after aligning exponents (the exact rows' arithmetic)";
     const char* names[] = {"DigitPack<24>", "WideInt<10>", "CGAL::Mpzf", "GMP rationals"};
     const char* notes[] = {digit_note.c_str(), "640-bit integers in place after aligning exponents, one item at a time",
                            "mantissa and exponent per number, no gcd", "boost mpq_rational, a gcd per operation"};

@@ -1,6 +1,7 @@
 // The CLI contract (README "Command line", docs/json-documents.md): JSON shapes, number encodings, exit codes.
 #include "cli_run.hpp"
 
+#include <qverify/exact/digit_batch.hpp>
 #include <qverify/exact/interval_batch.hpp>
 #include <qverify/scene/files.hpp>
 
@@ -320,7 +321,7 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
     if (row["precision"] == "exact" && row.value("inputs", "") != "small-rational" && row["op"] != "verify-shadow" &&
         row["op"] != "verify-reflection") {
       REQUIRE(row.contains("items_singly"));
-      CHECK(row["items_singly"].get<long>() < doc["threads"].get<long>() * doc["simd"]["lanes"].get<long>());
+      CHECK(row["items_singly"].get<long>() < doc["threads"].get<long>() * doc["processor"]["exact_lanes"].get<long>());
     }
   }
   // the candidates for exact arithmetic on doubles, the rows' own first
@@ -332,6 +333,8 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
   CHECK(doc["processor"]["interval_kernel"] == std::string(qverify::interval_batch_kernel()));
   CHECK(doc["simd"]["interval_instruction_set"] == doc["processor"]["interval_kernel"]);
   CHECK(doc["processor"]["instruction_set"] == std::string(qverify::build_instruction_set()));
+  CHECK(doc["processor"]["exact_kernel"] == std::string(qverify::digit_blocks_kernel()));
+  CHECK(doc["processor"]["exact_lanes"] == qverify::digit_blocks_lanes());
   for (const char* k : {"shadow/double/direct", "shadow/double/paper", "shadow/interval/direct", "shadow/exact/direct",
                         "reflection/double/direct", "reflection/double/paper", "reflection/interval/direct",
                         "reflection/exact/direct"})

@@ -5,6 +5,7 @@
 #include <qverify/batch/rows.hpp>
 #include <qverify/core/core.hpp>
 #include <qverify/core/mirror_division_free.hpp>
+#include <qverify/exact/digit_batch.hpp>
 #include <qverify/exact/digit_pack.hpp>
 #include <qverify/exact/wide_int.hpp>
 
@@ -16,6 +17,8 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 using namespace qverify;
 using qverify::test::pow10;
@@ -107,6 +110,40 @@ TEST_CASE("DigitPack: + - * lane by lane equal GMP, through lazy digits and norm
   }
 }
 
+TEST_CASE("DigitPack: chains of lazy operands, never read until the end, equal GMP", "[digit]") {
+  // the bounds that decide when an operand is normalized (a digit product reads 32 bits; a digit's
+  // products must sum below 2^63; a sum adds a bit) are met only if nothing in between normalizes:
+  // here nothing is read between the operations
+  std::mt19937_64 g(27);
+  for (int trial = 0; trial < 300; ++trial) {
+    __int128 top[kL];
+    for (auto& v : top) v = (static_cast<__int128>(1) << (60 + g() % 60)) - 1;  // all digits 2^28 - 1
+    Lanes x = random_pack(g), y = random_pack(g);
+    if (trial % 2) {
+      x.p = DP::from_lanes(top);
+      for (int l = 0; l < kL; ++l) x.q[l] = q128(top[l]);
+    }
+    DP acc = x.p;
+    Q q[kL];
+    for (int l = 0; l < kL; ++l) q[l] = x.q[l];
+    const int adds = static_cast<int>(g() % 40);
+    for (int k = 0; k < adds; ++k) {  // digits up to 2^(28 + adds)
+      if (k % 3 == 2) acc -= y.p;
+      else acc += acc;
+      for (int l = 0; l < kL; ++l) q[l] = k % 3 == 2 ? q[l] - y.q[l] : q[l] + q[l];
+      if (acc.bound_bits() > 200) break;
+    }
+    DP prod = acc * acc;  // lazy times lazy, itself
+    prod += x.p * y.p;
+    prod -= acc;
+    DP neg = -prod;
+    neg *= x.p;
+    for (int l = 0; l < kL; ++l) q[l] = -((q[l] * q[l] + x.q[l] * y.q[l] - q[l]) * x.q[l]);
+    INFO("trial " << trial << ", " << adds << " sums");
+    check_lanes(neg, q);
+  }
+}
+
 TEST_CASE("DigitPack: normalize keeps the value and bounds every digit by 2^28", "[digit]") {
   std::mt19937_64 g(22);
   for (int trial = 0; trial < 200; ++trial) {
@@ -156,7 +193,10 @@ TEST_CASE("DigitPack: doubles read exactly, lanes at their own exponents", "[dig
     INFO("trial " << trial);
     REQUIRE(DP::from_doubles(items, 6, out, e));
     for (int k = 0; k < 6; ++k)
-      for (int l = 0; l < kL; ++l) CHECK(out[k].to_rational(l) * pow2(e[l]) == Q(x[l][k]));
+      for (int l = 0; l < kL; ++l) {
+        CHECK(out[k].to_rational(l) * pow2(e[l]) == Q(x[l][k]));
+        CHECK(abs(Q(x[l][k])) < pow2(out[k].bound_bits() + e[l]));  // the bit bound holds
+      }
   }
   // a spread beyond 126 bits is refused, inf and NaN are errors
   double wide[kL][2], bad[kL][2];
@@ -250,6 +290,7 @@ TEST_CASE("DigitPack: nothing is truncated, a result beyond the digits throws", 
   CHECK(y.to_rational(0) == pow2(600));
   CHECK_THROWS_AS(y * x, DigitPackOverflow);
   CHECK_THROWS_AS(DP::from_lanes(big, 100), std::invalid_argument);  // a bound below the values
+  CHECK_THROWS_AS(DP::from_lanes(big, 0), std::invalid_argument);
 }
 
 TEST_CASE("DigitPack: decimal text m 10^k read exactly through 128-bit integers, lane by lane", "[digit]") {
@@ -273,4 +314,81 @@ TEST_CASE("DigitPack: decimal text m 10^k read exactly through 128-bit integers,
   CHECK(q128(v) == Q(-85070591730234615) * pow10(21));
   CHECK_FALSE(decimal_to_int128(85070591730234616, 21, v));            // 8.5070591730234616e37 > 2^126
   CHECK_THROWS_AS(decimal_to_int128(1, -1, v), std::invalid_argument);
+}
+
+// ------------------------------------------------------------------ digit blocks (digit_batch.hpp)
+
+TEST_CASE("digit blocks: every whole block's results equal GMP rationals, item by item", "[digit]") {
+  std::mt19937_64 g(26);
+  const int W = digit_blocks_lanes();
+  const Eigen::Index n = 5 * W + 3;  // five blocks and three items left to the caller
+  std::vector<double> a(static_cast<std::size_t>(10 * n)), l(static_cast<std::size_t>(4 * n));
+  std::vector<std::int64_t> am(a.size()), lm(l.size());
+  std::vector<int> ae(a.size()), le(l.size());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    for (int k = 0; k < 10; ++k) {
+      a[10 * u + k] = random_double(g, 30);
+      am[10 * u + k] = static_cast<std::int64_t>(10000000000000000ull + g() % 90000000000000000ull) * ((g() & 1) ? -1 : 1);
+      ae[10 * u + k] = static_cast<int>(g() % 18) - 25;
+    }
+    for (int k = 0; k < 4; ++k) {
+      l[4 * u + k] = k == 3 ? 1.0 : random_double(g, 30);
+      lm[4 * u + k] = k == 3 ? 1 : static_cast<std::int64_t>(1000000000000000ull + g() % 9000000000000000ull);
+      le[4 * u + k] = k == 3 ? 0 : static_cast<int>(g() % 18) - 25;
+    }
+  }
+  // block 2: an item whose entries span more than 126 bits (left to the caller)
+  a[10 * static_cast<std::size_t>(2 * W + 1)] = std::ldexp(1.0, 200);
+  // block 3: lanes that disagree on L_w = 0 (a parallel light among point lights: left to the caller)
+  l[4 * static_cast<std::size_t>(3 * W) + 3] = 0.0;
+  for (const DigitOp op : {DigitOp::shadow, DigitOp::reflection}) {
+    DigitBlocks out;
+    CHECK(digit_blocks(op, DoubleItems{a.data(), l.data(), n}, out) == (op == DigitOp::shadow ? 2 : 1));
+    DigitBlocks dec;
+    CHECK(digit_blocks(op, DecimalItems{am.data(), ae.data(), lm.data(), le.data(), n}, dec) == 0);
+    REQUIRE(out.blocks() == 5);
+    CHECK(out.lanes == W);
+    CHECK(out.base == 2);
+    CHECK(dec.base == 10);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      INFO("item " << i << (op == DigitOp::shadow ? " shadow" : " reflection"));
+      const auto u = static_cast<std::size_t>(i);
+      const Eigen::Index b = i / W;
+      const bool whole = b < out.blocks();
+      const bool undone = b == 2 || (op == DigitOp::shadow && b == 3);
+      if (!whole) continue;
+      CHECK(static_cast<bool>(out.done[static_cast<std::size_t>(b)]) == !undone);
+      for (const bool decimal : {false, true}) {
+        const DigitBlocks& r = decimal ? dec : out;
+        if (!decimal && undone) {
+          CHECK_THROWS_AS(r.value(i, 0), std::logic_error);
+          continue;
+        }
+        Mat4<Q> A;
+        Vec4<Q> L;
+        for (int k = 0; k < 10; ++k)
+          A(kSymRow[k], kSymCol[k]) = A(kSymCol[k], kSymRow[k]) =
+              decimal ? Q(am[10 * u + k]) * test::pow10(ae[10 * u + k]) : Q(a[10 * u + k]);
+        for (int k = 0; k < 4; ++k) L(k) = decimal ? Q(lm[4 * u + k]) * test::pow10(le[4 * u + k]) : Q(l[4 * u + k]);
+        if (op == DigitOp::shadow) {
+          const Mat4<Q> P = tangent_cone<Q>(A, L), R = terminator_quadric<Q>(A, L);
+          const Vec4<Q> p = polar_plane<Q>(A, L);
+          for (int k = 0; k < 10; ++k) CHECK(r.value(i, k) == P(kSymRow[k], kSymCol[k]));
+          for (int k = 0; k < 4; ++k) CHECK(r.value(i, 10 + k) == p(k));
+          for (int k = 0; k < 10; ++k) CHECK(r.value(i, 14 + k) == R(kSymRow[k], kSymCol[k]));
+        } else {
+          const Mat4<Q> M = scaled_mirror_matrix<Q>(L), B = mirror_image<Q>(A, M);
+          for (int k = 0; k < 12; ++k) CHECK(r.value(i, k) == M(k / 4, k % 4));
+          for (int k = 0; k < 10; ++k) CHECK(r.value(i, 12 + k) == B(kSymRow[k], kSymCol[k]));
+        }
+      }
+    }
+    CHECK_THROWS_AS(out.value(n - 1, 0), std::out_of_range);  // not in a whole block
+    CHECK_THROWS_AS(out.value(0, out.entries), std::out_of_range);
+  }
+  a[0] = std::numeric_limits<double>::infinity();
+  DigitBlocks out;
+  CHECK_THROWS_AS(digit_blocks(DigitOp::shadow, DoubleItems{a.data(), l.data(), n}, out), std::invalid_argument);
+  CHECK(std::string(digit_blocks_kernel()).size() > 0);
 }

@@ -97,6 +97,29 @@ TEST_CASE("WideInt: + - * and comparisons equal GMP on random operands, carries 
     CHECK((a == b) == (qa == qb));
     CHECK((-a).to_rational() == -qa);
   }
+  // x += x and x -= x in place, as GMP
+  for (int trial = 0; trial < 200; ++trial) {
+    W a = random_wide(1 + static_cast<int>(g() % 4));
+    const Q qa = a.to_rational();
+    W b = a;
+    b += b;
+    CHECK(b.to_rational() == 2 * qa);
+    b -= b;
+    CHECK(b.sign() == 0);
+  }
+  // the most negative value of one limb, -2^63 (a sum that just fits), and its negation (one more limb)
+  const W m62 = W::from_magnitude(static_cast<unsigned __int128>(1) << 62, true);
+  const W m63 = m62 + m62;
+  CHECK(m63.limbs() == 1);
+  CHECK(m63.to_rational() == -pow2(63));
+  CHECK((-m63).to_rational() == pow2(63));
+  CHECK((m63 * m63).to_rational() == pow2(126));
+  CHECK((m63 - W(1)).to_rational() == -pow2(63) - 1);
+  // a sum beyond the limbs throws: 2^638 + 2^638 needs a 641st bit with the sign
+  const W half = W::from_magnitude(1, false, 64 * W::max_limbs - 2);
+  CHECK(half.limbs() == W::max_limbs);
+  CHECK_THROWS_AS(half + half, WideIntOverflow);
+  CHECK((half - half).sign() == 0);
   // nothing is truncated: a product beyond the limbs throws
   const W big = W::from_magnitude(1, false, 64 * W::max_limbs - 2);
   CHECK_THROWS_AS(big * big, WideIntOverflow);
@@ -171,7 +194,7 @@ TEST_CASE("WideInt: the direct formulas on double-valued items equal GMP rationa
     int bA = 0, bL = 0;
     for (Eigen::Index i = 0; i < 16; ++i) bA = std::max(bA, A(i).bits());
     for (int i = 0; i < 4; ++i) bL = std::max(bL, L(i).bits());
-    if (2 * bA + 2 * bL + 5 > 640 || bA + 4 * bL + 8 > 640) {
+    if (2 * bA + 2 * bL + 5 > 639 || bA + 4 * bL + 8 > 639) {  // two's complement: 639 bits and a sign
       // beyond WideInt<10> (subnormals next to 2^30): the formulas must throw, never truncate
       bool threw = false;
       try {

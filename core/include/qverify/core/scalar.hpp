@@ -84,7 +84,7 @@ inline typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
 /// a batch computed W items at a time is bitwise the single-item result.
 template <class S, int N> inline S ordered_dot(const Eigen::Matrix<S, N, 1>& a, const Eigen::Matrix<S, N, 1>& b) {
   S sum = a(0) * b(0);
-  for (int k = 1; k < N; ++k) sum += a(k) * b(k);  // in place: no copy of a wide exact sum
+  for (int k = 1; k < N; ++k) sum += a(k) * b(k);  // in place where a type has it (DigitPack: no copy of a wide sum)
   return sum;
 }
 

@@ -26,8 +26,9 @@
 /// normalized (carries propagated, in place: the value does not change, hence `mutable`),
 /// which brings every digit to [0, 2^28) but the top one, signed with |d| <= 2^28, and n
 /// to ceil(bits / 28). A result beyond D digits throws DigitPackOverflow: nothing is
-/// truncated (callers check a bit bound first). Reading a value may so rewrite its digits:
-/// a DigitPack shared by threads needs a copy per thread, as an unsynchronized cache would.
+/// truncated (callers catch it, and take such items another way). Reading a value that is not
+/// normalized rewrites its digits: such a DigitPack shared by threads needs a copy per thread,
+/// as an unsynchronized cache would (a normalized one is only read).
 ///
 /// Decisions (ScalarOps: a formula asks whether L_w = 0) are taken when every lane gives the
 /// same answer and throw MixedLanes otherwise, as for DoublePack (batch/pack.hpp).
@@ -69,7 +70,9 @@ inline Lanes splat(std::int64_t v) { return Lanes{} + v; }
 /// (A template, so that the branches for other widths are discarded.)
 template <class V = Lanes> inline V mul32(V a, V b) {
 #if defined(__AVX512F__)
-  if constexpr (sizeof(V) == 64) return reinterpret_cast<V>(_mm512_mul_epi32(reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(b)));
+  // (the zero-masking form: GCC 12.2's _mm512_mul_epi32 trips -Wmaybe-uninitialized, GCC PR 105593)
+  if constexpr (sizeof(V) == 64)
+    return reinterpret_cast<V>(_mm512_maskz_mul_epi32(static_cast<__mmask8>(0xff), reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(b)));
 #endif
 #if defined(__AVX2__)
   if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_mul_epi32(reinterpret_cast<__m256i>(a), reinterpret_cast<__m256i>(b)));
@@ -87,7 +90,8 @@ template <class V = Lanes> inline V mul32(V a, V b) {
 /// as unsigned included) gives 0, as the AVX2 and AVX-512 instructions do.
 template <class V = ULanes> inline V shift_right(V a, V count) {
 #if defined(__AVX512F__)
-  if constexpr (sizeof(V) == 64) return reinterpret_cast<V>(_mm512_srlv_epi64(reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(count)));
+  if constexpr (sizeof(V) == 64)  // (zero-masking: GCC PR 105593, as in mul32)
+    return reinterpret_cast<V>(_mm512_maskz_srlv_epi64(static_cast<__mmask8>(0xff), reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(count)));
 #endif
 #if defined(__AVX2__)
   if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_srlv_epi64(reinterpret_cast<__m256i>(a), reinterpret_cast<__m256i>(count)));
@@ -98,7 +102,8 @@ template <class V = ULanes> inline V shift_right(V a, V count) {
 }
 template <class V = ULanes> inline V shift_left(V a, V count) {
 #if defined(__AVX512F__)
-  if constexpr (sizeof(V) == 64) return reinterpret_cast<V>(_mm512_sllv_epi64(reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(count)));
+  if constexpr (sizeof(V) == 64)  // (zero-masking: GCC PR 105593, as in mul32)
+    return reinterpret_cast<V>(_mm512_maskz_sllv_epi64(static_cast<__mmask8>(0xff), reinterpret_cast<__m512i>(a), reinterpret_cast<__m512i>(count)));
 #endif
 #if defined(__AVX2__)
   if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_sllv_epi64(reinterpret_cast<__m256i>(a), reinterpret_cast<__m256i>(count)));
@@ -108,8 +113,8 @@ template <class V = ULanes> inline V shift_left(V a, V count) {
   return r;
 }
 
-/// floor(t / 2^28) lane-wise, for |t| < 2^62: the logical shift of t + 2^63 (AVX2 has no
-/// 64-bit arithmetic shift), less 2^35.
+/// floor(t / 2^28) lane-wise, for every t: the logical shift of t + 2^63 (AVX2 has no 64-bit
+/// arithmetic shift; t + 2^63 never wraps as unsigned), less 2^35.
 inline Lanes carry_of(Lanes t) {
   const ULanes biased = reinterpret_cast<ULanes>(t) + (ULanes{} + (std::uint64_t(1) << 63));
   return reinterpret_cast<Lanes>(biased >> kRadixBits) - splat(std::int64_t(1) << (63 - kRadixBits));
@@ -199,8 +204,9 @@ template <int D> class DigitPack {
   static constexpr int lanes = digit_detail::kLanes;
   static constexpr int radix_bits = digit_detail::kRadixBits;
   static constexpr int max_digits = D;
-  /// Values of every lane below 2^max_bits fit (normalized, the top digit is at most 2^28).
-  static constexpr int max_bits = radix_bits * (D - 1);
+  /// Every lane's value below 2^max_bits fits (D normalized digits hold 28 D bits; a bound, not
+  /// what an operation's intermediate digits may need).
+  static constexpr int max_bits = radix_bits * D;
 
   /// Zero in every lane. User-provided, so that a value-initialization does not fill the digits.
   DigitPack() {}
@@ -235,8 +241,8 @@ template <int D> class DigitPack {
   /// of a block runs the same kernels).
   static DigitPack from_lanes(const __int128 (&v)[lanes], int bits) {
     DigitPack r;
+    if (bits < 0 || bits > 127 || bits_of(v, lanes) > bits) throw std::invalid_argument("DigitPack: a value beyond its bound");
     if (bits == 0) return r;
-    if (bits > 127 || bits_of(v, lanes) > bits) throw std::invalid_argument("DigitPack: a value beyond its bound");
     const int n = digits_for(bits);
     if (n > D) throw DigitPackOverflow();
     Lanes lo, hi;  // the two's complement halves of every lane
@@ -256,6 +262,7 @@ template <int D> class DigitPack {
     r.n_ = n;
     r.dig_ = radix_bits;
     r.bits_ = bits;
+    r.canonical_ = true;
     return r;
   }
   /// Lane l holds v[l], exactly (normalized digits for the values' own bound).
@@ -277,7 +284,11 @@ template <int D> class DigitPack {
     Lanes e0 = none;
     for (int k = 0; k < count; ++k) {
       U b;
-      for (int l = 0; l < lanes; ++l) std::memcpy(&b[l], &items[l][k], sizeof(double));
+      for (int l = 0; l < lanes; ++l) {
+        std::uint64_t bits_of_x;  // (clang takes no address of a vector element)
+        std::memcpy(&bits_of_x, &items[l][k], sizeof(double));
+        b[l] = bits_of_x;
+      }
       const Lanes biased = reinterpret_cast<Lanes>((b >> 52) & (U{} + 0x7ff));
       for (int l = 0; l < lanes; ++l)
         if (biased[l] == 0x7ff) throw std::invalid_argument("DigitPack: not a finite double");
@@ -322,31 +333,37 @@ template <int D> class DigitPack {
 
   /// Digits in use (the same for every lane).
   int digits() const { return n_; }
+  /// The digits in use, lane-major: out[k W + l] = digit k of lane l (digits() W numbers).
+  void copy_digits(std::int64_t* out) const { std::memcpy(out, d_, sizeof(Lanes) * static_cast<std::size_t>(n_)); }
   /// Digit k of lane l (k < digits()): lazy unless normalized.
   std::int64_t digit(int k, int lane) const { return d_[k][lane]; }
   /// A bound on every lane's magnitude: |value| < 2^bound_bits().
   int bound_bits() const { return bits_; }
 
-  /// Carries propagated: digits in [0, 2^28) but the top one (signed, |d| <= 2^28), as few
-  /// as the bit bound allows (digits_for). The value does not change.
+  /// Carries propagated: the canonical form, digits in [0, 2^28) but the top one (signed, |d|
+  /// <= 2^28), digits_for(bits) of them (no operation holds more: a product's an + bn - 1 digits
+  /// are at most ceil((x + y) / 28) for bounds of x and y bits). The value does not change. A
+  /// canonical value is left as it is, nothing written: reading it is safe from several threads.
+  /// A top digit beyond 2^28 would mean a bit bound below the value, a bug of this class:
+  /// std::logic_error, never a wrong digit.
   void normalize() const {
-    if (n_ == 0) return;
-    const int target = std::max(1, digits_for(bits_)), m = std::max(n_, target);
-    if (m > D) throw DigitPackOverflow();
+    if (canonical_ || n_ == 0) return;
+    const int target = std::max(n_, digits_for(bits_));
+    if (target > D) throw DigitPackOverflow();
     Lanes c{};
-    for (int k = 0; k + 1 < m; ++k) {
+    for (int k = 0; k + 1 < target; ++k) {
       const Lanes t = (k < n_ ? d_[k] : Lanes{}) + c;
       c = digit_detail::carry_of(t);
       d_[k] = t & digit_detail::kRadixMask;
     }
-    Lanes top = (m - 1 < n_ ? d_[m - 1] : Lanes{}) + c;
-    // digits above the bound's: fold them into the top one, from the highest (Horner): every
-    // partial value is floor(value / 2^(28 k)), below 2^(bits - 28 k) + 1, so nothing overflows
-    for (int k = m - 2; k >= target - 1; --k)
-      top = reinterpret_cast<Lanes>(reinterpret_cast<digit_detail::ULanes>(top) << radix_bits) + d_[k];
+    const Lanes top = (target - 1 < n_ ? d_[target - 1] : Lanes{}) + c;
+    const std::int64_t limit = std::int64_t(1) << radix_bits;
+    for (int l = 0; l < lanes; ++l)
+      if (top[l] > limit || top[l] < -limit) throw std::logic_error("DigitPack: a value beyond its bit bound");
     d_[target - 1] = top;
     n_ = target;
     dig_ = radix_bits;
+    canonical_ = true;
   }
 
   /// Lane l's value as a GMP rational (exactly).
@@ -435,7 +452,7 @@ template <int D> class DigitPack {
 #undef QVERIFY_DIGIT_COPY
       default: break;
     }
-    n_ = x.n_, dig_ = x.dig_, bits_ = x.bits_;
+    n_ = x.n_, dig_ = x.dig_, bits_ = x.bits_, canonical_ = x.canonical_;
   }
   template <bool Sub> DigitPack& add_in_place(const DigitPack& b) {
     if (b.n_ == 0) return *this;
@@ -446,6 +463,7 @@ template <int D> class DigitPack {
     for (; k < m; ++k) d_[k] = Sub ? d_[k] - b.d_[k] : d_[k] + b.d_[k];
     for (; k < b.n_; ++k) d_[k] = Sub ? -b.d_[k] : b.d_[k];
     n_ = std::max(n_, b.n_);
+    canonical_ = false;
     dig_ = std::max(dig_, b.dig_) + 1;
     bits_ = std::max(bits_, b.bits_) + 1;
     return *this;
@@ -470,6 +488,7 @@ template <int D> class DigitPack {
   // Bounds the same for every lane; normalize() changes the form, never the value.
   mutable int n_ = 0;     ///< digits in use (none: zero)
   mutable int dig_ = 0;   ///< every |digit| <= 2^dig_
+  mutable bool canonical_ = false;  ///< the digits are normalize()'s (lower ones in [0, 2^28))
   int bits_ = 0;          ///< every |value| < 2^bits_
   mutable Lanes d_[D];
 };

@@ -220,10 +220,9 @@ template <int N> class WideInt {
   }
 
   /// The 128-bit two's complement pattern v in `limbs` limbs (1 or 2; with 1, v must fit in a
-  /// signed 64-bit limb). Zero has no limbs.
+  /// signed 64-bit limb), zero included (the entries of a matrix, zeros too, get one size).
   static WideInt from_signed(unsigned __int128 v, int limbs) {
     WideInt r;
-    if (v == 0) return r;
     r.d_[0] = static_cast<Limb>(v);
     r.d_[1] = static_cast<Limb>(v >> 64);
     r.n_ = limbs;

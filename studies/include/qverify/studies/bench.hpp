@@ -46,6 +46,10 @@ struct ProcessorInfo {
   /// What the interval batches run (exact/interval_batch.hpp): the build's instruction set, or
   /// a second kernel's, e.g. "AVX-512 (run-time dispatch)"
   std::string interval_kernel;
+  /// What the exact rows on doubles and decimals run (exact/digit_batch.hpp): the same choice for
+  /// the digit blocks, and their lanes (items per block)
+  std::string exact_kernel;
+  int exact_lanes = 1;
   std::vector<std::string> supports;  ///< of SSE2, AVX2, AVX-512 and AVX-512 IFMA, those the processor has
   unsigned logical_cpus = 0;
 };
