@@ -4,6 +4,7 @@
 #include "digit_batch_impl.hpp"
 
 #include "digit_batch_kernel.hpp"
+#include "processor_level.hpp"
 
 #include <qverify/exact/interval_batch.hpp>
 
@@ -20,17 +21,7 @@ namespace {
 /// Does the second digit kernel exist in this build and run on this processor? (Asked once.)
 bool second_digit_kernel_here() {
 #if QVERIFY_DIGIT_SECOND_KERNEL_LEVEL
-  static const bool here = [] {
-    __builtin_cpu_init();
-#if QVERIFY_DIGIT_SECOND_KERNEL_LEVEL == 4
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-           __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
-           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-           __builtin_cpu_supports("bmi2");
-#else
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
-#endif
-  }();
+  static const bool here = processor_runs_level(QVERIFY_DIGIT_SECOND_KERNEL_LEVEL);
   return here;
 #else
   return false;

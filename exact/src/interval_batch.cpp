@@ -3,6 +3,7 @@
 #include <qverify/exact/interval_pack.hpp>
 
 #include "interval_batch_kernel.hpp"
+#include "processor_level.hpp"
 
 #ifndef QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL  // set by exact/CMakeLists.txt where the build has a second kernel
 #define QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL 0
@@ -14,21 +15,9 @@ namespace qverify {
 namespace {
 
 /// Does the second interval kernel exist in this build and run on this processor? (Asked once.)
-/// The features of the level one by one: clang 14 knows no level names in __builtin_cpu_supports.
 bool second_kernel_here() {
 #if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
-  static const bool here = [] {
-    __builtin_cpu_init();
-#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-           __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
-           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-           __builtin_cpu_supports("bmi2");
-#else
-    // (clang 14 knows neither "f16c" nor "movbe" here; every processor with these three has both)
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
-#endif
-  }();
+  static const bool here = processor_runs_level(QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL);
   return here;
 #else
   return false;

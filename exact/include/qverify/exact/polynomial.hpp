@@ -164,16 +164,5 @@ class Poly {
 
 namespace Eigen {
 /// The symbolic scalar is exact: epsilon 0.
-template <> struct NumTraits<qverify::Poly> : GenericNumTraits<qverify::Poly> {
-  using Real = qverify::Poly;
-  using NonInteger = qverify::Poly;
-  using Literal = qverify::Poly;
-  using Nested = qverify::Poly;
-  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 50, MulCost = 200 };
-  static Real epsilon() { return Real(0); }
-  static Real dummy_precision() { return Real(0); }
-  static Real highest() { return Real(0); }
-  static Real lowest() { return Real(0); }
-  static int digits10() { return 0; }
-};
+template <> struct NumTraits<qverify::Poly> : qverify::ExactNumTraits<qverify::Poly, 0, 50, 200> {};
 }  // namespace Eigen

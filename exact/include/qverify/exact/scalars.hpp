@@ -65,6 +65,22 @@ inline unsigned mpfr_working_bits() {
   return static_cast<unsigned>(mpfr_get_prec(probe.backend().data()));
 }
 
+/// Eigen::NumTraits of an exact scalar S (WideInt, DigitPack, the symbolic Poly): epsilon 0, so
+/// that every tolerance of the core is an equality (ScalarOps' exact()), and the costs Eigen's
+/// expression evaluation weighs.
+template <class S, int IsInt, int Add, int Mul> struct ExactNumTraits : Eigen::GenericNumTraits<S> {
+  using Real = S;
+  using NonInteger = S;
+  using Literal = S;
+  using Nested = S;
+  enum { IsComplex = 0, IsInteger = IsInt, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = Add, MulCost = Mul };
+  static Real epsilon() { return Real(0); }
+  static Real dummy_precision() { return Real(0); }
+  static Real highest() { return Real(0); }
+  static Real lowest() { return Real(0); }
+  static int digits10() { return 0; }
+};
+
 }  // namespace qverify
 
 namespace Eigen {

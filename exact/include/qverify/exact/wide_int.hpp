@@ -524,26 +524,6 @@ template <int N> WideInt<N> wide_from_decimal(std::int64_t m, int shift) {
 namespace Eigen {
 
 /// WideInt is exact: epsilon 0 (every tolerance of the core is an equality).
-template <int N> struct NumTraits<qverify::WideInt<N>> : GenericNumTraits<qverify::WideInt<N>> {
-  using Self = qverify::WideInt<N>;
-  using Real = Self;
-  using NonInteger = Self;
-  using Literal = Self;
-  using Nested = Self;
-  enum {
-    IsComplex = 0,
-    IsInteger = 1,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = 4,
-    MulCost = 8
-  };
-  static Real epsilon() { return Real(0); }
-  static Real dummy_precision() { return Real(0); }
-  static Real highest() { return Real(0); }
-  static Real lowest() { return Real(0); }
-  static int digits10() { return 0; }
-};
+template <int N> struct NumTraits<qverify::WideInt<N>> : qverify::ExactNumTraits<qverify::WideInt<N>, 1, 4, 8> {};
 
 }  // namespace Eigen
