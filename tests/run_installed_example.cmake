@@ -9,8 +9,11 @@ if(PROGRAM)
 else()
   set(last "${CMAKE_CTEST_COMMAND};--test-dir;${BIN};--output-on-failure")
 endif()
+# Without optimization (no build type): what is tested is that a user's project finds, builds and
+# links against the installed tree and gets the right answers; at -O3 the Catch2 example took 47 s
+# to build and run against 25 s (the GoogleTest one 21 s against 15), in a suite that has 20 minutes.
 foreach(step
-    "${CMAKE_COMMAND};-S;${SRC};-B;${BIN};-DCMAKE_BUILD_TYPE=Release;-DCMAKE_PREFIX_PATH=${PREFIX};-DCMAKE_CXX_COMPILER=${CXX}"
+    "${CMAKE_COMMAND};-S;${SRC};-B;${BIN};-DCMAKE_PREFIX_PATH=${PREFIX};-DCMAKE_CXX_COMPILER=${CXX}"
     "${CMAKE_COMMAND};--build;${BIN}"
     "${last}")
   execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -48,6 +48,16 @@ int digit_blocks_lanes() {
   return kW;
 }
 
+const char* digit_blocks_second_kernel() {
+#if QVERIFY_DIGIT_SECOND_KERNEL_LEVEL
+  return QVERIFY_DIGIT_SECOND_KERNEL_MARCH;
+#else
+  return "";
+#endif
+}
+
+bool digit_blocks_dispatched() { return second_digit_kernel_here(); }
+
 const char* digit_blocks_kernel() {
 #if QVERIFY_DIGIT_SECOND_KERNEL_LEVEL
   if (second_digit_kernel_here()) return QVERIFY_DIGIT_SECOND_KERNEL_NAME " (run-time dispatch)";

@@ -387,6 +387,19 @@ TEST_CASE("digit blocks: every whole block's results equal GMP rationals, item b
     CHECK_THROWS_AS(out.value(n - 1, 0), std::out_of_range);  // not in a whole block
     CHECK_THROWS_AS(out.value(0, out.entries), std::out_of_range);
   }
+  // the kernel that ran is the one the build chose and this processor runs (a dispatch that fell
+  // back to the build's kernel would pass every comparison above)
+  const std::string second = digit_blocks_second_kernel();
+  __builtin_cpu_init();
+  const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+  const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                  __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+                  __builtin_cpu_supports("avx512vl");
+  if (second == "x86-64-v4") CHECK(digit_blocks_dispatched() == v4);
+  else if (second == "x86-64-v3") CHECK(digit_blocks_dispatched() == v3);
+  else CHECK(!digit_blocks_dispatched());
+  CHECK((std::string(digit_blocks_kernel()).find("(run-time dispatch)") != std::string::npos) == digit_blocks_dispatched());
+  if (digit_blocks_dispatched()) CHECK(W == (second == "x86-64-v4" ? 8 : 4));
   a[0] = std::numeric_limits<double>::infinity();
   DigitBlocks out;
   CHECK_THROWS_AS(digit_blocks(DigitOp::shadow, DoubleItems{a.data(), l.data(), n}, out), std::invalid_argument);

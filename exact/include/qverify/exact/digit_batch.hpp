@@ -81,5 +81,9 @@ long digit_blocks(DigitOp op, const DecimalItems& in, DigitBlocks& out);
 /// dispatch)" when it is the second kernel).
 int digit_blocks_lanes();
 const char* digit_blocks_kernel();
+/// The -march of the second digit kernel this build carries and chose ("" for none), and
+/// whether it runs here (this processor has its instruction set).
+const char* digit_blocks_second_kernel();
+bool digit_blocks_dispatched();
 
 }  // namespace qverify
