@@ -3,17 +3,17 @@
 // from double-valued inputs (full 53-bit significands, exponents spread over 2^-30..2^30, as
 // `qverify bench`'s "double-valued" rows) and, for the cost of the operations apart from the limb
 // products, from inputs of one limb; one product of one-limb operands copied into place against
-// constructed in place; and W items at once on DigitPack<24> (the exact rows' arithmetic; the
-// time per item is the benchmark's time / W, items_per_second says it). Each item includes
-// reading its doubles (wide_from_doubles, DigitPack::from_doubles) and, for DigitPack, the
-// normalization of its results.
+// constructed in place; and the exact rows' digit blocks (exact/digit_batch.hpp: W items at once
+// on DigitPack<24>, the kernel this processor runs), 256 items per iteration (items_per_second
+// gives the time per item). Each item includes reading its doubles and, for the digit blocks,
+// the normalization and storing of its results.
 //
 //   cmake --preset release -DQVERIFY_BUILD_BENCH=ON && cmake --build build/release --target bench_wide
 //   build/release/bench/bench_wide
 #include <qverify/core/mirror.hpp>
 #include <qverify/core/mirror_division_free.hpp>
 #include <qverify/core/shadow.hpp>
-#include <qverify/exact/digit_pack.hpp>
+#include <qverify/exact/digit_batch.hpp>
 #include <qverify/exact/wide_int.hpp>
 
 #include <benchmark/benchmark.h>
@@ -89,64 +89,24 @@ void BM_wide_reflection(benchmark::State& state) {
   }
 }
 
-using DP = DigitPack<24>;
-constexpr int kLanes = DP::lanes;
-
-/// W items as one DigitPack matrix (lane l: item i + l), each matrix at its own exponent.
-bool load_pack(const Doubles& in, int i, Mat4<DP>& A, Vec4<DP>& L) {
-  const double* a[kLanes];
-  const double* l[kLanes];
-  for (int lane = 0; lane < kLanes; ++lane)
-    a[lane] = &in.a[10 * static_cast<std::size_t>(i + lane)], l[lane] = &in.l[4 * static_cast<std::size_t>(i + lane)];
-  DP ai[10], li[4];
-  int eA[kLanes], eL[kLanes];
-  if (!DP::from_doubles(a, 10, ai, eA) || !DP::from_doubles(l, 4, li, eL)) return false;
-  for (int k = 0; k < 10; ++k) A(kRow[k], kCol[k]) = A(kCol[k], kRow[k]) = ai[k];
-  for (int k = 0; k < 4; ++k) L(k) = li[k];
-  return true;
-}
-
-/// The shadow of W items at once on DigitPack (time per item: the benchmark's time / W).
-void BM_digit_shadow(benchmark::State& state) {
+/// The digit blocks of the exact rows (exact/digit_batch.hpp, on the kernel this processor runs:
+/// W items at once), a chunk of 256 items per iteration, as `qverify bench` calls them; the time
+/// per item is the benchmark's time / 256 (items_per_second says it).
+template <DigitOp Op> void BM_digit_blocks(benchmark::State& state) {
   const Doubles in(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  Mat4<DP> A;
-  Vec4<DP> L;
+  constexpr int kChunk = 256;
+  DigitBlocks out;
   int i = 0;
   for (auto _ : state) {
-    if (!load_pack(in, i, A, L)) {
-      state.SkipWithError("beyond 126 bits");
+    if (digit_blocks(Op, DoubleItems{&in.a[10 * static_cast<std::size_t>(i)], &in.l[4 * static_cast<std::size_t>(i)], kChunk}, out) != 0) {
+      state.SkipWithError("a block did not fit");
       break;
     }
-    const Vec4<DP> p = polar_plane<DP>(A, L);
-    const Mat4<DP> P = tangent_cone_from_polar<DP>(A, L, p);
-    const Mat4<DP> R = terminator_quadric_from_polar<DP>(L, p);
-    for (int k = 0; k < 10; ++k) P(kRow[k], kCol[k]).normalize(), R(kRow[k], kCol[k]).normalize();
-    benchmark::DoNotOptimize(P.data());
-    benchmark::DoNotOptimize(R.data());
-    i = (i + kLanes) % in.items;
+    benchmark::DoNotOptimize(out.digits.data());
+    i = (i + kChunk) % in.items;
   }
-  state.SetItemsProcessed(state.iterations() * kLanes);
-}
-
-void BM_digit_reflection(benchmark::State& state) {
-  const Doubles in(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  Mat4<DP> A;
-  Vec4<DP> plane;
-  int i = 0;
-  for (auto _ : state) {
-    if (!load_pack(in, i, A, plane)) {
-      state.SkipWithError("beyond 126 bits");
-      break;
-    }
-    const Mat4<DP> M = scaled_mirror_matrix<DP>(plane);
-    const Mat4<DP> B = mirror_image_division_free<DP>(A, plane);
-    for (int k = 0; k < 12; ++k) M(k % 3, k / 3).normalize();
-    for (int k = 0; k < 10; ++k) B(kRow[k], kCol[k]).normalize();
-    benchmark::DoNotOptimize(M.data());
-    benchmark::DoNotOptimize(B.data());
-    i = (i + kLanes) % in.items;
-  }
-  state.SetItemsProcessed(state.iterations() * kLanes);
+  state.SetItemsProcessed(state.iterations() * kChunk);
+  state.SetLabel(digit_blocks_kernel());
 }
 
 /// One product of one-limb operands, copied into an array entry (as a formula's result is copied
@@ -172,8 +132,8 @@ BENCHMARK(BM_wide_shadow)->Name("wide_shadow/double_valued")->Args({60, kItems})
 BENCHMARK(BM_wide_shadow)->Name("wide_shadow/one_limb")->Args({0, kItems});
 BENCHMARK(BM_wide_reflection)->Name("wide_reflection/double_valued")->Args({60, kItems})->Args({60, 256});
 BENCHMARK(BM_wide_reflection)->Name("wide_reflection/one_limb")->Args({0, kItems});
-BENCHMARK(BM_digit_shadow)->Name("digit_shadow/double_valued")->Args({60, kItems});
-BENCHMARK(BM_digit_reflection)->Name("digit_reflection/double_valued")->Args({60, kItems});
+BENCHMARK_TEMPLATE(BM_digit_blocks, DigitOp::shadow)->Name("digit_shadow/double_valued")->Args({60, kItems});
+BENCHMARK_TEMPLATE(BM_digit_blocks, DigitOp::reflection)->Name("digit_reflection/double_valued")->Args({60, kItems});
 BENCHMARK_TEMPLATE(BM_wide_product, false)->Name("wide_product_1x1/copied");
 BENCHMARK_TEMPLATE(BM_wide_product, true)->Name("wide_product_1x1/in_place");
 

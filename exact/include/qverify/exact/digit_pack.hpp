@@ -35,6 +35,7 @@
 
 #include <qverify/batch/pack.hpp>
 #include <qverify/core/scalar.hpp>
+#include <qverify/exact/prefix_copy.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #include <gmp.h>
@@ -417,25 +418,9 @@ template <int D> class DigitPack {
   }
 
  private:
-  /// The digits in use, by a jump into a straight run of vector moves (a loop of a variable
-  /// count became a call to memmove).
+  /// The digits in use (a loop of a variable count became a call to memmove).
   void copy_from(const DigitPack& x) {
-    switch (x.n_) {
-#define QVERIFY_DIGIT_COPY(k) \
-  case (k) + 1: \
-    if constexpr ((k) < D) d_[k] = x.d_[k]; \
-    [[fallthrough]];
-      QVERIFY_DIGIT_COPY(31) QVERIFY_DIGIT_COPY(30) QVERIFY_DIGIT_COPY(29) QVERIFY_DIGIT_COPY(28)
-      QVERIFY_DIGIT_COPY(27) QVERIFY_DIGIT_COPY(26) QVERIFY_DIGIT_COPY(25) QVERIFY_DIGIT_COPY(24)
-      QVERIFY_DIGIT_COPY(23) QVERIFY_DIGIT_COPY(22) QVERIFY_DIGIT_COPY(21) QVERIFY_DIGIT_COPY(20)
-      QVERIFY_DIGIT_COPY(19) QVERIFY_DIGIT_COPY(18) QVERIFY_DIGIT_COPY(17) QVERIFY_DIGIT_COPY(16)
-      QVERIFY_DIGIT_COPY(15) QVERIFY_DIGIT_COPY(14) QVERIFY_DIGIT_COPY(13) QVERIFY_DIGIT_COPY(12)
-      QVERIFY_DIGIT_COPY(11) QVERIFY_DIGIT_COPY(10) QVERIFY_DIGIT_COPY(9) QVERIFY_DIGIT_COPY(8)
-      QVERIFY_DIGIT_COPY(7) QVERIFY_DIGIT_COPY(6) QVERIFY_DIGIT_COPY(5) QVERIFY_DIGIT_COPY(4)
-      QVERIFY_DIGIT_COPY(3) QVERIFY_DIGIT_COPY(2) QVERIFY_DIGIT_COPY(1) QVERIFY_DIGIT_COPY(0)
-#undef QVERIFY_DIGIT_COPY
-      default: break;
-    }
+    detail::copy_prefix(d_, x.d_, x.n_);
     n_ = x.n_, dig_ = x.dig_, bits_ = x.bits_, canonical_ = x.canonical_;
   }
   template <bool Sub> DigitPack& add_in_place(const DigitPack& b) {

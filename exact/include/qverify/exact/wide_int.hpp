@@ -33,6 +33,7 @@
 /// exact comparison (ScalarOps' primary template).
 
 #include <qverify/core/scalar.hpp>
+#include <qverify/exact/prefix_copy.hpp>
 #include <qverify/exact/scalars.hpp>
 
 #include <gmp.h>
@@ -177,7 +178,7 @@ inline void signed_mul(Limb* r, const Limb* a, int an, const Limb* b, int bn) {
 }  // namespace wide_detail
 
 template <int N> class WideInt {
-  static_assert(N >= 2, "WideInt needs at least two limbs");
+  static_assert(N >= 2 && N <= 32, "WideInt: 2 to 32 limbs");
 
  public:
   using Limb = wide_detail::Limb;
@@ -316,22 +317,9 @@ template <int N> class WideInt {
  private:
   /// All ones for a negative value, else zero (the limbs above limbs()).
   Limb sign_mask() const { return n_ ? static_cast<Limb>(static_cast<std::int64_t>(d_[n_ - 1]) >> 63) : 0; }
-  /// The limbs in use, by a jump into a straight run of 8-byte moves (one predicted indirect
-  /// jump instead of a loop whose exit is mispredicted as the sizes change).
+  /// The limbs in use (8-byte moves: they were just written that way).
   void copy_from(const WideInt& x) {
-    static_assert(N <= 16, "copy_from unrolls at most 16 limbs");
-    switch (x.n_) {
-#define QVERIFY_WIDE_COPY(k) \
-  case (k) + 1: \
-    if constexpr ((k) < N) d_[k] = x.d_[k]; \
-    [[fallthrough]];
-      QVERIFY_WIDE_COPY(15) QVERIFY_WIDE_COPY(14) QVERIFY_WIDE_COPY(13) QVERIFY_WIDE_COPY(12)
-      QVERIFY_WIDE_COPY(11) QVERIFY_WIDE_COPY(10) QVERIFY_WIDE_COPY(9) QVERIFY_WIDE_COPY(8)
-      QVERIFY_WIDE_COPY(7) QVERIFY_WIDE_COPY(6) QVERIFY_WIDE_COPY(5) QVERIFY_WIDE_COPY(4)
-      QVERIFY_WIDE_COPY(3) QVERIFY_WIDE_COPY(2) QVERIFY_WIDE_COPY(1) QVERIFY_WIDE_COPY(0)
-#undef QVERIFY_WIDE_COPY
-      default: break;
-    }
+    detail::copy_prefix(d_, x.d_, x.n_);
     n_ = x.n_;
   }
   /// The fewest limbs that hold t[0 .. n) sign-extended.
