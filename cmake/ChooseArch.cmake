@@ -52,7 +52,7 @@ set(QVERIFY_DIGIT_MARCH "")
 set(QVERIFY_ARCH_NOTE "")
 if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   # Both run here: measure (or take the cached measurement of the same compiler and kernels).
-  set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
+  set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp ${CMAKE_CURRENT_LIST_DIR}/arch_probe_project/CMakeLists.txt
       ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/batch.hpp ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/pack.hpp
       ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/interval_pack.hpp
       ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/digit_pack.hpp ${PROJECT_SOURCE_DIR}/exact/src/digit_batch_impl.hpp)
@@ -94,30 +94,31 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
     if(TARGET Eigen3::Eigen)
       message(STATUS "qverify: timing the batch kernels with -march=x86-64-v3 and x86-64-v4 (QVERIFY_ARCH=auto)")
       set(_qv_ok TRUE)
-      set(_qv_saved_config "${CMAKE_TRY_COMPILE_CONFIGURATION}")
-      set(CMAKE_TRY_COMPILE_CONFIGURATION Release)
-      foreach(_qv_level 3 4)
-        set(_qv_exe ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level})
-        try_compile(_qv_compiled ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/v${_qv_level}
-                    SOURCES ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
-                    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${_qv_probe_includes}"
-                    COMPILE_DEFINITIONS -O3 -DNDEBUG -march=x86-64-v${_qv_level} -ffp-contract=off ${_qv_probe_definitions}
-                    LINK_LIBRARIES ${_qv_probe_libraries}
-                    CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON
-                    OUTPUT_VARIABLE _qv_log
-                    COPY_FILE ${_qv_exe})
-        if(NOT _qv_compiled)
-          set(_qv_ok FALSE)
-          file(WRITE ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/v${_qv_level}.log "${_qv_log}")
-          message(STATUS "qverify: the arch probe did not build with -march=x86-64-v${_qv_level} "
-                         "(CMakeFiles/qverify_arch_probe/v${_qv_level}.log)")
-          break()
-        endif()
-      endforeach()
-      set(CMAKE_TRY_COMPILE_CONFIGURATION "${_qv_saved_config}")
+      # Eigen is an imported target here: the probe project takes its include directories
+      get_target_property(_qv_eigen_include Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)
+      list(REMOVE_ITEM _qv_probe_libraries Eigen3::Eigen)
+      set(_qv_probe_dir ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe)
+      # (lists cross to the project with | for ;, which would split the -D arguments)
+      string(REPLACE ";" "|" _qv_includes_arg "${_qv_probe_includes};${_qv_eigen_include}")
+      string(REPLACE ";" "|" _qv_libraries_arg "${_qv_probe_libraries}")
+      try_compile(_qv_compiled ${_qv_probe_dir}/build ${CMAKE_CURRENT_LIST_DIR}/arch_probe_project qverify_arch_probe
+                  CMAKE_FLAGS "-DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}"
+                              "-DPROBE_SOURCE=${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp"
+                              "-DPROBE_INCLUDES=${_qv_includes_arg}"
+                              "-DPROBE_DEFINITIONS=${_qv_probe_definitions}"
+                              "-DPROBE_LIBRARIES=${_qv_libraries_arg}"
+                              "-DPROBE_OUTPUT=${_qv_probe_dir}"
+                  OUTPUT_VARIABLE _qv_log)
+      if(NOT _qv_compiled OR NOT EXISTS ${_qv_probe_dir}/arch_probe_v3 OR NOT EXISTS ${_qv_probe_dir}/arch_probe_v4)
+        set(_qv_ok FALSE)
+        file(WRITE ${_qv_probe_dir}/build.log "${_qv_log}")
+        message(STATUS "qverify: the arch probes did not build (CMakeFiles/qverify_arch_probe/build.log)")
+      endif()
       # Seven runs of each kernel and level, in turn (a shared machine's speed drifts; each run is
-      # itself the best of five passes over 2^20 items, of three over 2^18 for the slower intervals,
-      # whose batches take twice the memory), and the best of each.
+      # itself the best of eight passes over 2^19 items, of five over 2^17 for the slower intervals,
+      # whose batches take twice the memory), and the best of each. A run's time is mostly touching
+      # its memory the first time (2^20 items took 1.2 s a run, of which 0.08 s in the kernel):
+      # half the items, still five times the largest cache, halved the configure's 29 s of probing.
       foreach(_qv_kernel double interval exact)
         foreach(_qv_level 3 4)
           set(_qv_best_${_qv_kernel}_${_qv_level} "")
@@ -134,11 +135,11 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         foreach(_qv_round 1 2 3 4 5 6 7)
           foreach(_qv_kernel double interval exact)
             if(_qv_kernel STREQUAL "double")
-              set(_qv_items 1048576)
-              set(_qv_passes 5)
+              set(_qv_items 524288)  # 150 MB of doubles
+              set(_qv_passes 8)
             elseif(_qv_kernel STREQUAL "interval" AND _qv_interval_ok)
-              set(_qv_items 262144)  # 160 MB of intervals, still far beyond the caches
-              set(_qv_passes 3)
+              set(_qv_items 131072)  # 80 MB of intervals, still far beyond the caches
+              set(_qv_passes 5)
             elseif(_qv_kernel STREQUAL "exact" AND _qv_exact_ok)
               set(_qv_items 16384)  # bound by arithmetic: about 5 ms a pass
               set(_qv_passes 3)

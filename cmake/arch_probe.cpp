@@ -1,9 +1,9 @@
 // The configure-time probe of QVERIFY_ARCH=auto (cmake/ChooseArch.cmake): times the real batch
 // kernels, qverify::shadow_batch of direct items (batch/batch.hpp) in double and in certified
 // intervals (exact/interval_pack.hpp), and the exact shadows of double-valued items in digit blocks
-// (exact/src/digit_batch_impl.hpp, 2^14 items), built with the -march under test. 2^20 items in row-major
-// batches (about 320 MB of doubles, twice that of intervals: far beyond the caches, as in
-// `qverify bench`), one thread, best of several runs of the thread's CPU time (a shared machine
+// (exact/src/digit_batch_impl.hpp, 2^14 items), built with the -march under test. 2^19 items in row-major
+// batches at a configure (about 150 MB of doubles, 2^17 items of intervals: far beyond the caches,
+// as in `qverify bench`), one thread, best of several runs of the thread's CPU time (a shared machine
 // preempting the probe does not count against either instruction set). Prints the ns per item;
 // exits non-zero when a result is not finite (a kernel that does not work is not timed).
 //   arch_probe double|interval|exact [items] [runs]   (interval, exact: built with -DQVERIFY_PROBE_INTERVAL=1)
