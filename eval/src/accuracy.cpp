@@ -10,6 +10,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace qverify {
 
@@ -35,13 +37,14 @@ FI enclosed(const Q& q) {
 
 bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
 
-/// Largest distance of the points from A's centre (centroid where K is singular),
-/// to 80 digits. With a centre, a filter first: each point's squared distance is
+/// Largest distance of the points from A's centre (their centroid where K is singular, rounded to
+/// a rational at 80 digits: the distances are measured from that exact point), to 80 digits, and
+/// the centre. With a centre, a filter first: each point's squared distance is
 /// enclosed from its coordinates' enclosures, and only the points whose upper
 /// bound reaches the largest lower bound (or that the intervals cannot bound)
 /// can be the farthest; only those are rounded to 80 digits.
-Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
-  if (pts.empty()) return 0;
+std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
+  if (pts.empty()) return {0, Vec3<Q>::Zero()};
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
   if (K.determinant() == 0) {
     std::vector<Vec3<Measure>> xs;
@@ -49,9 +52,10 @@ Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
     Vec3<Measure> c = Vec3<Measure>::Zero();
     for (const auto& x : xs) c += x;
     c /= Measure(static_cast<long>(xs.size()));
+    const Vec3<Q> cq(exact_measure(c(0)), exact_measure(c(1)), exact_measure(c(2)));
     Measure best = 0;
     for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
-    return best;
+    return {best, cq};
   }
   const Vec3<Q> cq = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
   Vec3<Measure> c;
@@ -76,7 +80,16 @@ Measure object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
   Measure best = 0;
   for (std::size_t k = 0; k < pts.size(); ++k)
     if (!bounded[k] || d2[k].sup() >= floor) best = mmax(best, sqrt((cartesian(pts[k]) - c).squaredNorm()));
-  return best;
+  return {best, cq};
+}
+
+Vec3<Measure> to_measure3(const Vec3<Q>& v) { return Vec3<Measure>(to_measure(v(0)), to_measure(v(1)), to_measure(v(2))); }
+
+/// The ball of the points counted (certified_bound.hpp, Ball): about the centre, with a reach of
+/// (at least) the size and a margin (2^-64 of it) for the last of its 80 digits.
+Ball counted_ball(const Vec3<Q>& centre, const Measure& reach) {
+  const Q s = exact_measure(reach);
+  return {centre, Q(s + s / Q(BigInt(1) << 64))};
 }
 
 /// The offsets rho of the generator points (ItemPoints::generator_offsets): x + rho d,
@@ -111,13 +124,32 @@ std::vector<Q> generator_offsets(const std::vector<RootPoint>& terminator, const
   return {Q(1, 2) * sq, Q(-1, 2) * sq, Q(1, 4) * sq};
 }
 
+/// Is x a singular point of A (A x = 0: a cone's apex)?
+bool singular_point(const Mat4<Q>& A, const RootPoint& x) {
+  const auto c = x.coords();
+  for (int i = 0; i < 4; ++i) {
+    RootNumber r(0);
+    for (int j = 0; j < 4; ++j) r = r + RootNumber(to_gmpq(A(i, j))) * c[static_cast<std::size_t>(j)];
+    if (!CGAL::is_zero(r)) return false;
+  }
+  return true;
+}
+
 /// Points on the generator lines of the cone through (at most 8 of) the terminator points, at
-/// each offset: x mapped by generator_map, a linear map, so the point stays in x's field.
-std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& L,
+/// each offset: x mapped by generator_map, a linear map, so the point stays in x's field. Not
+/// through a singular point of A (the apex of a cone lit from outside, sampled as the terminator's
+/// singular point): there P = (L^T A L) A - (A L)(A L)^T has a vanishing gradient all along the
+/// generator line (P y = (1 - rho L_w) s A x = 0), so a first-order distance from a rounded P means
+/// nothing there (it is about |y| / 2 whatever the rounding).
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Mat4<Q>& A, const Vec4<Q>& L,
                                         const std::vector<Q>& offsets) {
   std::vector<RootPoint> out;
-  for (std::size_t i = 0; i < terminator.size() && i < 8; ++i)
+  std::size_t used = 0;
+  for (std::size_t i = 0; i < terminator.size() && used < 8; ++i) {
+    if (singular_point(A, terminator[i])) continue;
+    ++used;
     for (const Q& rho : offsets) out.push_back(terminator[i].mapped(generator_map(L, rho)));
+  }
   return out;
 }
 
@@ -148,12 +180,18 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   ItemPoints out;
   out.points = s.points;
   out.exhausted = s.exhausted;
-  out.size = object_size(out.points, A);
+  Vec3<Q> centre;
+  std::tie(out.size, centre) = object_size(out.points, A);
   if (!out.points.empty())
     if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
   out.generator_offsets = generator_offsets(out.points, L, out.size);
-  out.generators = generator_points(out.points, L, out.generator_offsets);
+  out.generators = generator_points(out.points, A, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
+  // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
+  // the ball reaches it too, so that every point R is measured on is one the bound covers)
+  Measure reach = out.size;
+  for (const RootPoint& x : out.plane) reach = mmax(reach, sqrt((cartesian(x) - to_measure3(centre)).squaredNorm()));
+  out.ball = counted_ball(centre, reach);
   return out;
 }
 
@@ -161,9 +199,11 @@ ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint
   const SampleReport s = sample_quadric(A, n, seed);
   ItemPoints out;
   out.exhausted = s.exhausted;
-  out.size = object_size(s.points, A);
+  Vec3<Q> centre;
+  std::tie(out.size, centre) = object_size(s.points, A);
   if (!s.points.empty())
     if (const auto whole = ellipsoid_size(A)) out.size = std::max(out.size, Measure(*whole));
+  out.ball = counted_ball(centre, out.size);  // of A's points, not yet reflected
   out.points = RootPoint::mapped(s.points, M);
   return out;
 }
@@ -623,77 +663,164 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
 
 }  // namespace
 
-ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
-    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))) {
-  if (!pts_.points.empty() && !pts_.exhausted) geo_ = shadow_geometry(A, L);
-  if (geo_) generators_ = generator_geometries(A, L, pts_.generator_offsets);
+ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints& pts) {
+  if (pts.points.empty() || pts.exhausted) return;
+  geo_ = shadow_geometry(A, L);
+  if (geo_) {
+    generators_ = generator_geometries(A, L, pts.generator_offsets);
+    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0};
+    return;
+  }
+  ball_ = pts.ball;
+  pi_ref_ = A * L;
+  const Q s = L.dot(pi_ref_);
+  P_ref_ = s * A - pi_ref_ * pi_ref_.transpose();
+  const Vec4<Q> h = reference_second_plane(L);
+  R_ref_ = pi_ref_ * h.transpose() + h * pi_ref_.transpose();
+  // on the terminator (P_ref x)_xyz = s (A x)_xyz, and (R_ref x)_xyz = (h . x) pi_xyz with
+  // |h . x| >= |h . (c, 1)| - reach |h_xyz| in the ball
+  P_floor_ = GradientFloor(A, ball_, s);
+  h_centre_ = abs(to_measure(Q(Vec3<Q>(h.head<3>()).dot(ball_.centre) + h(3))));
+  h_normal_ = sqrt(to_measure(Q(h.head<3>().squaredNorm())));
+  pi_normal_ = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
+  const Measure reach = to_measure(ball_.reach);
+  // P on its generator lines at offset rho: the terminator of A_rho = N^T A N (generator_geometries)
+  // in the ball carried by x -> a x + rho L_xyz, a = 1 - rho L_w
+  for (const Q& rho : pts.generator_offsets) {
+    const Q a = 1 - rho * L(3);
+    Mat4<Q> N = Mat4<Q>::Identity();
+    N.col(3) -= rho * L;
+    const Mat4<Q> Ar = N.transpose() * A * N;
+    const Vec4<Q> pr = Ar * L;
+    const Q sr = L.dot(pr);
+    BallPart part{Mat4<Q>(sr * Ar - pr * pr.transpose()), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
+    if (a > 0) part.floor = GradientFloor(Ar, part.ball, sr);
+    if (!(part.floor(0, to_measure(part.ball.reach)) > 0)) {
+      generator_balls_.clear();
+      break;
+    }
+    generator_balls_.push_back(std::move(part));
+  }
+  cover_ = {P_floor_(0, reach) > 0, true, !generator_balls_.empty(), h_centre_ > reach * h_normal_};
 }
+
+CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>* P, const Vec4<Q>* polar,
+                                      const Mat4<Q>* R, double size, double target) const {
+  CoveredBound out;
+  const auto add = [&](const CertifiedBound& b, const char* name) {
+    out.bound = combined(out.bound, b);
+    out.certified.emplace_back(name);
+  };
+  if (geo_) {
+    if (P || polar) out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
+    if (P) out.certified.emplace_back("P");
+    if (polar) out.certified.emplace_back("polar_plane");
+    if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
+    if (R && cover_.R) add(*terminator_quadric_bound(*geo_, origin, *R, size, target), "R");
+    return out;
+  }
+  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size), "P");
+  // R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - |y| |h_xyz|
+  const ShellFloor R_floor = [this](const Measure&, const Measure& outer) {
+    const Measure gap = h_centre_ - outer * h_normal_;
+    return gap > 0 ? Measure(gap * pi_normal_) : Measure(0);
+  };
+  if (polar && cover_.polar) add(ball_plane_bound(*polar, pi_ref_, ball_, origin, size), "polar_plane");
+  if (P && cover_.generators) {
+    CertifiedBound g;
+    for (const BallPart& part : generator_balls_)
+      g = combined(g, ball_quadric_bound(*P, part.ref, part.ball, origin, part.floor, size));
+    add(g, "P_generators");
+  }
+  if (R && cover_.R) add(ball_quadric_bound(*R, R_ref_, ball_, origin, R_floor, size), "R");
+  return out;
+}
+
+ReflectionBounds::ReflectionBounds(const Mat4<Q>& A, const Mat4<Q>& M, const ItemPoints& pts) {
+  if (pts.points.empty() || pts.exhausted) return;
+  geo_ = reflection_geometry(A, M);
+  if (geo_) return;
+  B_ref_ = M.transpose() * A * M;
+  // (B_ref M x)_xyz = H^T (A x)_xyz with H, M's linear part, orthogonal: A's floor in its ball holds
+  // for B in the reflected ball
+  floor_ = GradientFloor(A, pts.ball);
+  floored_ = floor_(0, to_measure(pts.ball.reach)) > 0;
+  ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(pts.ball.centre(0), pts.ball.centre(1), pts.ball.centre(2), Q(1))).head<3>()),
+           pts.ball.reach};
+}
+
+CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B, double size,
+                                          double target) const {
+  CoveredBound out;
+  if (!covers()) return out;
+  out.bound = geo_ ? reflection_bound(*geo_, origin, B, size, target) : ball_quadric_bound(B, B_ref_, ball_, origin, floor_, size);
+  out.certified = {"B"};
+  return out;
+}
+
+ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
+    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))),
+      bounds_(A, L, pts_) {}
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
-  if (!geo_)
+  const ShadowCover& c = bounds_.cover();
+  if (!c.P && !c.polar && !c.generators && !c.R)
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
-  // What the certified bound covers: P and the polar plane on the terminator, P on its generator lines
-  // where their geometries are known (generator_geometries), and R on the terminator and the polar plane
-  // inside it where h does not meet the terminator; the rest is measured on samples.
-  const bool generators = !generators_.empty(), r_bounded = geo_->R_floor > 0;
-  // (The denser points' generator points lie at other offsets, which the bound does not cover.)
+  // What the bound covers (ShadowBounds) counts its certified bound and its sampled errors; the rest
+  // its errors on samples. (The denser points' generator points lie at other offsets, which the bound
+  // does not cover.)
   const auto uncovered = [&](const ShadowError& e, const Measure& size, bool same_offsets) {
     Measure r = 0;
-    if (!r_bounded) r = std::max(relative(e.R, size), relative(e.R_plane, size));
-    if (!generators || !same_offsets) r = std::max(r, relative(e.generators, size));
+    if (!c.P) r = std::max(r, relative(e.P, size));
+    if (!c.polar) r = std::max(r, relative(e.polar, size));
+    if (!c.R) r = std::max({r, relative(e.R, size), relative(e.R_plane, size)});
+    if (!c.generators || !same_offsets) r = std::max(r, relative(e.generators, size));
     return r;
   };
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
-  Measure covered = std::max(relative(e.P, pts_.size), relative(e.polar, pts_.size));
-  if (generators) covered = std::max(covered, relative(e.generators, pts_.size));
-  if (r_bounded) covered = std::max({covered, relative(e.R, pts_.size), relative(e.R_plane, pts_.size)});
+  Measure covered = 0;
+  if (c.P) covered = std::max(covered, relative(e.P, pts_.size));
+  if (c.polar) covered = std::max(covered, relative(e.polar, pts_.size));
+  if (c.generators) covered = std::max(covered, relative(e.generators, pts_.size));
+  if (c.R) covered = std::max({covered, relative(e.R, pts_.size), relative(e.R_plane, pts_.size)});
   Measure other = uncovered(e, pts_.size, true);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
     other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size, false));
   }
-  const double size = size_down(pts_.size);
-  CertifiedBound cb = shadow_bound(*geo_, origin, &P, &polar, size, opt_.target);
-  std::vector<std::string> certified = {"P", "polar_plane"};
-  if (generators) {
-    cb = combined(cb, generators_bound(generators_, origin, P, size, opt_.target));
-    certified.push_back("P_generators");
-  }
-  if (r_bounded) {
-    cb = combined(cb, *terminator_quadric_bound(*geo_, origin, R, size, opt_.target));
-    certified.push_back("R");
-  }
-  return combined_accuracy(cb, covered, other, std::move(certified), opt_.target);
+  CoveredBound b = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
+  return combined_accuracy(b.bound, covered, other, std::move(b.certified), opt_.target);
 }
 
 ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
     : A_(A), M_(reference_mirror(plane)), opt_(opt), k_(k),
-      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))) {
-  if (!pts_.points.empty() && !pts_.exhausted) geo_ = reflection_geometry(A, M_);
-}
+      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))), bounds_(A, M_, pts_) {}
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
-  if (!geo_)
+  if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
         [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
-  const CertifiedBound cb = reflection_bound(*geo_, origin, B, size_down(pts_.size), opt_.target);
-  return combined_accuracy(cb, reflection_error(pts_, origin, B).geometric, 0, {"B"}, opt_.target);
+  CoveredBound b = bounds_(origin, B, size_down(pts_.size), opt_.target);
+  return combined_accuracy(b.bound, reflection_error(pts_, origin, B).geometric, 0, std::move(b.certified), opt_.target);
 }
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
-      "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and the polar "
-      "plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), R on the "
-      "terminator and the polar plane inside it where its plane h does not meet the terminator, and, where A is an "
-      "ellipsoid, B are bounded over every point of their geometry by interval branch and bound (certified_for names "
-      "them); R where h meets the terminator, shadows of other terminators and reflections of other quadrics are "
-      "measured "
-      "exactly on " +
+      "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and "
+      "the polar plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), "
+      "R on the terminator and the polar plane inside it where its plane h does not meet the terminator, and, where A "
+      "is an ellipsoid, B are bounded over every point of their geometry by interval branch and bound; other "
+      "terminators (hyperbolas, parabolas, line pairs) and other quadrics reflected are unbounded, and there the object "
+      "size is the largest distance of the sampled points from A's centre (their centroid where A has none) and the "
+      "same results are bounded over every point of their geometry within that distance of the centre, by one interval "
+      "bound over the ball, where the reference's gradient has a floor there (not at a cone's apex, not for R where "
+      "h crosses the ball); certified_for names what is bounded. The rest (R where h meets the terminator, P near a "
+      "cone's apex) is measured exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +

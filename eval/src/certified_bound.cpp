@@ -11,6 +11,7 @@
 #include <queue>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <utility>
 
 namespace qverify {
@@ -710,6 +711,163 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
                                 double size, double target) {
   const BoundedResult bb = quadric_result(B, g.B_ref, *g.surface, origin, g.grad_floor);
   return branch_and_bound(*g.surface, {&bb}, size, target);
+}
+
+Ball moved(const Ball& b, const Q& a, const Vec3<Q>& t) { return {Vec3<Q>(a * b.centre + t), Q(abs(a) * b.reach)}; }
+
+namespace {
+
+/// mu > 0 at most the smallest non-zero eigenvalue of K^2: proved on K^2 plus |K|_F^2 times the
+/// projections onto a basis of K's kernel (positive definite; on K's range it is K^2), 0 if none found.
+Q range_floor(const Mat3<Q>& K, const Eigen::Matrix<Q, 3, Eigen::Dynamic>& kernel) {
+  const Q k2 = (K * K).trace();
+  Mat3<Q> S = K * K;
+  for (Eigen::Index j = 0; j < kernel.cols(); ++j)
+    if (!kernel.col(j).isZero())
+      S += k2 * Vec3<Q>(kernel.col(j)) * Vec3<Q>(kernel.col(j)).transpose() / kernel.col(j).squaredNorm();
+  return eigen_floor(S);
+}
+
+Measure msqrt(const Q& q) { return sqrt(to_measure(q)); }
+
+}  // namespace
+
+GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> k = A.topRightCorner<3, 1>();
+  if (K.isZero() && k.isZero()) return;
+  scale_ = abs(to_measure(scale));
+  sigma_ = msqrt((K * K).trace());
+  const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0, so are the pivots' thresholds
+  const bool invertible = lu.rank() == 3;
+  const Eigen::Matrix<Q, 3, Eigen::Dynamic> N = invertible ? Eigen::Matrix<Q, 3, Eigen::Dynamic>(3, 0) : lu.kernel();
+  const Vec3<Q> y0 = invertible ? Vec3<Q>(-(K.inverse() * k)) : Vec3<Q>(lu.solve(Vec3<Q>(-k)));
+  const Q mu = K.isZero() ? Q(0) : range_floor(K, N);
+  mu_ = to_measure(mu);
+  if (Vec3<Q>(K * y0 + k).isZero()) {  // a centre, or an axis of centres
+    kind_ = Kind::centre;
+    d0_ = msqrt((ball.centre - y0).squaredNorm());
+    const Q r = A(3, 3) + k.dot(y0);
+    r_ = abs(to_measure(r));
+    if (r != 0 && mu > 0) steady_ = sqrt(to_measure(Q(mu * abs(r))) / sigma_);
+    if (invertible && mu > 0) linear_ = sqrt(mu_);
+    return;
+  }
+  // k's part in the kernel (a rational projection: N (N^T N)^-1 N^T k), and y0 for the rest
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
+  const Vec3<Q> kn = N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * k));
+  const Vec3<Q> y1 = lu.solve(Vec3<Q>(-(k - kn)));
+  if (!Vec3<Q>(K * y1 + (k - kn)).isZero() || kn.isZero()) return;  // (not expected: k - kn is in K's range)
+  kind_ = Kind::paraboloid;
+  kn_ = msqrt(kn.squaredNorm());
+  d0_ = msqrt((ball.centre - y1).squaredNorm());
+  a0_ = abs(to_measure(Q(y1.dot(K * y1) + 2 * k.dot(y1) + A(3, 3))));
+  grows_ = N.cols() == 1 && mu > 0;
+}
+
+Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) const {
+  Measure f = 0;
+  if (kind_ == Kind::centre) {
+    if (r_ > 0) f = r_ / (outer + d0_);
+    f = std::max(f, steady_);
+    if (linear_ > 0 && inner > d0_) f = std::max(f, Measure(linear_ * (inner - d0_)));
+  } else if (kind_ == Kind::paraboloid) {
+    f = kn_;
+    if (grows_ && inner > d0_) {
+      // |y| >= rho, |y|^2 = w + (k_n . y / |k_n|)^2 <= w + ((sigma w + a0) / (2 |k_n|))^2 with w = |Py|^2:
+      // w is at least the root of a2 w^2 + b2 w + c2 = 0 (the left side increases with w)
+      const Measure rho = inner - d0_, kn2 = kn_ * kn_;
+      const Measure a2 = sigma_ * sigma_ / (4 * kn2), b2 = 1 + sigma_ * a0_ / (2 * kn2), c2 = a0_ * a0_ / (4 * kn2) - rho * rho;
+      if (c2 < 0) {
+        const Measure w = -2 * c2 / (b2 + sqrt(b2 * b2 - 4 * a2 * c2));
+        f = std::max(f, Measure(sqrt(mu_ * w + kn2)));
+      }
+    }
+  }
+  // (80 digits: the callers take a double below with a margin, lower_double)
+  return scale_ * f;
+}
+
+Measure gradient_floor(const Mat4<Q>& A, const Ball& ball) { return GradientFloor(A, ball)(0, to_measure(ball.reach)); }
+
+namespace {
+
+/// z0 = (c - o, 1).
+Vec4<Q> ball_base(const Ball& ball, const std::optional<Vec3<Q>>& o) {
+  Vec4<Q> z0;
+  z0 << Vec3<Q>(ball.centre - (o ? *o : Vec3<Q>::Zero())), Q(1);
+  return z0;
+}
+
+IA norm_of(const Vec3<Q>& v) {
+  return CGAL::sqrt(CGAL::square(enc(v(0))) + CGAL::square(enc(v(1))) + CGAL::square(enc(v(2))));
+}
+
+CertifiedBound relative_bound(const IA& distance, double size) {
+  CertifiedBound out;
+  out.boxes = 1;
+  const double d = distance.sup();
+  out.upper = d == 0 ? 0.0 : std::isfinite(d) && size > 0 ? (IA(d) / IA(size)).sup() : kInf;
+  return out;
+}
+
+}  // namespace
+
+CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Ball& ball,
+                                  const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size) {
+  if (hat_in.isZero() && !ref_in.isZero()) return {kInf, 0, 1};  // vanishes everywhere, and is no quadric
+  // as quadric_result: both scaled exactly to entries near 1, the reference moved into the frame
+  const Mat4<Q> T = translation_of(o);
+  const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
+  const Q ref_scale = unit_scale(ref_in);
+  const Mat4<Q> ref_o = T.transpose() * Mat4<Q>(ref_scale * ref_in) * T;
+  const Q lambda = best_scale(hat, ref_o);
+  const Mat4<Q> E = hat - lambda * ref_o;
+  const Vec4<Q> z0 = ball_base(ball, o);
+  const Q a = z0.dot(E * z0);
+  const Vec3<Q> g = Vec4<Q>(E * z0).head<3>();
+  const Mat3<Q> E3 = E.topLeftCorner<3, 3>();
+  const Measure lambda_scale = abs(to_measure(Q(lambda * ref_scale)));
+  // the shells' radii reach (3/4)^j, j = 0..kShells, and 0; the floors in 80 digits, then below in double
+  constexpr int kShells = 64;
+  std::vector<Q> radius(kShells + 2);
+  radius[0] = ball.reach;
+  for (int j = 1; j <= kShells; ++j) radius[static_cast<std::size_t>(j)] = radius[static_cast<std::size_t>(j - 1)] * Q(3, 4);
+  radius[kShells + 1] = 0;
+  std::vector<double> floors(kShells + 1);
+  for (std::size_t j = 0; j <= kShells; ++j)
+    floors[j] = lower_double(lambda_scale * floor(to_measure(radius[j + 1]), to_measure(radius[j])));
+  return upward([&] {
+    IA e3(0);
+    for (Eigen::Index i = 0; i < 9; ++i) e3 += CGAL::square(enc(E3(i)));
+    e3 = CGAL::sqrt(e3);
+    const IA gn = norm_of(g), fa = CGAL::abs(enc(a));
+    double worst = 0;
+    for (std::size_t j = 0; j <= kShells; ++j) {
+      const IA r = enc(radius[j]);
+      const IA value = fa + IA(2) * r * gn + CGAL::square(r) * e3;
+      if (value.sup() == 0) continue;
+      const IA gradient = IA(floors[j]) - gn - r * e3;
+      if (!(gradient.inf() > 0)) return CertifiedBound{kInf, 0, kShells + 1};
+      worst = std::max(worst, (value / (IA(2) * gradient)).sup());
+    }
+    CertifiedBound out = relative_bound(IA(worst), size);
+    out.boxes = kShells + 1;
+    return out;
+  });
+}
+
+CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const Ball& ball,
+                                const std::optional<Vec3<Q>>& o, double size) {
+  if (hat_in.head<3>().isZero()) return {hat_in.isZero() && ref_in.isZero() ? 0.0 : kInf, 0, 1};
+  const Vec4<Q> hat = unit_scale(hat_in) * hat_in;
+  const Vec4<Q> ref_o = translation_of(o).transpose() * Vec4<Q>(unit_scale(ref_in) * ref_in);
+  const Vec4<Q> eps = hat - best_scale(hat, ref_o) * ref_o;
+  const Q a = eps.dot(ball_base(ball, o));
+  return upward([&] {
+    const IA value = CGAL::abs(enc(a)) + enc(ball.reach) * norm_of(Vec3<Q>(eps.head<3>()));
+    return relative_bound(value / norm_of(Vec3<Q>(hat.head<3>())), size);
+  });
 }
 
 }  // namespace qverify

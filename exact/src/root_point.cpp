@@ -18,6 +18,12 @@ Measure to_measure(const Rational& q) {
   return m;
 }
 
+Rational exact_measure(const Measure& m) {
+  Rational q;
+  mpfr_get_q(q.backend().data(), m.backend().data());
+  return q;
+}
+
 Measure to_measure(const RootNumber& v) {
   const Rational a0 = to_rational(v.a0());
   if (!v.is_extended() || v.a1() == 0) return to_measure(a0);

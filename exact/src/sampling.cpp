@@ -2,6 +2,8 @@
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/sampling.hpp>
 
+#include <Eigen/LU>
+
 #include <random>
 #include <utility>
 
@@ -109,6 +111,34 @@ class Lines {
 
 Vec4<Q> finite(const Vec3<Q>& v) { return Vec4<Q>(v(0), v(1), v(2), Q(1)); }
 
+/// A rational point at A's core, to draw lines through: its centre; a point of its axis of centres
+/// (a cylinder); for a paraboloid (K y = -k has no solution) a point inside it on its axis, a focal
+/// length or so beyond the vertex. Not the origin: lines drawn from a world origin 10^6 away from a
+/// cylinder of radius 1 miss it (no point found, so no check) or meet it 10^6 away along its axis
+/// (so an object size of 10^6).
+Vec3<Q> core_point(const Mat4<Q>& A) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> k = A.topRightCorner<3, 1>();
+  if (K.determinant() != 0) return -(K.inverse() * k);
+  const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0
+  const Vec3<Q> y0 = lu.solve(Vec3<Q>(-k));
+  if (Vec3<Q>(K * y0 + k).isZero()) return y0;
+  const auto N = lu.kernel();
+  for (Eigen::Index j = 0; j < N.cols(); ++j) {
+    const Vec3<Q> n = N.col(j);
+    const Q nk = n.dot(k);
+    if (nk == 0) continue;
+    // on the line y0 + s n, A = A(y0) + 2 s (n . k): the vertex at s = -A(y0) / (2 n . k); beyond it
+    // by t n, A = 2 t (n . k) < 0 for t of the sign of -(n . k), |t n| about |n . k| / max|K|
+    const Q a0 = y0.dot(K * y0) + 2 * k.dot(y0) + A(3, 3);
+    const Vec3<Q> vertex = y0 - a0 / (2 * nk) * n;
+    Q big = 0;
+    for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
+    return big == 0 ? vertex : Vec3<Q>(vertex - nk / (n.squaredNorm() * big) * n);
+  }
+  return Vec3<Q>::Zero();
+}
+
 }  // namespace
 
 SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed) {
@@ -150,17 +180,21 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     const Vec4<Q> c = E * Eigen::Matrix<Q, 3, 1>(adj * ell);
     if (c(3) != 0) b = c / c(3);
   }
-  if (b(3) == 0) {  // the foot of the origin on the plane
-    b = finite(Vec3<Q>(-(pi(3) / normal.squaredNorm()) * normal));
+  if (b(3) == 0) {  // the foot on the plane of A's core point (core_point)
+    const Vec3<Q> y = core_point(A);
+    b = finite(Vec3<Q>(y - (normal.dot(y) + pi(3)) / normal.squaredNorm() * normal));
   }
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
+  int hits = 0;
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = normal.cross(draw.vec3());  // a direction inside the plane
     if (d.isZero()) continue;
-    lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
-    if (rep.attempts % 8 == 0 && rep.points.empty()) {  // move the base point within the plane
+    hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
+    // no line has met the section yet (the base may be its singular point, a cone's apex, which
+    // every line through it only touches): move the base point within the plane
+    if (rep.attempts % 8 == 0 && hits == 0) {
       const Vec3<Q> shift = normal.cross(draw.vec3());
       b.head<3>() += shift;
       lines.set_base(b);
@@ -174,17 +208,14 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed) {
   SampleReport rep;
   if (n <= 0) return rep;
   Draw draw(seed);
-  const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const Vec3<Q> k = A.topRightCorner<3, 1>();
-  Vec4<Q> b = finite(Vec3<Q>::Zero());
-  if (K.determinant() != 0) b = finite(Vec3<Q>(-(K.inverse() * k)));  // centre
+  Vec4<Q> b = finite(core_point(A));
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = draw.vec3();
     lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
-    if (rep.attempts % 8 == 0 && rep.points.empty()) {
+    if (rep.attempts % 8 == 0 && rep.points.empty()) {  // (e.g. from a cone's apex: every line only touches)
       b.head<3>() += draw.vec3();
       lines.set_base(b);
     }

@@ -304,10 +304,11 @@ Attributes:
     flags: every special case that applies, "inaccurate" when error_bound
         exceeds the accuracy target, and "non-finite" (with "inaccurate")
         when the result overflowed the precision (its entries are NaN).
-    error_bound: the geometric error (distance of exact terminator points
-        from the results, relative to the object size) measured exactly on
-        64 seeded points, times 2; 0 for precision "exact"; None with
-        `reason` where none can be given.
+    error_bound: an upper bound of the geometric error (distance of exact
+        terminator points from the results, relative to the object size):
+        certified over every point for the results item["certified_for"]
+        names, the others measured exactly on 64 seeded points, times 2;
+        0 for precision "exact"; None with `reason` where none can be given.
     reason, origin, escalated ("float128" when recomputed in binary128),
     fallback, precision, method, frame, inputs_rounded (inputs the
     precision cannot hold, rounded once), item (the qverify-eval/1 item as

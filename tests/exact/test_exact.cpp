@@ -259,3 +259,38 @@ TEST_CASE("adaptive mode: every item is within its certified bound of the exact 
   CHECK(stages["double"] > 0);
   CHECK(stages["mpfr"] > 0);
 }
+
+TEST_CASE("samples of unbounded quadrics far from the origin are found at the object, not along it", "[exact][sampling]") {
+  // Lines drawn from the world origin 2.2e6 away from a cylinder of radius 1 missed it (so a
+  // reflection was "skipped: no real point") or met its terminator 10^6 away along its axis (an object
+  // size of 10^6): the base point is now the object's own (core_point): an axis point of the
+  // cylinder, a cone's apex moved, a point inside a paraboloid.
+  const Vec3<Q> far(1000000, 2000000, 0);
+  const Mat4<Q> cylinder = cylinder_quadric<Q>(far, Vec3<Q>(0, 0, 1), Q(1));
+  const Mat4<Q> cone = cone_quadric<Q>(Vec3<Q>(far + Vec3<Q>(0, 0, 5)), Vec3<Q>(0, 1, 1), Q(1, 2));
+  Mat4<Q> paraboloid = Mat4<Q>::Zero();  // z - 3 = (x - 10^6)^2 + 2 (y - 2 10^6)^2
+  paraboloid(0, 0) = 1, paraboloid(1, 1) = 2, paraboloid(0, 3) = paraboloid(3, 0) = -far(0);
+  paraboloid(1, 3) = paraboloid(3, 1) = -2 * far(1), paraboloid(2, 3) = paraboloid(3, 2) = Q(-1, 2);
+  paraboloid(3, 3) = far(0) * far(0) + 2 * far(1) * far(1) + 3;
+  auto near = [&](const RootPoint& x, double within) {
+    const auto c = x.coords();
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double d = CGAL::to_double(c[static_cast<std::size_t>(i)] / c[3]) - far(i).convert_to<double>();
+      d2 += d * d;
+    }
+    return std::sqrt(d2) < within;
+  };
+  for (const Mat4<Q>& A : {cylinder, cone, paraboloid}) {
+    const SampleReport s = sample_quadric(A, 32, 7);
+    REQUIRE(s.points.size() == 32);
+    for (const RootPoint& x : s.points) {
+      CHECK(CGAL::is_zero(x.form(A)));
+      CHECK(near(x, 1e4));
+    }
+  }
+  const Vec4<Q> lamp(far(0) + 3, far(1) + 1, 2, 1);
+  const SampleReport t = sample_section(cylinder, Vec4<Q>(cylinder * lamp), 32, 7);
+  REQUIRE(t.points.size() == 32);
+  for (const RootPoint& x : t.points) CHECK(near(x, 1e3));
+}

@@ -368,29 +368,24 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (!(pts.size > 0))
     rep.notes.push_back("the terminator is a single real point: no object size to measure distances against; judged by "
                         "the relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy");
-  if (!exact && (got.P || got.polar_plane || got.R) && !pts.exhausted)
-    if (const auto geo = shadow_geometry(Aw, Lw)) {
-      std::vector<std::string> what;
-      Measure sampled = 0;
-      if (got.P) what.push_back("P"), sampled = relative(onP->metric, pts.size);
-      if (got.polar_plane) what.push_back("polar_plane"), sampled = mmax(sampled, relative(onPolar->metric, pts.size));
-      const double size = size_down(pts.size);
-      CertifiedBound cb = shadow_bound(*geo, got.origin, got.P ? &*got.P : nullptr,
-                                       got.polar_plane ? &*got.polar_plane : nullptr, size, opt.accuracy);
-      if (got.P)  // P over the generator lines at the sampled points' offsets, where their geometries are known
-        if (const auto gen = generator_geometries(Aw, Lw, pts.generator_offsets); !gen.empty()) {
-          cb = combined(cb, generators_bound(gen, got.origin, *got.P, size, opt.accuracy));
-          what.push_back("P_generators");
-          sampled = mmax(sampled, relative(onGen->metric, pts.size));
-        }
-      if (got.R)  // R over the terminator and the polar plane inside it, where the plane h does not meet it
-        if (const auto br = terminator_quadric_bound(*geo, got.origin, *got.R, size, opt.accuracy)) {
-          cb = combined(cb, *br);
-          what.push_back("R");
-          sampled = mmax(sampled, mmax(relative(onR->metric, pts.size), relative(onPlane->metric, pts.size)));
-        }
-      if (!what.empty()) certify(rep, cb, opt.accuracy, std::move(what), sampled);
+  if (!exact && (got.P || got.polar_plane || got.R)) {
+    // the certified bound over every point of what it covers (ShadowBounds), never below the errors
+    // measured on the same parts' sample points
+    const ShadowBounds bounds(Aw, Lw, pts);
+    const ShadowCover& c = bounds.cover();
+    const Mat4<Q>* P = got.P && (c.P || c.generators) ? &*got.P : nullptr;
+    const Vec4<Q>* polar = got.polar_plane && c.polar ? &*got.polar_plane : nullptr;
+    const Mat4<Q>* R = got.R && c.R ? &*got.R : nullptr;
+    Measure sampled = 0;
+    if (P && c.P) sampled = relative(onP->metric, pts.size);
+    if (P && c.generators) sampled = mmax(sampled, relative(onGen->metric, pts.size));
+    if (polar) sampled = mmax(sampled, relative(onPolar->metric, pts.size));
+    if (R) sampled = mmax(sampled, mmax(relative(onR->metric, pts.size), relative(onPlane->metric, pts.size)));
+    if (P || polar || R) {
+      CoveredBound b = bounds(got.origin, P, polar, R, size_down(pts.size), opt.accuracy);
+      if (!b.certified.empty()) certify(rep, b.bound, opt.accuracy, std::move(b.certified), sampled);
     }
+  }
   rep.passed = problems.empty();
   return rep;
 }
@@ -456,10 +451,11 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (CGAL::is_zero(y.form(*got.B))) ++rep.proved_exactly;
   const QuadricCheck* onB = rep.find("on_B");
   rep.geometric_error = onB ? onB->geometric_error : 0;
-  if (!exact && got.B && !pts.exhausted)
-    if (const auto geo = reflection_geometry(Aw, Mw))
-      certify(rep, reflection_bound(*geo, got.origin, *got.B, size_down(pts.size), opt.accuracy), opt.accuracy, {"B"},
-              relative(onB->metric, pts.size));
+  if (!exact && got.B)
+    if (const ReflectionBounds bounds(Aw, Mw, pts); bounds.covers()) {
+      CoveredBound b = bounds(got.origin, *got.B, size_down(pts.size), opt.accuracy);
+      certify(rep, b.bound, opt.accuracy, std::move(b.certified), relative(onB->metric, pts.size));
+    }
   rep.consistent_with_precision = exact ? (!onB || onB->metric.all_zero) && (!got.M || *got.M == M_ref)
                                         : !(onB && onB->metric.residual > tol) && !(m_err > tol);
   rep.rounding_tolerance = to_d(tol);

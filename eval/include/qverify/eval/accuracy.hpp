@@ -68,6 +68,10 @@ struct ItemPoints {
   /// the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
   /// 7 units of its 10^4: a size from the samples alone made every relative error 1400 times too large.)
   Measure size = 0;
+  /// A's centre (the points' centroid where K is singular) and a reach of at least `size`: the
+  /// points a bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball).
+  /// For a reflection, about A's points before the mirror.
+  Ball ball{Vec3<Rational>::Zero(), Rational(0)};
   bool exhausted = false;         ///< fewer real points than asked
 };
 
@@ -136,6 +140,75 @@ ReflectionError reflection_error(const ItemPoints& pts, const std::optional<Vec3
 /// The exact reflection in the plane n.x + d = 0, written out here (not the
 /// core's mirror_matrix, which is under test): x - 2 (n.x + d) n / (n.n).
 Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
+
+/// Which of a shadow item's results a certified bound covers (the others are measured on samples).
+struct ShadowCover {
+  bool P = false, polar = false, generators = false, R = false;
+};
+
+/// The certified bound of some of an item's results, and their names ("P", "polar_plane",
+/// "P_generators", "R", "B").
+struct CoveredBound {
+  CertifiedBound bound;
+  std::vector<std::string> certified;
+};
+
+/// The certified bounds of one shadow item's results over every point of their geometry, built once
+/// per item from its points (eval's meter and verify's check use the same):
+///  - where the terminator is a real ellipse, over the whole of it by branch and bound: P and the
+///    polar plane (shadow_bound), P on its generator lines at the item's offsets
+///    (generators_bound), R on the terminator and the polar plane inside it where h does not
+///    meet the terminator (terminator_quadric_bound);
+///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
+///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
+///    A's gradient has a floor on the terminator there (not at a cone's apex); P on the generator
+///    lines, in the ball carried along them; R where h misses the ball.
+/// Nothing where the terminator has too few points to sample (ItemPoints::exhausted).
+class ShadowBounds {
+ public:
+  ShadowBounds(const Mat4<Rational>& A, const Vec4<Rational>& L, const ItemPoints& pts);
+  /// What a bound covers, of the results that are given.
+  const ShadowCover& cover() const { return cover_; }
+  /// The bound of the given results (nullptr: not given), in the frame with `origin`, relative to
+  /// `size`; `target` steers the branch and bound only.
+  CoveredBound operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>* P,
+                          const Vec4<Rational>* polar, const Mat4<Rational>* R, double size, double target) const;
+
+ private:
+  struct BallPart {
+    Mat4<Rational> ref;
+    Ball ball;
+    GradientFloor floor;
+  };
+  ShadowCover cover_;
+  std::optional<ShadowGeometry> geo_;
+  std::vector<ShadowGeometry> generators_;
+  // the ball bounds, where geo_ is empty
+  Ball ball_{Vec3<Rational>::Zero(), Rational(0)};
+  Mat4<Rational> P_ref_, R_ref_;
+  Vec4<Rational> pi_ref_;
+  GradientFloor P_floor_;
+  Measure h_centre_ = 0, h_normal_ = 0, pi_normal_ = 0;  ///< |h . (c, 1)|, |h_xyz|, |pi_xyz|: R's floor
+  std::vector<BallPart> generator_balls_;
+};
+
+/// The same for a reflection item's B: over the whole of A reflected where A is an ellipsoid
+/// (reflection_bound), else over A's points within the object size of its centre, reflected
+/// (a ball bound, where A's gradient has a floor there).
+class ReflectionBounds {
+ public:
+  ReflectionBounds(const Mat4<Rational>& A, const Mat4<Rational>& M, const ItemPoints& pts);
+  bool covers() const { return geo_.has_value() || floored_; }
+  CoveredBound operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& B, double size,
+                          double target) const;
+
+ private:
+  std::optional<ReflectionGeometry> geo_;
+  Mat4<Rational> B_ref_;
+  Ball ball_{Vec3<Rational>::Zero(), Rational(0)};  ///< reflected
+  GradientFloor floor_;
+  bool floored_ = false;
+};
 
 /// error_bound of eval. Where the terminator is a real ellipse, P and the polar plane on the
 /// terminator, P on its generator lines (at the item's offsets), R on the
@@ -220,8 +293,7 @@ class ShadowMeter {
   std::size_t k_;
   ItemPoints pts_;
   std::optional<ItemPoints> dense_;
-  std::optional<ShadowGeometry> geo_;
-  std::vector<ShadowGeometry> generators_;  ///< P on its generator lines (generator_geometries)
+  ShadowBounds bounds_;
 };
 
 /// The same for one reflection item: B bounded over the whole of A reflected by
@@ -238,7 +310,7 @@ class ReflectionMeter {
   std::size_t k_;
   ItemPoints pts_;
   std::optional<ItemPoints> dense_;
-  std::optional<ReflectionGeometry> geo_;
+  ReflectionBounds bounds_;
 };
 
 }  // namespace qverify

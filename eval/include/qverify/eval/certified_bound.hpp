@@ -55,6 +55,7 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/scalars.hpp>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -156,5 +157,69 @@ CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b);
 /// The certified bound of the returned B over A reflected.
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Rational>>& origin,
                                 const Mat4<Rational>& B, double size, double target);
+
+/// Where the geometry is not a real ellipse (an unbounded terminator, a quadric other than an
+/// ellipsoid reflected) its points do not all count: the object size is the largest distance of
+/// the sampled points from A's centre (accuracy.hpp), and a bound covers every point of the
+/// geometry within that distance of the centre, the ball below (exact: `reach` is at least the
+/// size).
+struct Ball {
+  Vec3<Rational> centre;
+  Rational reach;
+};
+
+/// The ball mapped by x -> a x + t (a homothety or translation, as generator_map and the mirror's
+/// linear part times its offset are): centre a c + t, reach |a| reach.
+Ball moved(const Ball& b, const Rational& a, const Vec3<Rational>& t);
+
+/// Lower bounds of |(A (x, 1))_xyz| over the points x of A in a shell of a ball, inner <= |x - c| <=
+/// outer; 0 where none is known (A's gradient vanishes there: the apex of a cone; or A is the zero
+/// matrix). With K = A_xyz,xyz, k = A_xyz,w, mu <= the smallest non-zero eigenvalue of K^2 and
+/// sigma = |K|_F >= its largest singular value (both proved exactly):
+///  - K y0 = -k has a rational solution (A's centre, or any point of its axis of centres) and
+///    r = A(y0): on A, y^T K y = -r for y = x - y0, so (Cauchy-Schwarz) |K y| >= |r| / |y| >=
+///    |r| / (|c - y0| + outer), and |K y|^2 >= mu |Py|^2 >= mu |r| / sigma (P the projection onto
+///    K's range); where K is invertible also |K y| >= sqrt(mu) |y| >= sqrt(mu) (inner - |c - y0|),
+///    a cone's too away from its apex;
+///  - it has none (a paraboloid, a parabolic cylinder): with k_n, k's part in K's kernel, and y0 with
+///    K y0 = -(k - k_n), K x + k = K y + k_n, so |K x + k|^2 >= mu |Py|^2 + |k_n|^2; for a
+///    paraboloid (kernel = span k_n), A = 0 gives |k_n . y| <= (sigma |Py|^2 + |A(y0)|) / 2, so that
+///    |y| >= inner - |c - y0| bounds |Py| from below.
+/// `scale` multiplies every floor (P's reference on the terminator is (L^T A L) A's gradient).
+class GradientFloor {
+ public:
+  GradientFloor() = default;  ///< none: 0
+  GradientFloor(const Mat4<Rational>& A, const Ball& ball, const Rational& scale = Rational(1));
+  Measure operator()(const Measure& inner, const Measure& outer) const;
+
+ private:
+  enum class Kind { none, centre, paraboloid } kind_ = Kind::none;
+  Measure scale_ = 0, d0_ = 0;                   ///< |scale|, |c - y0|
+  Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(mu |r| / sigma), sqrt(mu) (K invertible)
+  Measure kn_ = 0, a0_ = 0, sigma_ = 0, mu_ = 0; ///< paraboloid: |k_n|, |A(y0)|, sigma, mu
+  bool grows_ = false;                           ///< a paraboloid (the kernel is k_n's line)
+};
+
+/// The floor over the whole ball: GradientFloor(A, ball)(0, reach).
+Measure gradient_floor(const Mat4<Rational>& A, const Ball& ball);
+
+/// A floor of a reference's gradient over the zero set in a shell of a ball: (inner, outer) -> floor.
+using ShellFloor = std::function<Measure(const Measure& inner, const Measure& outer)>;
+
+/// Ball bounds: the first-order distance of the returned `hat` (frame with `origin`) over every
+/// point x of the ball where the exact reference `ref` vanishes, relative to `size`. With lambda
+/// (the scale of hat nearest ref), E = hat - lambda ref_o and z = z0 + (y, 0), z0 = (c - o, 1), on
+/// each shell r_in <= |y| <= r_out of the ball (radii reach (3/4)^j, and 0):
+///   |z^T E z| <= |z0^T E z0| + 2 r_out |(E z0)_xyz| + r_out^2 |E_xyz,xyz|_F,
+///   |(hat z)_xyz| >= |lambda| floor(r_in, r_out) - |(E z0)_xyz| - r_out |E_xyz,xyz|_F,
+/// and the distance there is at most the first over twice the second; the bound is the largest over
+/// the shells (a plane: (|eps . z0| + reach |eps_xyz|) / |hat_xyz|, eps = hat - lambda ref_o).
+/// Infinite where a shell's gradient bound is not positive. Coarser than the branch and bound (no
+/// parameters), the shells keep it within a small factor of a rounded result's error where the
+/// reference's gradient grows with the distance (hyperboloids, paraboloids).
+CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
+                                  const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size);
+CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
+                                const std::optional<Vec3<Rational>>& origin, double size);
 
 }  // namespace qverify

@@ -300,9 +300,10 @@ template <class S> void decide_statuses(const TypedScene<Rational>& ex, Method m
   }
 }
 
-/// error_bound and `inaccurate` of every floating item: the geometric error
-/// measured exactly on the seeded sample points (the points `verify` uses by
-/// default; near the target, on kRefineFactor times more), times kBoundMargin. On the default path (builtin floating types,
+/// error_bound and `inaccurate` of every floating item (ShadowMeter, ReflectionMeter): the geometric
+/// error bounded over every point of the results ShadowBounds / ReflectionBounds cover, the rest
+/// measured exactly on the seeded sample points (the points `verify` uses by default; near the
+/// target, on kRefineFactor times more), times kBoundMargin. On the default path (builtin floating types,
 /// method direct, local frames) an item whose bound exceeds the target is
 /// first recomputed in binary128 from its exact inputs and measured again.
 /// `ex` is typed_scene<Rational>(sc).

@@ -38,6 +38,8 @@ using Measure =
 Gmpq to_gmpq(const Rational& q);
 Rational to_rational(const Gmpq& q);
 Measure to_measure(const Rational& q);
+/// The exact value of a finite Measure (a dyadic rational).
+Rational exact_measure(const Measure& m);
 /// The real value of a0 + a1 sqrt(r) to 80 digits, without cancellation:
 /// where a0 and a1 sqrt(r) have opposite signs it is (a0^2 - a1^2 r) / (a0 - a1 sqrt(r)).
 Measure to_measure(const RootNumber& v);

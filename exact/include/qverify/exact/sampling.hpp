@@ -3,7 +3,9 @@
 /// Exact, deterministic (seeded) sample points on quadrics and on plane
 /// sections of quadrics (the terminator A ∩ polar plane).
 ///
-/// Method: a rational base point b (the centre when there is one) and a random
+/// Method: a rational base point b at the object (A's centre, a point of its axis of centres, a point
+/// inside a paraboloid on its axis; for a section, the conic's centre, else the foot of that point on
+/// the plane: never the world origin, which may be far from the object) and a random
 /// rational direction u (inside the plane, for a section); the line b + t u
 /// meets A where alpha t^2 + 2 beta t + c = 0, at
 ///   x = b - (beta/alpha) u +- sqrt(beta^2 - alpha c) (u/alpha),
