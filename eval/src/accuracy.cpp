@@ -819,8 +819,8 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "size is the largest distance of the sampled points from A's centre (their centroid where A has none) and the "
       "same results are bounded over every point of their geometry within that distance of the centre, by one interval "
       "bound over the ball, where the reference's gradient has a floor there (not at a cone's apex, not for R where "
-      "h crosses the ball); certified_for names what is bounded. The rest (R where h meets the terminator, P near a "
-      "cone's apex) is measured exactly on " +
+      "h crosses the ball); certified_for names what is bounded. The rest (R where h meets the terminator or the "
+      "ball, P and B of a cone) is measured exactly on " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + "; near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +

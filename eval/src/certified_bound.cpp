@@ -744,10 +744,18 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   const Vec3<Q> y0 = invertible ? Vec3<Q>(-(K.inverse() * k)) : Vec3<Q>(lu.solve(Vec3<Q>(-k)));
   const Q mu = K.isZero() ? Q(0) : range_floor(K, N);
   mu_ = to_measure(mu);
+  // y + (the kernel part of c - y): the point of y's kernel line (or plane) nearest the ball's centre
+  // (A and K y + k do not change along the kernel for an axis of centres; d0 is the smaller)
+  const auto nearest = [&](const Vec3<Q>& y) {
+    if (invertible || N.cols() == 0) return y;
+    const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
+    return Vec3<Q>(y + N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * Vec3<Q>(ball.centre - y))));
+  };
   if (Vec3<Q>(K * y0 + k).isZero()) {  // a centre, or an axis of centres
     kind_ = Kind::centre;
-    d0_ = msqrt((ball.centre - y0).squaredNorm());
-    const Q r = A(3, 3) + k.dot(y0);
+    const Vec3<Q> yc = nearest(y0);
+    d0_ = msqrt((ball.centre - yc).squaredNorm());
+    const Q r = A(3, 3) + k.dot(yc);
     r_ = abs(to_measure(r));
     if (r != 0 && mu > 0) steady_ = sqrt(to_measure(Q(mu * abs(r))) / sigma_);
     if (invertible && mu > 0) linear_ = sqrt(mu_);
@@ -756,7 +764,7 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   // k's part in the kernel (a rational projection: N (N^T N)^-1 N^T k), and y0 for the rest
   const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
   const Vec3<Q> kn = N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * k));
-  const Vec3<Q> y1 = lu.solve(Vec3<Q>(-(k - kn)));
+  const Vec3<Q> y1 = nearest(Vec3<Q>(lu.solve(Vec3<Q>(-(k - kn)))));  // (K y1 + k - kn stays 0 along the kernel)
   if (!Vec3<Q>(K * y1 + (k - kn)).isZero() || kn.isZero()) return;  // (not expected: k - kn is in K's range)
   kind_ = Kind::paraboloid;
   kn_ = msqrt(kn.squaredNorm());
@@ -825,7 +833,9 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   const Mat4<Q> E = hat - lambda * ref_o;
   const Vec4<Q> z0 = ball_base(ball, o);
   const Q a = z0.dot(E * z0);
-  const Vec3<Q> g = Vec4<Q>(E * z0).head<3>();
+  // z^T E z = a + y . ((E + E^T) z0)_xyz + y^T E3 y: a candidate's matrix need not be exactly
+  // symmetric (verify accepts an asymmetry within the target), so the linear part is E + E^T's
+  const Vec3<Q> g = Vec4<Q>(E * z0).head<3>(), gs = Vec4<Q>(Mat4<Q>(E + E.transpose()) * z0).head<3>();
   const Mat3<Q> E3 = E.topLeftCorner<3, 3>();
   const Measure lambda_scale = abs(to_measure(Q(lambda * ref_scale)));
   // the shells' radii reach (3/4)^j, j = 0..kShells, and 0; the floors in 80 digits, then below in double
@@ -841,11 +851,11 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     IA e3(0);
     for (Eigen::Index i = 0; i < 9; ++i) e3 += CGAL::square(enc(E3(i)));
     e3 = CGAL::sqrt(e3);
-    const IA gn = norm_of(g), fa = CGAL::abs(enc(a));
+    const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
     double worst = 0;
     for (std::size_t j = 0; j <= kShells; ++j) {
       const IA r = enc(radius[j]);
-      const IA value = fa + IA(2) * r * gn + CGAL::square(r) * e3;
+      const IA value = fa + r * gsn + CGAL::square(r) * e3;
       if (value.sup() == 0) continue;
       const IA gradient = IA(floors[j]) - gn - r * e3;
       if (!(gradient.inf() > 0)) return CertifiedBound{kInf, 0, kShells + 1};

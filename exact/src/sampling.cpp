@@ -123,20 +123,24 @@ Vec3<Q> core_point(const Mat4<Q>& A) {
   const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0
   const Vec3<Q> y0 = lu.solve(Vec3<Q>(-k));
   if (Vec3<Q>(K * y0 + k).isZero()) return y0;
+  // no centre: k's part k_n in K's kernel is not 0 (a paraboloid, a parabolic cylinder, a plane);
+  // y1 with K y1 = -(k - k_n) lies on the axis, and on the line y1 + s k_n, A = A(y1) + 2 s |k_n|^2:
+  // the vertex at s = -A(y1) / (2 |k_n|^2). Beyond it by t k_n, A = 2 t |k_n|^2: inside (on the
+  // side of the quadric's convexity, where sign(A) = -sign(trace K)) for t of the sign of -trace K,
+  // |t k_n| about |k_n| / max|K|; a plane (K = 0): off it by k_n, where lines meet it.
   const auto N = lu.kernel();
-  for (Eigen::Index j = 0; j < N.cols(); ++j) {
-    const Vec3<Q> n = N.col(j);
-    const Q nk = n.dot(k);
-    if (nk == 0) continue;
-    // on the line y0 + s n, A = A(y0) + 2 s (n . k): the vertex at s = -A(y0) / (2 n . k); beyond it
-    // by t n, A = 2 t (n . k) < 0 for t of the sign of -(n . k), |t n| about |n . k| / max|K|
-    const Q a0 = y0.dot(K * y0) + 2 * k.dot(y0) + A(3, 3);
-    const Vec3<Q> vertex = y0 - a0 / (2 * nk) * n;
-    Q big = 0;
-    for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
-    return big == 0 ? vertex : Vec3<Q>(vertex - nk / (n.squaredNorm() * big) * n);
-  }
-  return Vec3<Q>::Zero();
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
+  const Vec3<Q> kn = N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * k));
+  const Vec3<Q> y1 = lu.solve(Vec3<Q>(-(k - kn)));
+  const Q n2 = kn.squaredNorm();
+  if (n2 == 0 || !Vec3<Q>(K * y1 + (k - kn)).isZero()) return Vec3<Q>::Zero();  // (not expected)
+  const Q a1 = y1.dot(K * y1) + 2 * k.dot(y1) + A(3, 3);
+  const Vec3<Q> vertex = y1 - a1 / (2 * n2) * kn;
+  Q big = 0;
+  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
+  if (big == 0) return Vec3<Q>(vertex + kn);
+  const Q side = K.trace() < 0 ? Q(1) : Q(-1);
+  return Vec3<Q>(vertex + side / big * kn);
 }
 
 }  // namespace

@@ -144,6 +144,30 @@ TEST_CASE("DigitPack: chains of lazy operands, never read until the end, equal G
   }
 }
 
+TEST_CASE("DigitPack: digits at their bound, doubled up to 2^32, multiplied", "[digit]") {
+  // every digit 2^28 - 1 doubled d times is 2^(28 + d) - 2^d: the largest a digit of bound 2^(28 + d)
+  // gets. A digit product reads 32 bits, signed: at d = 3 the digits are just below 2^31 and are
+  // multiplied as they are; at d = 4 (2^32 - 16) they must be normalized first, or they are read wrong.
+  std::mt19937_64 g(41);
+  for (int d = 0; d <= 6; ++d)
+    for (int trial = 0; trial < 8; ++trial) {
+      __int128 top[kL];
+      for (auto& v : top) v = ((g() % 2) ? 1 : -1) * ((static_cast<__int128>(1) << (56 + g() % 40)) - 1);
+      DP x = DP::from_lanes(top);
+      Q q[kL];
+      for (int l = 0; l < kL; ++l) q[l] = q128(top[l]);
+      for (int k = 0; k < d; ++k) x += x;
+      const Lanes y = random_pack(g);
+      DP prod = x * y.p;
+      DP square = x * x;
+      Q qp[kL], qs[kL];
+      for (int l = 0; l < kL; ++l) qp[l] = q[l] * pow2(d) * y.q[l], qs[l] = q[l] * q[l] * pow2(2 * d);
+      INFO(d << " doublings");
+      check_lanes(prod, qp);
+      check_lanes(square, qs);
+    }
+}
+
 TEST_CASE("DigitPack: normalize keeps the value and bounds every digit by 2^28", "[digit]") {
   std::mt19937_64 g(22);
   for (int trial = 0; trial < 200; ++trial) {

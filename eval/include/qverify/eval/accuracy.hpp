@@ -210,15 +210,10 @@ class ReflectionBounds {
   bool floored_ = false;
 };
 
-/// error_bound of eval. Where the terminator is a real ellipse, P and the polar plane on the
-/// terminator, P on its generator lines (at the item's offsets), R on the
-/// terminator and the polar plane inside it where its plane h does not meet the
-/// terminator, and, where A is an ellipsoid, B are bounded over every point
-/// (certified_bound.hpp); what is measured on samples only (R where h meets
-/// the terminator, shadows of other terminators, reflections of other
-/// quadrics) counts
-/// twice its largest sampled error (kBoundMargin), a margin for the points
-/// between the samples that is not a proof.
+/// error_bound of eval: what ShadowBounds / ReflectionBounds cover is bounded over every point of
+/// its geometry (certified_bound.hpp); what is measured on samples only (R where h meets the
+/// terminator, or the ball of an unbounded one; P and B near a cone's apex) counts twice its largest
+/// sampled error (kBoundMargin), a margin for the points between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
 
 
@@ -230,7 +225,8 @@ struct ItemAccuracy {
   bool inaccurate = false;
   /// The results whose part of the bound is certified over every point of their geometry
   /// (certified_bound.hpp: "P" and "polar_plane" on the terminator, "P_generators" for P on its
-  /// generator lines at the item's offsets, "B"); the other parts are measured on samples.
+  /// generator lines at the item's offsets, "R", "B"; ShadowBounds, ReflectionBounds); the other
+  /// parts are measured on samples.
   std::vector<std::string> certified;
   /// A geometric error the result is known to reach (a lower bound of its true error, at most
   /// `bound`): the largest measured on the exact sample points, or, where the bound is certified,
@@ -269,12 +265,10 @@ std::string error_bound_rule(const AccuracyOptions& accuracy);
 /// The accuracy of a result that has non-finite entries: no bound, inaccurate.
 ItemAccuracy non_finite_accuracy();
 
-/// eval's error_bound and `inaccurate` of one shadow item (index k): P and the
-/// polar plane bounded over the whole terminator, and P over its generator
-/// lines at the item's offsets, and R over the terminator and the polar plane
-/// inside it where its plane h does not meet the terminator, where the terminator is a real ellipse
-/// (shadow_bound, generators_bound, terminator_quadric_bound); R elsewhere, and every result
-/// where the terminator is not an ellipse, measured on the item's seeded sample points (shadow_error) and, in
+/// eval's error_bound and `inaccurate` of one shadow item (index k): what ShadowBounds covers
+/// bounded over every point of its geometry (the whole terminator where it is a real ellipse, the
+/// part within the object size of A's centre elsewhere), the rest measured on the item's seeded
+/// sample points (shadow_error) and, in
 /// the gray zone, again on kRefineFactor times as many other points, the larger
 /// measure counting, times kBoundMargin. A sampled error above the certified
 /// bound is a bug and throws std::logic_error. The points are sampled once per
@@ -296,9 +290,9 @@ class ShadowMeter {
   ShadowBounds bounds_;
 };
 
-/// The same for one reflection item: B bounded over the whole of A reflected by
-/// the exact mirror of `plane` where A is an ellipsoid (reflection_bound), else
-/// measured on its sampled points (reflection_error).
+/// The same for one reflection item: B bounded over A reflected by the exact mirror of `plane`
+/// where ReflectionBounds covers it (the whole of an ellipsoid; other quadrics within the object
+/// size of their centre, not a cone), else measured on its sampled points (reflection_error).
 class ReflectionMeter {
  public:
   ReflectionMeter(const Mat4<Rational>& A, const Vec4<Rational>& plane, const AccuracyOptions& opt, std::size_t k);

@@ -77,7 +77,7 @@ class Geometry;
 
 /// The geometry of a shadow item where the terminator is a real ellipse (any quadric; A's
 /// gradient floor, and with it grad_floor, is known where A is an ellipsoid only, 0 elsewhere);
-/// nullopt otherwise (the error is then measured on samples only).
+/// nullopt otherwise (the error is then bounded in a ball: ball_quadric_bound, ShadowBounds).
 struct ShadowGeometry {
   std::shared_ptr<const Geometry> terminator;
   std::shared_ptr<const Geometry> polar_disc;  ///< the polar plane inside the terminator
