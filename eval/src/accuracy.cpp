@@ -674,9 +674,9 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
   ball_ = pts.ball;
   pi_ref_ = A * L;
   const Q s = L.dot(pi_ref_);
-  P_ref_ = s * A - pi_ref_ * pi_ref_.transpose();
+  P_ref_ = reference_cone(A, L);
   const Vec4<Q> h = reference_second_plane(L);
-  R_ref_ = pi_ref_ * h.transpose() + h * pi_ref_.transpose();
+  R_ref_ = reference_plane_pair(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz, and (R_ref x)_xyz = (h . x) pi_xyz with
   // |h . x| >= |h . (c, 1)| - reach |h_xyz| in the ball
   P_floor_ = GradientFloor(A, ball_, s);
@@ -688,13 +688,9 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
   // in the ball carried by x -> a x + rho L_xyz, a = 1 - rho L_w
   for (const Q& rho : pts.generator_offsets) {
     const Q a = 1 - rho * L(3);
-    Mat4<Q> N = Mat4<Q>::Identity();
-    N.col(3) -= rho * L;
-    const Mat4<Q> Ar = N.transpose() * A * N;
-    const Vec4<Q> pr = Ar * L;
-    const Q sr = L.dot(pr);
-    BallPart part{Mat4<Q>(sr * Ar - pr * pr.transpose()), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
-    if (a > 0) part.floor = GradientFloor(Ar, part.ball, sr);
+    const Mat4<Q> Ar = generator_quadric(A, L, rho);
+    BallPart part{reference_cone(Ar, L), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
+    if (a > 0) part.floor = GradientFloor(Ar, part.ball, L.dot(Vec4<Q>(Ar * L)));
     if (!(part.floor(0, to_measure(part.ball.reach)) > 0)) {
       generator_balls_.clear();
       break;

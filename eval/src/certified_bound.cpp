@@ -3,6 +3,7 @@
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/rounding.hpp>
+#include <qverify/exact/sampling.hpp>
 
 #include <algorithm>
 #include <array>
@@ -582,6 +583,22 @@ Vec4<Q> reference_second_plane(const Vec4<Q>& L) {
   return L(3) == 0 ? Vec4<Q>(0, 0, 0, 1) : Vec4<Q>(0, 0, L(3), -L(2));
 }
 
+Mat4<Q> reference_cone(const Mat4<Q>& A, const Vec4<Q>& L) {
+  const Vec4<Q> pi = A * L;
+  return L.dot(pi) * A - pi * pi.transpose();
+}
+
+Mat4<Q> reference_plane_pair(const Mat4<Q>& A, const Vec4<Q>& L) {
+  const Vec4<Q> pi = A * L, h = reference_second_plane(L);
+  return pi * h.transpose() + h * pi.transpose();
+}
+
+Mat4<Q> generator_quadric(const Mat4<Q>& A, const Vec4<Q>& L, const Q& rho) {
+  Mat4<Q> N = Mat4<Q>::Identity();
+  N.col(3) -= rho * L;
+  return N.transpose() * A * N;
+}
+
 namespace {
 
 /// The terminator and P's parts of a shadow geometry (shadow_geometry adds R's).
@@ -596,7 +613,7 @@ std::optional<ShadowGeometry> cone_geometry(const Mat4<Q>& A, const Vec4<Q>& L) 
   g.terminator = ellipse;
   g.pi_ref = A * L;
   const Q s = L.dot(g.pi_ref);
-  g.P_ref = s * A - g.pi_ref * g.pi_ref.transpose();
+  g.P_ref = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz, since pi.x = 0 there
   g.grad_floor = ell ? Measure(abs(to_measure(s)) * ell->grad_floor) : Measure(0);
   return g;
@@ -611,7 +628,7 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   const auto& ellipse = g.terminator;
   // R: the plane pair pi, h
   const Vec4<Q> h = reference_second_plane(L);
-  g.R_ref = g.pi_ref * h.transpose() + h * g.pi_ref.transpose();
+  g.R_ref = reference_plane_pair(A, L);
   // On the terminator (R_ref x)_xyz = (h . x) pi_xyz (pi . x = 0), and h . x = a0 + c . u with
   // a0 = h . (e + y0, 1) exact and c = R^T B^T h_xyz: on the circle |u| = 1, |h . x| >= |a0| - |c|.
   // pi and h are scaled exactly to entries near 1 first (a light 10^200 away, or a tiny homogeneous
@@ -687,9 +704,7 @@ std::vector<ShadowGeometry> generator_geometries(const Mat4<Q>& A, const Vec4<Q>
   std::vector<ShadowGeometry> out;
   for (const Q& rho : offsets) {
     if (!(1 - rho * L(3) > 0)) return {};
-    Mat4<Q> N = Mat4<Q>::Identity();
-    N.col(3) -= rho * L;
-    auto g = cone_geometry(Mat4<Q>(N.transpose() * A * N), L);  // P alone is bounded there
+    auto g = cone_geometry(generator_quadric(A, L, rho), L);  // P alone is bounded there
     if (!g) return {};
     out.push_back(std::move(*g));
   }
@@ -736,41 +751,27 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
   const Vec3<Q> k = A.topRightCorner<3, 1>();
   if (K.isZero() && k.isZero()) return;
+  const QuadricCore core = quadric_core(A);
+  if (!core.found) return;  // (not expected)
   scale_ = abs(to_measure(scale));
   sigma_ = msqrt((K * K).trace());
-  const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0, so are the pivots' thresholds
-  const bool invertible = lu.rank() == 3;
-  const Eigen::Matrix<Q, 3, Eigen::Dynamic> N = invertible ? Eigen::Matrix<Q, 3, Eigen::Dynamic>(3, 0) : lu.kernel();
-  const Vec3<Q> y0 = invertible ? Vec3<Q>(-(K.inverse() * k)) : Vec3<Q>(lu.solve(Vec3<Q>(-k)));
-  const Q mu = K.isZero() ? Q(0) : range_floor(K, N);
+  const Q mu = K.isZero() ? Q(0) : range_floor(K, core.kernel);
   mu_ = to_measure(mu);
-  // y + (the kernel part of c - y): the point of y's kernel line (or plane) nearest the ball's centre
-  // (A and K y + k do not change along the kernel for an axis of centres; d0 is the smaller)
-  const auto nearest = [&](const Vec3<Q>& y) {
-    if (invertible || N.cols() == 0) return y;
-    const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
-    return Vec3<Q>(y + N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * Vec3<Q>(ball.centre - y))));
-  };
-  if (Vec3<Q>(K * y0 + k).isZero()) {  // a centre, or an axis of centres
+  // measured from the point of the core's line (plane) nearest the ball's centre: d0 is the smaller
+  const Vec3<Q> y = core.nearest(ball.centre);
+  d0_ = msqrt((ball.centre - y).squaredNorm());
+  if (core.kn.isZero()) {  // a centre, or an axis of centres (along which A does not change)
     kind_ = Kind::centre;
-    const Vec3<Q> yc = nearest(y0);
-    d0_ = msqrt((ball.centre - yc).squaredNorm());
-    const Q r = A(3, 3) + k.dot(yc);
+    const Q r = A(3, 3) + k.dot(y);
     r_ = abs(to_measure(r));
     if (r != 0 && mu > 0) steady_ = sqrt(to_measure(Q(mu * abs(r))) / sigma_);
-    if (invertible && mu > 0) linear_ = sqrt(mu_);
+    if (core.kernel.cols() == 0 && mu > 0) linear_ = sqrt(mu_);
     return;
   }
-  // k's part in the kernel (a rational projection: N (N^T N)^-1 N^T k), and y0 for the rest
-  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
-  const Vec3<Q> kn = N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * k));
-  const Vec3<Q> y1 = nearest(Vec3<Q>(lu.solve(Vec3<Q>(-(k - kn)))));  // (K y1 + k - kn stays 0 along the kernel)
-  if (!Vec3<Q>(K * y1 + (k - kn)).isZero() || kn.isZero()) return;  // (not expected: k - kn is in K's range)
   kind_ = Kind::paraboloid;
-  kn_ = msqrt(kn.squaredNorm());
-  d0_ = msqrt((ball.centre - y1).squaredNorm());
-  a0_ = abs(to_measure(Q(y1.dot(K * y1) + 2 * k.dot(y1) + A(3, 3))));
-  grows_ = N.cols() == 1 && mu > 0;
+  kn_ = msqrt(core.kn.squaredNorm());
+  a0_ = abs(to_measure(quadric_value(A, y)));
+  grows_ = core.kernel.cols() == 1 && mu > 0;
 }
 
 Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) const {

@@ -117,33 +117,55 @@ Vec4<Q> finite(const Vec3<Q>& v) { return Vec4<Q>(v(0), v(1), v(2), Q(1)); }
 /// cylinder of radius 1 miss it (no point found, so no check) or meet it 10^6 away along its axis
 /// (so an object size of 10^6).
 Vec3<Q> core_point(const Mat4<Q>& A) {
-  const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const Vec3<Q> k = A.topRightCorner<3, 1>();
-  if (K.determinant() != 0) return -(K.inverse() * k);
-  const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0
-  const Vec3<Q> y0 = lu.solve(Vec3<Q>(-k));
-  if (Vec3<Q>(K * y0 + k).isZero()) return y0;
-  // no centre: k's part k_n in K's kernel is not 0 (a paraboloid, a parabolic cylinder, a plane);
-  // y1 with K y1 = -(k - k_n) lies on the axis, and on the line y1 + s k_n, A = A(y1) + 2 s |k_n|^2:
-  // the vertex at s = -A(y1) / (2 |k_n|^2). Beyond it by t k_n, A = 2 t |k_n|^2: inside (on the
+  const QuadricCore core = quadric_core(A);
+  if (!core.found) return Vec3<Q>::Zero();  // (not expected)
+  if (core.kn.isZero()) return core.y;
+  // no centre (a paraboloid, a parabolic cylinder, a plane): on the line y + s k_n, A = A(y) + 2 s
+  // |k_n|^2: the vertex at s = -A(y) / (2 |k_n|^2). Beyond it by t k_n, A = 2 t |k_n|^2: inside (on the
   // side of the quadric's convexity, where sign(A) = -sign(trace K)) for t of the sign of -trace K,
   // |t k_n| about |k_n| / max|K|; a plane (K = 0): off it by k_n, where lines meet it.
-  const auto N = lu.kernel();
-  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = N.transpose() * N;
-  const Vec3<Q> kn = N * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (N.transpose() * k));
-  const Vec3<Q> y1 = lu.solve(Vec3<Q>(-(k - kn)));
-  const Q n2 = kn.squaredNorm();
-  if (n2 == 0 || !Vec3<Q>(K * y1 + (k - kn)).isZero()) return Vec3<Q>::Zero();  // (not expected)
-  const Q a1 = y1.dot(K * y1) + 2 * k.dot(y1) + A(3, 3);
-  const Vec3<Q> vertex = y1 - a1 / (2 * n2) * kn;
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> vertex = core.y - quadric_value(A, core.y) / (2 * core.kn.squaredNorm()) * core.kn;
   Q big = 0;
   for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
-  if (big == 0) return Vec3<Q>(vertex + kn);
+  if (big == 0) return Vec3<Q>(vertex + core.kn);
   const Q side = K.trace() < 0 ? Q(1) : Q(-1);
-  return Vec3<Q>(vertex + side / big * kn);
+  return Vec3<Q>(vertex + side / big * core.kn);
 }
 
 }  // namespace
+
+QuadricCore quadric_core(const Mat4<Q>& A) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> k = A.topRightCorner<3, 1>();
+  QuadricCore core;
+  if (K.determinant() != 0) {
+    core.kernel.resize(3, 0);
+    core.kn.setZero();
+    core.y = -(K.inverse() * k);
+    core.found = true;
+    return core;
+  }
+  const Eigen::FullPivLU<Mat3<Q>> lu(K);  // exact: Rational's epsilon is 0, so are the pivots' thresholds
+  core.kernel = lu.kernel();
+  // k_n = N (N^T N)^-1 N^T k, a rational projection (the kernel's basis need not be orthogonal)
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = core.kernel.transpose() * core.kernel;
+  core.kn = core.kernel * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (core.kernel.transpose() * k));
+  const Vec3<Q> kr = k - core.kn;
+  core.y = lu.solve(Vec3<Q>(-kr));
+  core.found = Vec3<Q>(K * core.y + kr).isZero();
+  return core;
+}
+
+Vec3<Q> QuadricCore::nearest(const Vec3<Q>& p) const {
+  if (kernel.cols() == 0) return y;
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> G = kernel.transpose() * kernel;
+  return Vec3<Q>(y + kernel * Eigen::Matrix<Q, Eigen::Dynamic, 1>(G.inverse() * (kernel.transpose() * Vec3<Q>(p - y))));
+}
+
+Q quadric_value(const Mat4<Q>& A, const Vec3<Q>& y) {
+  return y.dot(Mat3<Q>(A.topLeftCorner<3, 3>()) * y) + 2 * Vec3<Q>(A.topRightCorner<3, 1>()).dot(y) + A(3, 3);
+}
 
 SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed) {
   SampleReport rep;

@@ -100,6 +100,15 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec
 /// (0, 0, 0, 1) for a parallel one.
 Vec4<Rational> reference_second_plane(const Vec4<Rational>& L);
 
+/// The references, written out here (not the core's functions, which are under test): P_ref =
+/// (L^T A L) A - (A L)(A L)^T, eq. (3), and R_ref = pi h^T + h pi^T, pi = A L, h = reference_second_plane(L).
+Mat4<Rational> reference_cone(const Mat4<Rational>& A, const Vec4<Rational>& L);
+Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational>& L);
+
+/// A_rho = N^T A N, N = I - rho L e_4^T: the quadric whose terminator lit by L is A's terminator moved
+/// along the generator lines by rho (generator_map, generator_geometries).
+Mat4<Rational> generator_quadric(const Mat4<Rational>& A, const Vec4<Rational>& L, const Rational& rho);
+
 /// The geometry of a reflection item where A is an ellipsoid; nullopt otherwise.
 struct ReflectionGeometry {
   std::shared_ptr<const Geometry> surface;

@@ -29,6 +29,25 @@ struct SampleReport {
   bool exhausted = false;  ///< fewer points than asked were found
 };
 
+/// A quadric's core, exactly. With K = A_xyz,xyz and k = A_xyz,w: a basis of K's kernel (none where
+/// K is invertible), k_n, k's part in that kernel (0 where A has a centre or an axis of centres; not
+/// 0 for a paraboloid, a parabolic cylinder, a plane), and a point y with K y = -(k - k_n): A's
+/// centre, a point of its axis of centres, a point of a paraboloid's axis. K y + k does not change
+/// along the kernel, so neither does A where k_n = 0. `found` is false where no such y was found
+/// (not expected: k - k_n lies in K's range). Shared by the sampler's base point and the certified
+/// bounds' gradient floors (eval/certified_bound.hpp).
+struct QuadricCore {
+  Eigen::Matrix<Rational, 3, Eigen::Dynamic> kernel;
+  Vec3<Rational> kn, y;
+  bool found = false;
+  /// y moved along the kernel to the point of its line (plane) nearest p.
+  Vec3<Rational> nearest(const Vec3<Rational>& p) const;
+};
+QuadricCore quadric_core(const Mat4<Rational>& A);
+
+/// A's value at the Cartesian point y: y^T K y + 2 k . y + A_ww.
+Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
+
 /// Up to n points of A ∩ {pi . x = 0}, all finite.
 SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed);
 
