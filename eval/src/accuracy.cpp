@@ -182,14 +182,18 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(out.points, A);
+  Measure reach = out.size;
   if (!out.points.empty())
-    if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
+    if (const auto whole = terminator_size(A, L)) {
+      out.size = std::max(out.size, Measure(*whole));
+      // the whole terminator: its size is from below, within a relative 2^-19
+      reach = mmax(reach, Measure(Measure(*whole) * (1 + Measure(1) / (1 << 18))));
+    }
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, A, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
   // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
   // the ball reaches it too, so that every point R is measured on is one the bound covers)
-  Measure reach = out.size;
   for (const RootPoint& x : out.plane) reach = mmax(reach, sqrt((cartesian(x) - to_measure3(centre)).squaredNorm()));
   out.ball = counted_ball(centre, reach);
   return out;
@@ -640,13 +644,15 @@ namespace {
 /// below) and the sampled error of the results it does not cover (times the margin).
 ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
                                std::vector<std::string> certified, double target) {
-  if (sampled_covered > Measure(cb.upper))
+  // (a bound of the Euclidean distance near a point where the reference's gradient vanishes may be
+  // below a first-order distance sampled there, which means nothing: both count)
+  if (sampled_covered > Measure(cb.upper) && !cb.euclidean)
     throw std::logic_error("certified error bound " + std::to_string(cb.upper) + " below an error measured on an exact "
                            "point (" + sampled_covered.str(6) + "): a bug in the bound");
   ItemAccuracy acc;
   acc.certified = std::move(certified);
   acc.attained = std::max({Measure(cb.attained), sampled_covered, sampled_other}).convert_to<double>();
-  const Measure bound = std::max(Measure(cb.upper), Measure(sampled_other * kBoundMargin));
+  const Measure bound = std::max({Measure(cb.upper), sampled_covered, Measure(sampled_other * kBoundMargin)});
   if (!(bound < std::numeric_limits<Measure>::infinity())) {
     std::ostringstream r;
     r << "no finite bound: near its geometry the result's gradient may vanish (a first-order distance of "
@@ -665,25 +671,28 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
 
 ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints& pts) {
   if (pts.points.empty() || pts.exhausted) return;
-  geo_ = shadow_geometry(A, L);
-  if (geo_) {
-    generators_ = generator_geometries(A, L, pts.generator_offsets);
-    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0};
-    return;
-  }
   ball_ = pts.ball;
   pi_ref_ = A * L;
-  const Q s = L.dot(pi_ref_);
-  P_ref_ = reference_cone(A, L);
   const Vec4<Q> h = reference_second_plane(L);
   R_ref_ = reference_plane_pair(A, L);
-  // on the terminator (P_ref x)_xyz = s (A x)_xyz, and (R_ref x)_xyz = (h . x) pi_xyz with
-  // |h . x| >= |h . (c, 1)| - reach |h_xyz| in the ball
-  P_floor_ = GradientFloor(A, ball_, s);
+  // on the polar plane (R_ref x)_xyz = (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - reach |h_xyz| in the
+  // ball; where h crosses the ball, R's planes cross there and the second order bounds the shells
+  // near their line (ball_quadric_bound)
   h_centre_ = abs(to_measure(Q(Vec3<Q>(h.head<3>()).dot(ball_.centre) + h(3))));
   h_normal_ = sqrt(to_measure(Q(h.head<3>().squaredNorm())));
   pi_normal_ = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
   const Measure reach = to_measure(ball_.reach);
+  const bool R_ball = h_centre_ > reach * h_normal_ || saddle_directions(R_ref_).has_value();
+  geo_ = shadow_geometry(A, L);
+  if (geo_) {
+    generators_ = generator_geometries(A, L, pts.generator_offsets);
+    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0 || R_ball};
+    return;
+  }
+  const Q s = L.dot(pi_ref_);
+  P_ref_ = reference_cone(A, L);
+  // on the terminator (P_ref x)_xyz = s (A x)_xyz
+  P_floor_ = GradientFloor(A, ball_, s);
   // P on its generator lines at offset rho: the terminator of A_rho = N^T A N (generator_geometries)
   // in the ball carried by x -> a x + rho L_xyz, a = 1 - rho L_w
   for (const Q& rho : pts.generator_offsets) {
@@ -691,13 +700,13 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
     const Mat4<Q> Ar = generator_quadric(A, L, rho);
     BallPart part{reference_cone(Ar, L), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
     if (a > 0) part.floor = GradientFloor(Ar, part.ball, L.dot(Vec4<Q>(Ar * L)));
-    if (!(part.floor(0, to_measure(part.ball.reach)) > 0)) {
+    if (!(a > 0) || !(part.floor(0, to_measure(part.ball.reach)) > 0 || saddle_directions(part.ref))) {
       generator_balls_.clear();
       break;
     }
     generator_balls_.push_back(std::move(part));
   }
-  cover_ = {P_floor_(0, reach) > 0, true, !generator_balls_.empty(), h_centre_ > reach * h_normal_};
+  cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true, !generator_balls_.empty(), R_ball};
 }
 
 CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>* P, const Vec4<Q>* polar,
@@ -707,20 +716,24 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
     out.bound = combined(out.bound, b);
     out.certified.emplace_back(name);
   };
-  if (geo_) {
-    if (P || polar) out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
-    if (P) out.certified.emplace_back("P");
-    if (polar) out.certified.emplace_back("polar_plane");
-    if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
-    if (R && cover_.R) add(*terminator_quadric_bound(*geo_, origin, *R, size, target), "R");
-    return out;
-  }
-  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size), "P");
   // R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - |y| |h_xyz|
   const ShellFloor R_floor = [this](const Measure&, const Measure& outer) {
     const Measure gap = h_centre_ - outer * h_normal_;
     return gap > 0 ? Measure(gap * pi_normal_) : Measure(0);
   };
+  if (geo_) {
+    if (P || polar) out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
+    if (P) out.certified.emplace_back("P");
+    if (polar) out.certified.emplace_back("polar_plane");
+    if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
+    // where h meets the terminator, R in the ball about the whole of it (ItemPoints::ball)
+    if (R && cover_.R)
+      add(geo_->R_floor > 0 ? *terminator_quadric_bound(*geo_, origin, *R, size, target)
+                            : ball_quadric_bound(*R, R_ref_, ball_, origin, R_floor, size),
+          "R");
+    return out;
+  }
+  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size), "P");
   if (polar && cover_.polar) add(ball_plane_bound(*polar, pi_ref_, ball_, origin, size), "polar_plane");
   if (P && cover_.generators) {
     CertifiedBound g;
@@ -740,7 +753,7 @@ ReflectionBounds::ReflectionBounds(const Mat4<Q>& A, const Mat4<Q>& M, const Ite
   // (B_ref M x)_xyz = H^T (A x)_xyz with H, M's linear part, orthogonal: A's floor in its ball holds
   // for B in the reflected ball
   floor_ = GradientFloor(A, pts.ball);
-  floored_ = floor_(0, to_measure(pts.ball.reach)) > 0;
+  floored_ = floor_(0, to_measure(pts.ball.reach)) > 0 || saddle_directions(B_ref_).has_value();
   ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(pts.ball.centre(0), pts.ball.centre(1), pts.ball.centre(2), Q(1))).head<3>()),
            pts.ball.reach};
 }
@@ -809,18 +822,20 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and "
       "the polar plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), "
-      "R on the terminator and the polar plane inside it where its plane h does not meet the terminator, and, where A "
-      "is an ellipsoid, B are bounded over every point of their geometry by interval branch and bound; other "
-      "terminators (hyperbolas, parabolas, line pairs) and other quadrics reflected are unbounded, and there the object "
-      "size is the largest distance of the sampled points from A's centre (their centroid where A has none) and the "
-      "same results are bounded over every point of their geometry within that distance of the centre, by one interval "
-      "bound over the ball, where the reference's gradient has a floor there (not at a cone's apex, not for R where "
-      "h crosses the ball); certified_for names what is bounded. The rest (R where h meets the terminator or the "
-      "ball, P and B of a cone) is measured exactly on " +
+      "R on the terminator and the polar plane inside it, and, where A is an ellipsoid, B are bounded over every point "
+      "of their geometry by interval branch and bound; other terminators (hyperbolas, parabolas, line pairs) and other "
+      "quadrics reflected are unbounded, and there the object size is the largest distance of the sampled points from "
+      "A's centre (their centroid where A has none) and the same results are bounded over every point of their geometry "
+      "within that distance of the centre, by interval bounds over shells of that ball. Where the reference's gradient "
+      "vanishes on the geometry (a cone's apex; R where its plane h crosses the terminator) a first-order distance means "
+      "nothing: there the shells bound the Euclidean distance to the result, by second order (sqrt(|x^T Q x| / c), c "
+      "the result's curvature along a direction where it curves the other way), of the order of the square root of the "
+      "rounding, and the first-order distances measured at the " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
-      std::to_string(accuracy.seed) + "; near the target again on " +
+      std::to_string(accuracy.seed) + ") count as well; certified_for names what is bounded. What no bound covers (a "
+      "terminator with too few real points) is measured on those points (near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
-      " times, a margin for the points between them that is not a proof; flag inaccurate when error_bound > accuracy";
+      " times, a margin that is not a proof; flag inaccurate when error_bound > accuracy";
 }
 
 }  // namespace qverify

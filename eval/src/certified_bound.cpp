@@ -712,7 +712,7 @@ std::vector<ShadowGeometry> generator_geometries(const Mat4<Q>& A, const Vec4<Q>
 }
 
 CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b) {
-  return {std::max(a.upper, b.upper), std::max(a.attained, b.attained), a.boxes + b.boxes};
+  return {std::max(a.upper, b.upper), std::max(a.attained, b.attained), a.boxes + b.boxes, a.euclidean || b.euclidean};
 }
 
 CertifiedBound generators_bound(const std::vector<ShadowGeometry>& g, const std::optional<Vec3<Q>>& origin,
@@ -799,6 +799,29 @@ Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) co
 
 Measure gradient_floor(const Mat4<Q>& A, const Ball& ball) { return GradientFloor(A, ball)(0, to_measure(ball.reach)); }
 
+std::optional<SaddleDirections> saddle_directions(const Mat4<Q>& ref) {
+  const Mat3<Q> K = Mat3<Q>(ref.topLeftCorner<3, 3>() + ref.topLeftCorner<3, 3>().transpose()) * unit_scale(ref);
+  // candidates from a floating eigen-decomposition (any direction will do: the signs are checked exactly)
+  const Eigen::Matrix3d Kd = K.unaryExpr([](const Q& q) { return to_measure(q).convert_to<double>(); });
+  if (!Kd.allFinite()) return std::nullopt;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  SaddleDirections d;
+  for (int i = 0; i < 3; ++i) {
+    d.up(i) = to_rational(eig.eigenvectors()(i, 2));
+    d.down(i) = to_rational(eig.eigenvectors()(i, 0));
+  }
+  if (d.up.dot(K * d.up) > 0 && d.down.dot(K * d.down) < 0) return d;
+  return std::nullopt;
+}
+
+Measure saddle_curvature(const Mat4<Q>& hat, const SaddleDirections& d) {
+  const Mat3<Q> H = Mat3<Q>(hat.topLeftCorner<3, 3>() + hat.topLeftCorner<3, 3>().transpose()) / 2;
+  const Q up = d.up.dot(H * d.up) / d.up.squaredNorm(), down = -d.down.dot(H * d.down) / d.down.squaredNorm();
+  if (!(up > 0 && down > 0)) return 0;
+  return to_measure(up < down ? up : down);
+}
+
 namespace {
 
 /// z0 = (c - o, 1).
@@ -848,22 +871,35 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   std::vector<double> floors(kShells + 1);
   for (std::size_t j = 0; j <= kShells; ++j)
     floors[j] = lower_double(lambda_scale * floor(to_measure(radius[j + 1]), to_measure(radius[j])));
+  // the curvature of hat along directions where the reference curves up and down (second order)
+  const auto saddle = saddle_directions(ref_in);
+  const double curvature = saddle ? lower_double(saddle_curvature(hat, *saddle)) : 0.0;
   return upward([&] {
     IA e3(0);
     for (Eigen::Index i = 0; i < 9; ++i) e3 += CGAL::square(enc(E3(i)));
     e3 = CGAL::sqrt(e3);
     const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
     double worst = 0;
+    bool euclidean = false;
     for (std::size_t j = 0; j <= kShells; ++j) {
       const IA r = enc(radius[j]);
       const IA value = fa + r * gsn + CGAL::square(r) * e3;
       if (value.sup() == 0) continue;
       const IA gradient = IA(floors[j]) - gn - r * e3;
-      if (!(gradient.inf() > 0)) return CertifiedBound{kInf, 0, kShells + 1};
-      worst = std::max(worst, (value / (IA(2) * gradient)).sup());
+      double d = gradient.inf() > 0 ? (value / (IA(2) * gradient)).sup() : kInf;
+      if (curvature > 0) {
+        const double second = CGAL::sqrt(value / IA(curvature)).sup();
+        if (second < d) {
+          d = second;
+          euclidean = true;
+        }
+      }
+      if (!(d < kInf)) return CertifiedBound{kInf, 0, kShells + 1};
+      worst = std::max(worst, d);
     }
     CertifiedBound out = relative_bound(IA(worst), size);
     out.boxes = kShells + 1;
+    out.euclidean = euclidean;
     return out;
   });
 }

@@ -124,7 +124,8 @@ TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how m
     const CheckReport r = check_shadow<double>(H, Lh, c);
     INFO(r.summary());
     REQUIRE(r.certified);  // the ball bound: the wrong P's error term swamps its gradient, no finite bound
-    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators"});
+    // (R too: h, z = 2, crosses the ball, and R's planes cross there: the second order bounds it)
+    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators", "R"});
     CHECK(r.certified->upper > 1e-9);
     CHECK_FALSE(r.passed);
     CHECK(r.find("on_P")->passed);

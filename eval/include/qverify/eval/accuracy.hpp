@@ -158,11 +158,13 @@ struct CoveredBound {
 ///  - where the terminator is a real ellipse, over the whole of it by branch and bound: P and the
 ///    polar plane (shadow_bound), P on its generator lines at the item's offsets
 ///    (generators_bound), R on the terminator and the polar plane inside it where h does not
-///    meet the terminator (terminator_quadric_bound);
+///    meet the terminator (terminator_quadric_bound), and where it does, in the ball about the
+///    whole terminator (ItemPoints::ball; second order near the line where R's planes cross);
 ///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
 ///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
-///    A's gradient has a floor on the terminator there (not at a cone's apex); P on the generator
-///    lines, in the ball carried along them; R where h misses the ball.
+///    A's gradient has a floor on the terminator there, or P is indefinite (a cone's plane pair: second
+///    order near its apex); P on the generator lines, in the ball carried along them; R where h misses
+///    the ball or R's planes cross (second order near their line).
 /// Nothing where the terminator has too few points to sample (ItemPoints::exhausted).
 class ShadowBounds {
  public:
@@ -194,7 +196,8 @@ class ShadowBounds {
 
 /// The same for a reflection item's B: over the whole of A reflected where A is an ellipsoid
 /// (reflection_bound), else over A's points within the object size of its centre, reflected
-/// (a ball bound, where A's gradient has a floor there).
+/// (a ball bound, where A's gradient has a floor there or B is indefinite: second order near a
+/// cone's apex).
 class ReflectionBounds {
  public:
   ReflectionBounds(const Mat4<Rational>& A, const Mat4<Rational>& M, const ItemPoints& pts);
@@ -211,9 +214,9 @@ class ReflectionBounds {
 };
 
 /// error_bound of eval: what ShadowBounds / ReflectionBounds cover is bounded over every point of
-/// its geometry (certified_bound.hpp); what is measured on samples only (R where h meets the
-/// terminator, or the ball of an unbounded one; P and B near a cone's apex) counts twice its largest
-/// sampled error (kBoundMargin), a margin for the points between the samples that is not a proof.
+/// its geometry (certified_bound.hpp); what is measured on samples only (what no bound covers: a
+/// semi-definite reference with no gradient floor) counts twice its largest sampled error
+/// (kBoundMargin), a margin for the points between the samples that is not a proof.
 inline constexpr int kBoundMargin = 2;
 
 

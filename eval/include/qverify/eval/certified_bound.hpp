@@ -67,6 +67,11 @@ struct CertifiedBound {
   double upper = 0;     ///< sup of the relative first-order distance over the geometry <= upper (may be inf)
   double attained = 0;  ///< a relative distance attained at a point of the geometry (sup >= attained)
   int boxes = 0;        ///< boxes evaluated
+  /// Somewhere (near a point where the reference's gradient vanishes: a cone's apex, the line of a
+  /// plane pair) `upper` bounds the Euclidean distance to the result, by second order
+  /// (ball_quadric_bound), not the first-order one, which is unbounded there: a sampled point's
+  /// first-order distance may then exceed `upper`.
+  bool euclidean = false;
 };
 
 /// One returned result with its exact reference, ready for interval evaluation.
@@ -212,6 +217,22 @@ class GradientFloor {
 /// The floor over the whole ball: GradientFloor(A, ball)(0, reach).
 Measure gradient_floor(const Mat4<Rational>& A, const Ball& ball);
 
+/// Directions (Cartesian, exact) along which the spatial part K of a quadric curves up and down:
+/// up^T K up > 0 > down^T K down, K = ref_xyz,xyz (symmetrised). They exist exactly where K is
+/// indefinite: a cone, a plane pair whose planes cross, a hyperboloid. (Found from a floating
+/// eigen-decomposition, the signs proved on the exact K.)
+struct SaddleDirections {
+  Vec3<Rational> up, down;
+};
+std::optional<SaddleDirections> saddle_directions(const Mat4<Rational>& ref);
+
+/// min(up^T H up / |up|^2, -down^T H down / |down|^2) for H = hat_xyz,xyz (symmetrised), where both
+/// are positive; 0 otherwise. Along the line x + t u, u = (up, 0), hat's form is exactly
+/// a + 2 b t + c t^2, a = x^T hat x, c = up^T H up: where a <= 0 < c it has a root with
+/// |t| |up| <= sqrt(|a| / (c / |up|^2)), and with `down` where a >= 0. So every point x is within
+/// sqrt(|x^T hat x| / curvature) of hat's zero set (Euclidean distance), gradient or not.
+Measure saddle_curvature(const Mat4<Rational>& hat, const SaddleDirections& d);
+
 /// A floor of a reference's gradient over the zero set in a shell of a ball: (inner, outer) -> floor.
 using ShellFloor = std::function<Measure(const Measure& inner, const Measure& outer)>;
 
@@ -221,9 +242,14 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// each shell r_in <= |y| <= r_out of the ball (radii reach (3/4)^j, and 0):
 ///   |z^T E z| <= |z0^T E z0| + 2 r_out |(E z0)_xyz| + r_out^2 |E_xyz,xyz|_F,
 ///   |(hat z)_xyz| >= |lambda| floor(r_in, r_out) - |(E z0)_xyz| - r_out |E_xyz,xyz|_F,
-/// and the distance there is at most the first over twice the second; the bound is the largest over
-/// the shells (a plane: (|eps . z0| + reach |eps_xyz|) / |hat_xyz|, eps = hat - lambda ref_o).
-/// Infinite where a shell's gradient bound is not positive. Coarser than the branch and bound (no
+/// and the distance there is at most the first over twice the second; or, second order, where the
+/// reference is indefinite (saddle_directions), at most sqrt(first / saddle_curvature(hat)), the
+/// Euclidean distance (on the reference's zero set x^T hat x = z^T E z): the smaller counts, and the
+/// bound is the largest over the shells (a plane: (|eps . z0| + reach |eps_xyz|) / |hat_xyz|, eps =
+/// hat - lambda ref_o). The second order is what bounds the shells around a point where the
+/// reference's gradient vanishes (a cone's apex, where a rounded cone is a hyperboloid about
+/// sqrt(eps) away; the crossing of R's planes), and flags the result `euclidean`.
+/// Infinite where a shell has neither. Coarser than the branch and bound (no
 /// parameters), the shells keep it within a small factor of a rounded result's error where the
 /// reference's gradient grows with the distance (hyperboloids, paraboloids).
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
