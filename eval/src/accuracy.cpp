@@ -673,7 +673,8 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
   if (pts.points.empty() || pts.exhausted) return;
   ball_ = pts.ball;
   pi_ref_ = A * L;
-  const Vec4<Q> h = reference_second_plane(L);
+  h_ = reference_second_plane(L);
+  const Vec4<Q>& h = h_;
   R_ref_ = reference_plane_pair(A, L);
   // on the polar plane (R_ref x)_xyz = (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - reach |h_xyz| in the
   // ball; where h crosses the ball, R's planes cross there and the second order bounds the shells
@@ -716,11 +717,6 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
     out.bound = combined(out.bound, b);
     out.certified.emplace_back(name);
   };
-  // R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - |y| |h_xyz|
-  const ShellFloor R_floor = [this](const Measure&, const Measure& outer) {
-    const Measure gap = h_centre_ - outer * h_normal_;
-    return gap > 0 ? Measure(gap * pi_normal_) : Measure(0);
-  };
   if (geo_) {
     if (P || polar) out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
     if (P) out.certified.emplace_back("P");
@@ -728,8 +724,7 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
     if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
     // where h meets the terminator, R in the ball about the whole of it (ItemPoints::ball)
     if (R && cover_.R)
-      add(geo_->R_floor > 0 ? *terminator_quadric_bound(*geo_, origin, *R, size, target)
-                            : ball_quadric_bound(*R, R_ref_, ball_, origin, R_floor, size),
+      add(geo_->R_floor > 0 ? *terminator_quadric_bound(*geo_, origin, *R, size, target) : R_ball_bound(*R, origin, size),
           "R");
     return out;
   }
@@ -741,8 +736,21 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
       g = combined(g, ball_quadric_bound(*P, part.ref, part.ball, origin, part.floor, size));
     add(g, "P_generators");
   }
-  if (R && cover_.R) add(ball_quadric_bound(*R, R_ref_, ball_, origin, R_floor, size), "R");
+  if (R && cover_.R) add(R_ball_bound(*R, origin, size), "R");
   return out;
+}
+
+CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
+  if (h_centre_ > to_measure(ball_.reach) * h_normal_) {
+    // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >=
+    // |h . (c, 1)| - |y| |h_xyz|
+    const ShellFloor floor = [this](const Measure&, const Measure& outer) {
+      const Measure gap = h_centre_ - outer * h_normal_;
+      return gap > 0 ? Measure(gap * pi_normal_) : Measure(0);
+    };
+    return ball_quadric_bound(R, R_ref_, ball_, origin, floor, size);
+  }
+  return ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
 }
 
 ReflectionBounds::ReflectionBounds(const Mat4<Q>& A, const Mat4<Q>& M, const ItemPoints& pts) {

@@ -917,4 +917,43 @@ CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, co
   });
 }
 
+CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball,
+                                     const std::optional<Vec3<Q>>& o, double size) {
+  if (hat_in.isZero()) return {kInf, 0, 1};
+  const Mat4<Q> T = translation_of(o);
+  const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
+  const Vec4<Q> p_o = T.transpose() * p, q_o = T.transpose() * q;
+  const Mat4<Q> ref_o = p_o * q_o.transpose() + q_o * p_o.transpose();
+  const Q lambda = best_scale(hat, ref_o);
+  // p' = lambda p + e, e the part of E = hat - lambda ref_o of the form e q^T + q e^T (exact when E is)
+  const Mat4<Q> E = hat - lambda * ref_o;
+  const Q qq = q_o.squaredNorm();
+  const Vec4<Q> e = (E * q_o - q_o * Q(q_o.dot(E * q_o) / (2 * qq))) / qq;
+  const Vec4<Q> p1 = lambda * p_o + e;
+  if (p1.head<3>().isZero()) return {kInf, 0, 1};
+  // step 1: the geometry's points (on p) from the plane p', absolute (size 1)
+  const CertifiedBound d1 = ball_plane_bound(p1, p, ball, o, 1.0);
+  if (!(d1.upper < kInf)) return {kInf, 0, 1};
+  // step 2: the points of p' so reached, from hat: R' = p' q^T + q p'^T (world frame) as the reference,
+  // in the ball grown by step 1; its gradient on p' is (q . y) p'_xyz
+  const Mat4<Q> Ti = translation_of(o ? std::optional<Vec3<Q>>(Vec3<Q>(-*o)) : std::nullopt);
+  const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(p1 * q_o.transpose() + q_o * p1.transpose()) * Ti;
+  const Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper))};
+  const Measure q_centre = abs(to_measure(Q(Vec3<Q>(q.head<3>()).dot(ball.centre) + q(3))));
+  const Measure q_normal = sqrt(to_measure(Q(q.head<3>().squaredNorm())));
+  const Measure p_normal = sqrt(to_measure(Q(p1.head<3>().squaredNorm())));
+  const ShellFloor floor = [&](const Measure&, const Measure& outer) {
+    const Measure gap = q_centre - outer * q_normal;
+    return gap > 0 ? Measure(gap * p_normal) : Measure(0);
+  };
+  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, floor, 1.0);
+  if (!(d2.upper < kInf)) return {kInf, 0, 1};
+  return upward([&] {
+    CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);
+    out.boxes = d1.boxes + d2.boxes;
+    out.euclidean = true;
+    return out;
+  });
+}
+
 }  // namespace qverify

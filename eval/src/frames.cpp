@@ -43,6 +43,38 @@ bool wants_local_frame(const Vec3<Q>& center, const Q& s2) {
   return c * c > Q(64 * 64) * s2;
 }
 
+bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
+  if (L(3) == 0) return false;  // a parallel light: h is the plane at infinity
+  const Vec4<Q> pi = A * L;
+  const Q l = L(2) / L(3);
+  // the line pi ∩ {z = l}: pi_x x + pi_y y = -(pi_z l + pi_w) in that plane
+  const Q rhs = -(pi(2) * l + pi(3));
+  Vec4<Q> x0(0, 0, l, 1), d(-pi(1), pi(0), 0, 0);
+  if (abs(pi(0)) >= abs(pi(1))) {
+    if (pi(0) == 0) return false;  // the planes are parallel (or the same: R is then pi's double plane)
+    x0(0) = rhs / pi(0);
+  } else {
+    x0(1) = rhs / pi(1);
+  }
+  const Q a = d.dot(A * d), b = d.dot(A * x0), c = x0.dot(A * x0);
+  const Q disc = b * b - a * c;
+  if (disc >= 0) return true;
+  // nearly: on the line A's value comes within |A(centre)| / 64 of 0 (a = 0 with disc < 0: b = 0,
+  // A constant on the line). Both sides move with A's scale alone, not with units or placement.
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  if (a == 0 || K.determinant() == 0) return false;
+  const Vec3<Q> centre = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+  const Q r = A(3, 3) + Vec3<Q>(A.topRightCorner<3, 1>()).dot(centre);
+  return abs(Q(disc / a)) <= abs(r) / 64;
+}
+
+Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
+  Vec3<Q> out = o ? *o : Vec3<Q>::Zero();
+  RoundingReport rep;
+  out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
+  return out;
+}
+
 long floor_log2(const Q& x) {
   // 2^e <= x < 2^(e+1): compare bit lengths of numerator and denominator, then adjust.
   const auto n = numerator(x), d = denominator(x);

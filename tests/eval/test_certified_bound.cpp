@@ -6,6 +6,9 @@
 
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/eval/certified_bound.hpp>
+#include <qverify/eval/frames.hpp>
+#include <qverify/eval/results.hpp>
+#include <qverify/scene/scene.hpp>
 #include <qverify/exact/rounding.hpp>
 
 using namespace qverify;
@@ -538,5 +541,49 @@ TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points"
     CHECK(Measure(*acc.bound) >= worst);
     CHECK(acc.inaccurate == (*acc.bound > opt.target));
     if (worst > Measure(opt.target)) CHECK(acc.inaccurate);
+  }
+}
+
+TEST_CASE("eval: a light beside the object, R in the frame at the light's height", "[accuracy][certified][frames]") {
+  // A sphere and a light beside it at height 3/10 (not a double), in a scene: the default path computes the item in a frame at the
+  // light's height (light_plane_meets_terminator), where h = (0, 0, 1, 0) and R = pi h^T + h pi^T rounds
+  // exactly: the crossing points lie within a few eps of R, the bound certifies R far below the target,
+  // and nothing is flagged. In the world frame the rounded R is about sqrt(eps) off there, and flagged.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "side light",
+      "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}}],
+      "lights": [{"id": "lamp", "position": [3, 0, 0.3]}], "requests": {"reflections": []}})",
+                               "side.json");
+  const Precision dbl = *parse_precision("double");
+  REQUIRE(light_plane_meets_terminator(quadric_of({1, 1, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1)));
+  CHECK_FALSE(light_plane_meets_terminator(quadric_of({1, 1, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, 2, 1)));
+  for (const Frame frame : {Frame::local, Frame::world}) {
+    INFO((frame == Frame::local ? "default frame" : "world frame"));
+    const ResultSet rs = computed_results(sc, dbl, Method::direct, frame, AccuracyOptions{});
+    REQUIRE(rs.shadows.size() == 1);
+    const ShadowMatrices& s = rs.shadows[0];
+    REQUIRE(s.accuracy);
+    REQUIRE(s.accuracy->bound);
+    const Vec3<Q> o = s.origin ? *s.origin : Vec3<Q>::Zero();
+    if (frame == Frame::local) {
+      REQUIRE(s.origin);
+      CHECK((*s.origin)(2) == to_rational(0.3));  // the light's height, rounded to a double
+    }
+    Measure worst = 0;
+    for (int sign : {1, -1}) {
+      // the terminator is on 3x + 3z/10 = 1: at z = 3/10, x = 91/300
+      const Measure x = Measure(91) / 300, z = Measure(3) / 10;
+      const Vec3<Measure> x0(x - to_measure(o(0)), sign * sqrt(1 - x * x - z * z) - to_measure(o(1)), z - to_measure(o(2)));
+      worst = std::max(worst, distance_floor(s.R, x0));
+    }
+    INFO("error_bound " << *s.accuracy->bound << ", crossing points at least " << worst.str(6) << " from R");
+    CHECK(Measure(*s.accuracy->bound) * 2 >= worst);  // (the size is about 0.94)
+    CHECK(std::find(s.accuracy->certified.begin(), s.accuracy->certified.end(), "R") != s.accuracy->certified.end());
+    if (frame == Frame::local) {
+      CHECK(*s.accuracy->bound < 1e-13);
+      CHECK_FALSE(s.accuracy->inaccurate);
+    } else {
+      CHECK(worst > 1e-12);  // rounding products of a plane pair: sqrt(eps), not eps
+      CHECK(s.accuracy->inaccurate == (*s.accuracy->bound > 1e-9));
+    }
   }
 }

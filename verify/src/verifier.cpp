@@ -117,7 +117,9 @@ class CandidateReader {
   void number_format(Precision::Kind k) { format_ = k; }
 
   /// One entry: number, "p/q"/decimal string, {"lo","hi"} (midpoint); null -> nullopt.
-  std::optional<Q> entry(const JsonNode& n, const std::string& path) const {
+  /// (`as_double`: a JSON number is read as its nearest double whatever the document's format, as
+  /// an origin's coordinates are written.)
+  std::optional<Q> entry(const JsonNode& n, const std::string& path, bool as_double = false) const {
     std::string err;
     std::optional<Q> v;
     if (n.kind == JsonNode::Kind::null) return std::nullopt;
@@ -134,6 +136,12 @@ class CandidateReader {
     } else fail(path, std::string("expected a number, a \"p/q\" string or an interval, found ") + n.kind_name());
     if (!v) fail(path, err);
     using K = Precision::Kind;
+    if (as_double && n.kind == JsonNode::Kind::number) {
+      RoundingReport rep;
+      v = exact_value(round_rational<double>(*v, rep));
+      if (rep.overflow) fail(path, "beyond the range of a double (" + n.text.substr(0, 40) + ")");
+      return v;
+    }
     const bool binary_number = n.kind == JsonNode::Kind::number && (format_ == K::f32 || format_ == K::f64 || format_ == K::interval);
     const bool binary_text = n.kind == JsonNode::Kind::string && n.text.find('/') == std::string::npos &&
                              (format_ == K::f80 || format_ == K::f128);
@@ -151,11 +159,12 @@ class CandidateReader {
   }
 
   /// A list of `count` entries into out[0..count); false if any entry is null (non-finite).
-  template <class Out> bool entries(const JsonNode& n, const std::string& path, int count, Out out, const char* what) const {
+  template <class Out>
+  bool entries(const JsonNode& n, const std::string& path, int count, Out out, const char* what, bool as_double = false) const {
     if (n.kind != JsonNode::Kind::array || n.items.size() != static_cast<std::size_t>(count)) fail(path, what);
     bool ok = true;
     for (int i = 0; i < count; ++i) {
-      auto v = entry(n.items[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]");
+      auto v = entry(n.items[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]", as_double);
       if (v) out(i, *v);
       else ok = false;
     }
@@ -262,17 +271,10 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
         // An origin written as a JSON number is the double that the number's text denotes (a
         // program's origin is a double, and JSON writes the shortest text that reads back as it;
         // that text, taken exactly, can be 1e-5 off for an origin of 1e11, many object sizes for a
-        // small object). A string ("p/q" or decimal) is taken exactly.
+        // small object), in a float document too. A string ("p/q" or decimal) is taken exactly.
         Vec3<Q> v;
-        if (!r.entries(*o, path + ".origin", 3, [&](int i, const Q& x) { v(i) = x; }, "expected 3 numbers"))
+        if (!r.entries(*o, path + ".origin", 3, [&](int i, const Q& x) { v(i) = x; }, "expected 3 numbers", true))
           r.fail(path + ".origin", "origin must be finite");
-        for (int i = 0; i < 3; ++i)
-          if (o->items[static_cast<std::size_t>(i)].kind == JsonNode::Kind::number) {
-            RoundingReport rep;
-            const double d = round_rational<double>(v(i), rep);
-            if (rep.overflow) r.fail(path + ".origin[" + std::to_string(i) + "]", "origin beyond the range of a double");
-            v(i) = to_rational(d);
-          }
         origin = v;
       }
       const JsonNode* st = it.find("status");

@@ -188,10 +188,12 @@ class ShadowBounds {
   // the ball bounds, where geo_ is empty
   Ball ball_{Vec3<Rational>::Zero(), Rational(0)};
   Mat4<Rational> P_ref_, R_ref_;
-  Vec4<Rational> pi_ref_;
+  Vec4<Rational> pi_ref_, h_;
   GradientFloor P_floor_;
   Measure h_centre_ = 0, h_normal_ = 0, pi_normal_ = 0;  ///< |h . (c, 1)|, |h_xyz|, |pi_xyz|: R's floor
   std::vector<BallPart> generator_balls_;
+  /// R in the ball: against R_ref where h misses it, else as a plane pair (ball_plane_pair_bound).
+  CertifiedBound R_ball_bound(const Mat4<Rational>& R, const std::optional<Vec3<Rational>>& origin, double size) const;
 };
 
 /// The same for a reflection item's B: over the whole of A reflected where A is an ellipsoid

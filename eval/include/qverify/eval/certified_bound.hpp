@@ -257,4 +257,16 @@ CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational
 CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
                                 const std::optional<Vec3<Rational>>& origin, double size);
 
+/// A result hat whose reference is a plane pair p q^T + q p^T (R = pi h^T + h pi^T) whose planes cross
+/// in the ball, over the points of p in it, in two steps. A rounded plane pair is a hyperboloid about
+/// sqrt(eps) from the line where the planes cross, but hat = p' q^T + q p'^T + F, p' = lambda p + e,
+/// is one whose error is mostly e (a rounded p), and F small: with q exact in its frame (h = (0, 0,
+/// 1, 0) in a frame at the light's height) F is of the order of eps^2. So, with R' = p' q^T + q p'^T
+/// (exact, e from E = hat - lambda pq's part of that form): a point x of p is within
+/// d1 = |p' . x| / |p'_xyz| of p', on R' (ball_plane_bound), and that point of p' within d2 of hat
+/// (ball_quadric_bound against R' in the ball grown by d1: first order where (q . y) p'_xyz has a
+/// floor, second order, sqrt(|F| ...), near the line); the bound is (d1 + d2) / size, `euclidean`.
+CertifiedBound ball_plane_pair_bound(const Mat4<Rational>& hat, const Vec4<Rational>& p, const Vec4<Rational>& q,
+                                     const Ball& ball, const std::optional<Vec3<Rational>>& origin, double size);
+
 }  // namespace qverify

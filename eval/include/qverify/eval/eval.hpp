@@ -143,7 +143,7 @@ template <class S> struct Evaluation {
 };
 
 /// Prepares the inputs of every requested item (not timed by the audit).
-template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev) {
+template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev, Method method = Method::direct) {
   ev.frame = frame;
   ev.prepared_shadows.clear();
   ev.prepared_reflections.clear();
@@ -191,7 +191,11 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev)
     PreparedShadow<S> ps;
     ps.pair = p;
     ps.origin = origin[p.quadric];
-    const Mat4<Q> Al = local_A(p.quadric);
+    // R's planes crossing on the terminator: the frame at the light's height, where R rounds exactly
+    // (light_plane_meets_terminator; the paper's route keeps the quadric's frame: its T depends on l_z)
+    if (method == Method::direct && light_plane_meets_terminator(A_exact[p.quadric], L_exact[p.other]))
+      ps.origin = light_height_origin(ps.origin, L_exact[p.other]);
+    const Mat4<Q> Al = ps.origin ? quadric_to_local(A_exact[p.quadric], *ps.origin) : A_exact[p.quadric];
     const Vec4<Q> Ll = ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other];
     ps.A = rounded_scaled<S>(Al);
     ps.L = rounded_scaled<S>(Ll);
@@ -273,7 +277,7 @@ template <class S> void evaluate_items(const Scene& sc, Method method, Evaluatio
 template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::optional<Frame> frame = std::nullopt) {
   Evaluation<S> ev;
   ev.scene = typed_scene<S>(sc);
-  prepare<S>(sc, frame ? *frame : default_frame<S>(method), ev);
+  prepare<S>(sc, frame ? *frame : default_frame<S>(method), ev, method);
   evaluate_items<S>(sc, method, ev);
   return ev;
 }

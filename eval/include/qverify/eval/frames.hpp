@@ -38,6 +38,18 @@ Vec3<Rational> rounded_to_double(const Vec3<Rational>& v);
 /// frame? When |center|_inf > 64 size (more than 12 bits would be lost).
 bool wants_local_frame(const Vec3<Rational>& center, const Rational& s2);
 
+/// Does the plane h of a point light L, z = l_z (R's second plane: R = pi h^T + h pi^T, pi = A L),
+/// meet A's terminator, or nearly? (Exact: the line pi ∩ h restricted to A is a t^2 + 2 b t + c, and
+/// b^2 - a c >= 0, or, nearly, A's least value on the line, (a c - b^2) / a, within |A(centre)| / 64
+/// of 0: a sphere's line at most 1.008 radii from its centre.) Where it does, a rounded R is a hyperboloid about sqrt(eps)
+/// from the terminator's points on the line where R's planes cross (no rounding of a plane pair's
+/// products keeps its rank), and the robust path computes the item in a frame at the light's height
+/// (light_height_origin): there h = (0, 0, 1, -d) with d tiny or 0, and R's entries are pi's, exact.
+bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>& L);
+
+/// The origin o (or 0) with its z the light's height rounded to a double.
+Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const Vec4<Rational>& L);
+
 inline Mat4<Rational> quadric_to_local(const Mat4<Rational>& A, const Vec3<Rational>& o) {
   const Mat4<Rational> T = translation<Rational>(o);
   return T.transpose() * A * T;
