@@ -182,18 +182,14 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(out.points, A);
-  Measure reach = out.size;
   if (!out.points.empty())
-    if (const auto whole = terminator_size(A, L)) {
-      out.size = std::max(out.size, Measure(*whole));
-      // the whole terminator: its size is from below, within a relative 2^-19
-      reach = mmax(reach, Measure(Measure(*whole) * (1 + Measure(1) / (1 << 18))));
-    }
+    if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, A, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
   // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
   // the ball reaches it too, so that every point R is measured on is one the bound covers)
+  Measure reach = out.size;
   for (const RootPoint& x : out.plane) reach = mmax(reach, sqrt((cartesian(x) - to_measure3(centre)).squaredNorm()));
   out.ball = counted_ball(centre, reach);
   return out;
@@ -644,11 +640,9 @@ namespace {
 /// below) and the sampled error of the results it does not cover (times the margin).
 ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
                                std::vector<std::string> certified, double target) {
-  // (a bound of the Euclidean distance near a point where the reference's gradient vanishes may be
-  // below a first-order distance sampled there, which means nothing: both count)
-  if (sampled_covered > Measure(cb.upper) && !cb.euclidean)
-    throw std::logic_error("certified error bound " + std::to_string(cb.upper) + " below an error measured on an exact "
-                           "point (" + sampled_covered.str(6) + "): a bug in the bound");
+  // (checked part by part before, CoveredBound::check; a bound of the Euclidean distance near a point
+  // where the reference's gradient vanishes may be below a first-order distance sampled there, which
+  // means nothing: both count)
   ItemAccuracy acc;
   acc.certified = std::move(certified);
   acc.attained = std::max({Measure(cb.attained), sampled_covered, sampled_other}).convert_to<double>();
@@ -669,27 +663,31 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
 
 }  // namespace
 
+namespace {
+/// Does the plane h meet the ball (|h . (c, 1)| <= reach |h_xyz|, exactly)?
+bool crosses(const Vec4<Q>& h, const Ball& b) {
+  const Q at = Vec3<Q>(h.head<3>()).dot(b.centre) + h(3);
+  return at * at <= b.reach * b.reach * Q(h.head<3>().squaredNorm());
+}
+}  // namespace
+
 ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints& pts) {
   if (pts.points.empty() || pts.exhausted) return;
-  ball_ = pts.ball;
   pi_ref_ = A * L;
   h_ = reference_second_plane(L);
-  const Vec4<Q>& h = h_;
   R_ref_ = reference_plane_pair(A, L);
-  // on the polar plane (R_ref x)_xyz = (h . x) pi_xyz, |h . x| >= |h . (c, 1)| - reach |h_xyz| in the
-  // ball; where h crosses the ball, R's planes cross there and the second order bounds the shells
-  // near their line (ball_quadric_bound)
-  h_centre_ = abs(to_measure(Q(Vec3<Q>(h.head<3>()).dot(ball_.centre) + h(3))));
-  h_normal_ = sqrt(to_measure(Q(h.head<3>().squaredNorm())));
-  pi_normal_ = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
-  const Measure reach = to_measure(ball_.reach);
-  const bool R_ball = h_centre_ > reach * h_normal_ || saddle_directions(R_ref_).has_value();
+  // where h crosses a ball, R's planes cross there, and R is bounded as a plane pair (R_ball_bound)
+  const bool R_crossing = saddle_directions(R_ref_).has_value();
   geo_ = shadow_geometry(A, L);
   if (geo_) {
     generators_ = generator_geometries(A, L, pts.generator_offsets);
-    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0 || R_ball};
+    if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
+    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0 || (geo_->R_ball && R_crossing)};
     return;
   }
+  ball_ = pts.ball;
+  const Measure reach = to_measure(ball_.reach);
+  const Vec4<Q>& h = h_;
   const Q s = L.dot(pi_ref_);
   P_ref_ = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
@@ -707,7 +705,8 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
     }
     generator_balls_.push_back(std::move(part));
   }
-  cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true, !generator_balls_.empty(), R_ball};
+  cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true, !generator_balls_.empty(),
+            !crosses(h_, ball_) || R_crossing};
 }
 
 CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>* P, const Vec4<Q>* polar,
@@ -716,11 +715,15 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
   const auto add = [&](const CertifiedBound& b, const char* name) {
     out.bound = combined(out.bound, b);
     out.certified.emplace_back(name);
+    out.parts.push_back({{name}, b});
   };
   if (geo_) {
-    if (P || polar) out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
-    if (P) out.certified.emplace_back("P");
-    if (polar) out.certified.emplace_back("polar_plane");
+    if (P || polar) {
+      out.bound = shadow_bound(*geo_, origin, P, polar, size, target);
+      out.parts.push_back({{}, out.bound});
+    }
+    if (P) out.certified.emplace_back("P"), out.parts.back().names.emplace_back("P");
+    if (polar) out.certified.emplace_back("polar_plane"), out.parts.back().names.emplace_back("polar_plane");
     if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
     // where h meets the terminator, R in the ball about the whole of it (ItemPoints::ball)
     if (R && cover_.R)
@@ -741,12 +744,15 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
 }
 
 CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
-  if (h_centre_ > to_measure(ball_.reach) * h_normal_) {
+  if (!crosses(h_, ball_)) {
     // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >=
     // |h . (c, 1)| - |y| |h_xyz|
-    const ShellFloor floor = [this](const Measure&, const Measure& outer) {
-      const Measure gap = h_centre_ - outer * h_normal_;
-      return gap > 0 ? Measure(gap * pi_normal_) : Measure(0);
+    const Measure h_centre = abs(to_measure(Q(Vec3<Q>(h_.head<3>()).dot(ball_.centre) + h_(3))));
+    const Measure h_normal = sqrt(to_measure(Q(h_.head<3>().squaredNorm())));
+    const Measure pi_normal = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
+    const ShellFloor floor = [=](const Measure&, const Measure& outer) {
+      const Measure gap = h_centre - outer * h_normal;
+      return gap > 0 ? Measure(gap * pi_normal) : Measure(0);
     };
     return ball_quadric_bound(R, R_ref_, ball_, origin, floor, size);
   }
@@ -772,7 +778,30 @@ CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin, 
   if (!covers()) return out;
   out.bound = geo_ ? reflection_bound(*geo_, origin, B, size, target) : ball_quadric_bound(B, B_ref_, ball_, origin, floor_, size);
   out.certified = {"B"};
+  out.parts = {{{"B"}, out.bound}};
   return out;
+}
+
+CoveredBound CoveredBound::finite() const {
+  CoveredBound out;
+  for (const Part& p : parts)
+    if (p.bound.upper < std::numeric_limits<double>::infinity()) {
+      out.bound = combined(out.bound, p.bound);
+      out.certified.insert(out.certified.end(), p.names.begin(), p.names.end());
+      out.parts.push_back(p);
+    }
+  return out;
+}
+
+void CoveredBound::check(const std::function<Measure(const std::string&)>& sampled) const {
+  for (const Part& p : parts) {
+    if (p.bound.euclidean) continue;
+    for (const std::string& n : p.names)
+      if (sampled(n) > Measure(p.bound.upper))
+        throw std::logic_error("certified error bound " + std::to_string(p.bound.upper) + " of " + n +
+                               " below an error measured on an exact point (" + sampled(n).str(6) +
+                               "): a bug in the bound");
+  }
 }
 
 ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
@@ -786,30 +815,39 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (!c.P && !c.polar && !c.generators && !c.R)
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
-  // What the bound covers (ShadowBounds) counts its certified bound and its sampled errors; the rest
-  // its errors on samples. (The denser points' generator points lie at other offsets, which the bound
-  // does not cover.)
-  const auto uncovered = [&](const ShadowError& e, const Measure& size, bool same_offsets) {
+  const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
+  const auto sampled = [](const ShadowError& err, const Measure& size) {
+    return [&err, size](const std::string& name) {
+      if (name == "P") return relative(err.P, size);
+      if (name == "polar_plane") return relative(err.polar, size);
+      if (name == "P_generators") return relative(err.generators, size);
+      return std::max(relative(err.R, size), relative(err.R_plane, size));  // "R"
+    };
+  };
+  const CoveredBound all = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
+  all.check(sampled(e, pts_.size));
+  // a part whose bound is not finite (its gradient bound swamped) is measured on samples, as the rest
+  const CoveredBound b = all.finite();
+  const auto has = [&](const char* n) { return std::find(b.certified.begin(), b.certified.end(), n) != b.certified.end(); };
+  // What a bound covers counts its certified bound and its sampled errors; the rest its errors on
+  // samples. (The denser points' generator points lie at other offsets, which the bound does not cover.)
+  const auto uncovered = [&](const ShadowError& err, const Measure& size, bool same_offsets) {
+    const auto at = sampled(err, size);
     Measure r = 0;
-    if (!c.P) r = std::max(r, relative(e.P, size));
-    if (!c.polar) r = std::max(r, relative(e.polar, size));
-    if (!c.R) r = std::max({r, relative(e.R, size), relative(e.R_plane, size)});
-    if (!c.generators || !same_offsets) r = std::max(r, relative(e.generators, size));
+    for (const char* n : {"P", "polar_plane", "R"})
+      if (!has(n)) r = std::max(r, at(n));
+    if (!has("P_generators") || !same_offsets) r = std::max(r, at("P_generators"));
     return r;
   };
-  const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   Measure covered = 0;
-  if (c.P) covered = std::max(covered, relative(e.P, pts_.size));
-  if (c.polar) covered = std::max(covered, relative(e.polar, pts_.size));
-  if (c.generators) covered = std::max(covered, relative(e.generators, pts_.size));
-  if (c.R) covered = std::max({covered, relative(e.R, pts_.size), relative(e.R_plane, pts_.size)});
+  for (const std::string& n : b.certified) covered = std::max(covered, sampled(e, pts_.size)(n));
   Measure other = uncovered(e, pts_.size, true);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
-    other = std::max(other, uncovered(shadow_error(*dense_, origin, P, polar, R), dense_->size, false));
+    const ShadowError d = shadow_error(*dense_, origin, P, polar, R);
+    other = std::max(other, uncovered(d, dense_->size, false));
   }
-  CoveredBound b = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
-  return combined_accuracy(b.bound, covered, other, std::move(b.certified), opt_.target);
+  return combined_accuracy(b.bound, covered, other, b.certified, opt_.target);
 }
 
 ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
@@ -821,8 +859,14 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
         [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
-  CoveredBound b = bounds_(origin, B, size_down(pts_.size), opt_.target);
-  return combined_accuracy(b.bound, reflection_error(pts_, origin, B).geometric, 0, std::move(b.certified), opt_.target);
+  const CoveredBound b = bounds_(origin, B, size_down(pts_.size), opt_.target);
+  const Measure sampled = reflection_error(pts_, origin, B).geometric;
+  b.check([&](const std::string&) { return sampled; });
+  if (!(b.bound.upper < std::numeric_limits<double>::infinity()))  // no finite bound: measured on samples
+    return refined_accuracy(
+        pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
+        [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
+  return combined_accuracy(b.bound, sampled, 0, b.certified, opt_.target);
 }
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {

@@ -543,12 +543,13 @@ std::shared_ptr<Geometry> make_surface(const Mat4<Q>& A, const Mat4<Q>& M, const
   return ok ? geo : nullptr;
 }
 
-/// The largest |p - e| over a geometry (e its expansion point), from below, to a relative 2^-20:
-/// branch and bound on |y|^2, bounded above on each box and attained at its centre.
-double largest_offset(const Geometry& geo) {
+/// The largest |p - e| over a geometry (e its expansion point), from below (attained) and above
+/// (the largest bound left), to a relative 2^-20 within the budget: branch and bound on |y|^2,
+/// bounded above on each box and attained at its centre.
+std::pair<double, double> offset_range(const Geometry& geo) {
   CGAL::Protect_FPU_rounding<true> up;
   double best = 0;
-  best_first(
+  const auto [top, boxes] = best_first(
       geo, 4, 4000,
       [&](const ParamBox& b) {
         IA hi(0), lo(0), at(0);
@@ -558,8 +559,10 @@ double largest_offset(const Geometry& geo) {
         return hi.sup();
       },
       [&](double top) { return top <= best * (1 + std::ldexp(1.0, -19)); });
-  return CGAL::sqrt(IA(best)).inf();
+  (void)boxes;
+  return {CGAL::sqrt(IA(best)).inf(), CGAL::sqrt(IA(top)).sup()};
 }
+double largest_offset(const Geometry& geo) { return offset_range(geo).first; }
 
 }  // namespace
 
@@ -657,6 +660,12 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   auto disc = std::make_shared<Geometry>(*ellipse);
   disc->filled = true;
   g.polar_disc = disc;
+  // where h meets the terminator, R is bounded in a ball about the terminator (ShadowBounds): its
+  // expansion point and the largest offset from above, which holds for the disc (its convex hull) too
+  if (!(g.R_floor > 0)) {
+    const double reach = offset_range(t).second;
+    if (std::isfinite(reach)) g.R_ball = Ball{t.e, to_rational(reach)};
+  }
   return cone;
 }
 
@@ -846,7 +855,8 @@ CertifiedBound relative_bound(const IA& distance, double size) {
 }  // namespace
 
 CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Ball& ball,
-                                  const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size) {
+                                  const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size,
+                                  bool euclidean_only) {
   if (hat_in.isZero() && !ref_in.isZero()) return {kInf, 0, 1};  // vanishes everywhere, and is no quadric
   // as quadric_result: both scaled exactly to entries near 1, the reference moved into the frame
   const Mat4<Q> T = translation_of(o);
@@ -874,19 +884,32 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   // the curvature of hat along directions where the reference curves up and down (second order)
   const auto saddle = saddle_directions(ref_in);
   const double curvature = saddle ? lower_double(saddle_curvature(hat, *saddle)) : 0.0;
+  const Mat3<Q> H3s = Mat3<Q>(hat.topLeftCorner<3, 3>() + hat.topLeftCorner<3, 3>().transpose()) / 2;
+  const Mat3<Q> E3s = Mat3<Q>(E3 + E3.transpose()) / 2;
   return upward([&] {
-    IA e3(0);
-    for (Eigen::Index i = 0; i < 9; ++i) e3 += CGAL::square(enc(E3(i)));
-    e3 = CGAL::sqrt(e3);
+    const auto frobenius = [](const Mat3<Q>& m) {
+      IA n(0);
+      for (Eigen::Index i = 0; i < 9; ++i) n += CGAL::square(enc(m(i)));
+      return CGAL::sqrt(n);
+    };
+    const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
     const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
     double worst = 0;
-    bool euclidean = false;
+    bool euclidean = euclidean_only;
     for (std::size_t j = 0; j <= kShells; ++j) {
       const IA r = enc(radius[j]);
       const IA value = fa + r * gsn + CGAL::square(r) * e3;
       if (value.sup() == 0) continue;
-      const IA gradient = IA(floors[j]) - gn - r * e3;
-      double d = gradient.inf() > 0 ? (value / (IA(2) * gradient)).sup() : kInf;
+      double d = kInf;
+      if (!euclidean_only) {
+        const IA gradient = IA(floors[j]) - gn - r * e3;
+        if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
+      } else {
+        // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
+        // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b
+        const IA gradient = IA(floors[j]) - gsn / IA(2) - r * e3s;
+        if (gradient.inf() > 0 && (CGAL::square(gradient) - value * h3).inf() >= 0) d = (value / gradient).sup();
+      }
       if (curvature > 0) {
         const double second = CGAL::sqrt(value / IA(curvature)).sup();
         if (second < d) {
@@ -946,7 +969,7 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
     const Measure gap = q_centre - outer * q_normal;
     return gap > 0 ? Measure(gap * p_normal) : Measure(0);
   };
-  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, floor, 1.0);
+  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, floor, 1.0, true);
   if (!(d2.upper < kInf)) return {kInf, 0, 1};
   return upward([&] {
     CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);

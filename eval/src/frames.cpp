@@ -57,6 +57,7 @@ bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
     x0(1) = rhs / pi(1);
   }
   const Q a = d.dot(A * d), b = d.dot(A * x0), c = x0.dot(A * x0);
+  if (a == 0 && b == 0) return c == 0;  // A constant on the line
   const Q disc = b * b - a * c;
   if (disc >= 0) return true;
   // nearly: on the line A's value comes within |A(centre)| / 64 of 0 (a = 0 with disc < 0: b = 0,
@@ -66,6 +67,18 @@ bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
   const Vec3<Q> centre = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
   const Q r = A(3, 3) + Vec3<Q>(A.topRightCorner<3, 1>()).dot(centre);
   return abs(Q(disc / a)) <= abs(r) / 64;
+}
+
+bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& centre, const Q& s2) {
+  if (!light_plane_meets_terminator(A, L)) return false;
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const auto definite = [](const Mat3<Q>& M) {
+    return M(0, 0) > 0 && Q(M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0)) > 0 && M.determinant() > 0;
+  };
+  if (definite(K) || definite(Mat3<Q>(-K))) return true;  // an ellipsoid: its terminator is bounded
+  if (!centre) return false;
+  const Q dz = L(2) / L(3) - (*centre)(2);
+  return dz * dz <= 16 * s2;
 }
 
 Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {

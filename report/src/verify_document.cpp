@@ -113,7 +113,10 @@ json verify_document(const Scene& sc, const VerifyReport& report) {
               "exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
               "largest distance of the points from A's centre) is at most the accuracy target; P also on exact points "
               "of its generator lines, R also on points of the polar plane, signs and M against references computed "
-              "here from A, L and the mirror. consistent_with_precision (information only): every relative residual "
+              "here from A, L and the mirror; and where certified, eval's certified bound over every point of the "
+              "results' geometry (certified.results; near a point where the reference's gradient vanishes, a cone's "
+              "apex or where R's planes cross, of the Euclidean distance, by second order) is at most the target. "
+              "consistent_with_precision (information only): every relative residual "
               "|x^T Q x| / (|Q|_F |x|^2) within 64 eps kappa, kappa the rounding amplification of the formulas";
   json checks = json::array();
   for (const VerifyCheck& v : report.checks) checks.push_back(check_json(v, exact));

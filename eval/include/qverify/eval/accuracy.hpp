@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -69,7 +70,8 @@ struct ItemPoints {
   /// 7 units of its 10^4: a size from the samples alone made every relative error 1400 times too large.)
   Measure size = 0;
   /// A's centre (the points' centroid where K is singular) and a reach of at least `size`: the
-  /// points a bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball).
+  /// points a ball bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball;
+  /// an ellipse's R is bounded in ShadowGeometry::R_ball, about all of it).
   /// For a reflection, about A's points before the mirror.
   Ball ball{Vec3<Rational>::Zero(), Rational(0)};
   bool exhausted = false;         ///< fewer real points than asked
@@ -151,6 +153,18 @@ struct ShadowCover {
 struct CoveredBound {
   CertifiedBound bound;
   std::vector<std::string> certified;
+  /// The same part by part (one bound may cover two results: "P" and "polar_plane" on an ellipse).
+  struct Part {
+    std::vector<std::string> names;
+    CertifiedBound bound;
+  };
+  std::vector<Part> parts;
+  /// Only the parts whose bound is finite (what is left is measured on samples instead).
+  CoveredBound finite() const;
+  /// Throws std::logic_error where a part's first-order bound is below the error sampled on one of
+  /// its results, `sampled(name)` (a bug in the bound); a part bounded by second order somewhere
+  /// (CertifiedBound::euclidean) may be, where a first-order distance means nothing.
+  void check(const std::function<Measure(const std::string&)>& sampled) const;
 };
 
 /// The certified bounds of one shadow item's results over every point of their geometry, built once
@@ -158,8 +172,9 @@ struct CoveredBound {
 ///  - where the terminator is a real ellipse, over the whole of it by branch and bound: P and the
 ///    polar plane (shadow_bound), P on its generator lines at the item's offsets
 ///    (generators_bound), R on the terminator and the polar plane inside it where h does not
-///    meet the terminator (terminator_quadric_bound), and where it does, in the ball about the
-///    whole terminator (ItemPoints::ball; second order near the line where R's planes cross);
+///    meet the terminator (terminator_quadric_bound), and where it does, in a ball about the
+///    whole terminator (ShadowGeometry::R_ball; as a plane pair, second order near the line where
+///    R's planes cross);
 ///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
 ///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
 ///    A's gradient has a floor on the terminator there, or P is indefinite (a cone's plane pair: second
@@ -190,7 +205,6 @@ class ShadowBounds {
   Mat4<Rational> P_ref_, R_ref_;
   Vec4<Rational> pi_ref_, h_;
   GradientFloor P_floor_;
-  Measure h_centre_ = 0, h_normal_ = 0, pi_normal_ = 0;  ///< |h . (c, 1)|, |h_xyz|, |pi_xyz|: R's floor
   std::vector<BallPart> generator_balls_;
   /// R in the ball: against R_ref where h misses it, else as a plane pair (ball_plane_pair_bound).
   CertifiedBound R_ball_bound(const Mat4<Rational>& R, const std::optional<Vec3<Rational>>& origin, double size) const;

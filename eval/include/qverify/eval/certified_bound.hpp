@@ -80,6 +80,16 @@ class BoundedResult;
 /// A parametrised piece of an item's geometry (the terminator, A reflected).
 class Geometry;
 
+/// Where the geometry is not a real ellipse (an unbounded terminator, a quadric other than an
+/// ellipsoid reflected) its points do not all count: the object size is the largest distance of
+/// the sampled points from A's centre (accuracy.hpp), and a bound covers every point of the
+/// geometry within that distance of the centre, the ball below (exact: `reach` is at least the
+/// size).
+struct Ball {
+  Vec3<Rational> centre;
+  Rational reach;
+};
+
 /// The geometry of a shadow item where the terminator is a real ellipse (any quadric; A's
 /// gradient floor, and with it grad_floor, is known where A is an ellipsoid only, 0 elsewhere);
 /// nullopt otherwise (the error is then bounded in a ball: ball_quadric_bound, ShadowBounds).
@@ -97,6 +107,9 @@ struct ShadowGeometry {
   /// inside it; 0 where h meets the terminator (R's gradient vanishes there: no first-order bound
   /// of a rounded R exists) or misses it by less than the enclosures can tell.
   Measure R_floor = 0;
+  /// Where R_floor is 0: a ball about the terminator's expansion point that holds all of it and the
+  /// polar plane inside it (reach: the largest offset from above), where R is bounded by second order.
+  std::optional<Ball> R_ball;
 };
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
@@ -172,15 +185,6 @@ CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b);
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Rational>>& origin,
                                 const Mat4<Rational>& B, double size, double target);
 
-/// Where the geometry is not a real ellipse (an unbounded terminator, a quadric other than an
-/// ellipsoid reflected) its points do not all count: the object size is the largest distance of
-/// the sampled points from A's centre (accuracy.hpp), and a bound covers every point of the
-/// geometry within that distance of the centre, the ball below (exact: `reach` is at least the
-/// size).
-struct Ball {
-  Vec3<Rational> centre;
-  Rational reach;
-};
 
 /// The ball mapped by x -> a x + t (a homothety or translation, as generator_map and the mirror's
 /// linear part times its offset are): centre a c + t, reach |a| reach.
@@ -252,8 +256,13 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// Infinite where a shell has neither. Coarser than the branch and bound (no
 /// parameters), the shells keep it within a small factor of a rounded result's error where the
 /// reference's gradient grows with the distance (hyperboloids, paraboloids).
+/// `euclidean_only`: every shell bounds the Euclidean distance (ball_plane_pair_bound adds it to one):
+/// first order where the gradient bound G and |hat_xyz,xyz|_F = h give G^2 >= V h (V the value's
+/// bound; then a root lies within V / G along the gradient: along a unit u the form is a + 2 b t +
+/// c t^2, |c| <= h, b >= G), else second order.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
-                                  const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size);
+                                  const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size,
+                                  bool euclidean_only = false);
 CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
                                 const std::optional<Vec3<Rational>>& origin, double size);
 

@@ -192,8 +192,9 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     ps.pair = p;
     ps.origin = origin[p.quadric];
     // R's planes crossing on the terminator: the frame at the light's height, where R rounds exactly
-    // (light_plane_meets_terminator; the paper's route keeps the quadric's frame: its T depends on l_z)
-    if (method == Method::direct && light_plane_meets_terminator(A_exact[p.quadric], L_exact[p.other]))
+    // (wants_light_height_frame; the paper's route keeps the quadric's frame: its T depends on l_z)
+    if (method == Method::direct &&
+        wants_light_height_frame(A_exact[p.quadric], L_exact[p.other], center[p.quadric], size2[p.quadric]))
       ps.origin = light_height_origin(ps.origin, L_exact[p.other]);
     const Mat4<Q> Al = ps.origin ? quadric_to_local(A_exact[p.quadric], *ps.origin) : A_exact[p.quadric];
     const Vec4<Q> Ll = ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other];

@@ -47,6 +47,14 @@ bool wants_local_frame(const Vec3<Rational>& center, const Rational& s2);
 /// (light_height_origin): there h = (0, 0, 1, -d) with d tiny or 0, and R's entries are pi's, exact.
 bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
+/// Does a shadow item want the frame at the light's height? Where h meets the terminator near the
+/// object: always for an ellipsoid (its terminator is bounded), else where the light's height is within
+/// 4 sizes (s2 = size_squared) of the quadric's centre; an unbounded terminator crossed far away
+/// (a cylinder's, say) is bounded at first order in the item's ball, and a frame there would only put
+/// the object away from its origin.
+bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
+                              const std::optional<Vec3<Rational>>& centre, const Rational& s2);
+
 /// The origin o (or 0) with its z the light's height rounded to a double.
 Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const Vec4<Rational>& L);
 
