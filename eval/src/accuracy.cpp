@@ -782,17 +782,6 @@ CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin, 
   return out;
 }
 
-CoveredBound CoveredBound::finite() const {
-  CoveredBound out;
-  for (const Part& p : parts)
-    if (p.bound.upper < std::numeric_limits<double>::infinity()) {
-      out.bound = combined(out.bound, p.bound);
-      out.certified.insert(out.certified.end(), p.names.begin(), p.names.end());
-      out.parts.push_back(p);
-    }
-  return out;
-}
-
 void CoveredBound::check(const std::function<Measure(const std::string&)>& sampled) const {
   for (const Part& p : parts) {
     if (p.bound.euclidean) continue;
@@ -824,10 +813,10 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
       return std::max(relative(err.R, size), relative(err.R_plane, size));  // "R"
     };
   };
-  const CoveredBound all = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
-  all.check(sampled(e, pts_.size));
-  // a part whose bound is not finite (its gradient bound swamped) is measured on samples, as the rest
-  const CoveredBound b = all.finite();
+  // (a part whose bound is not finite, a result so far off that its gradient bound is swamped, leaves
+  // the item without a bound: flagged, with a reason)
+  const CoveredBound b = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
+  b.check(sampled(e, pts_.size));
   const auto has = [&](const char* n) { return std::find(b.certified.begin(), b.certified.end(), n) != b.certified.end(); };
   // What a bound covers counts its certified bound and its sampled errors; the rest its errors on
   // samples. (The denser points' generator points lie at other offsets, which the bound does not cover.)
@@ -862,10 +851,6 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
   const CoveredBound b = bounds_(origin, B, size_down(pts_.size), opt_.target);
   const Measure sampled = reflection_error(pts_, origin, B).geometric;
   b.check([&](const std::string&) { return sampled; });
-  if (!(b.bound.upper < std::numeric_limits<double>::infinity()))  // no finite bound: measured on samples
-    return refined_accuracy(
-        pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
-        [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
   return combined_accuracy(b.bound, sampled, 0, b.certified, opt_.target);
 }
 

@@ -542,6 +542,18 @@ TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points"
     CHECK(acc.inaccurate == (*acc.bound > opt.target));
     if (worst > Measure(opt.target)) CHECK(acc.inaccurate);
   }
+  // an exact plane pair with its first plane tilted: R' = p' h^T + h p'^T, p' = pi + 10^-7 (1, 2, 0, 0),
+  // is off the terminator by its distance from p' (about 1e-7 away from the crossing points, where
+  // the samples are), all of it in the bound's first step
+  const Vec4<Q> tilted = pi_ref + Q(1, 10000000) * Vec4<Q>(1, 2, 0, 0);
+  const Mat4<Q> R1 = tilted * h.transpose() + h * tilted.transpose();
+  const CoveredBound b = bounds(std::nullopt, nullptr, nullptr, &R1, size_down(pts.size), 1e-9);
+  const ShadowError e = shadow_error(pts, std::nullopt, P_ref, pi_ref, R1);
+  const Measure sampled = std::max(relative(e.R, pts.size), relative(e.R_plane, pts.size));
+  INFO("bound " << b.bound.upper << ", sampled " << sampled.str(6));
+  CHECK(sampled > 1e-8);
+  CHECK(sampled <= Measure(b.bound.upper));
+  CHECK(b.bound.upper < 1e-5);
 }
 
 TEST_CASE("eval: a light beside the object, R in the frame at the light's height", "[accuracy][certified][frames]") {

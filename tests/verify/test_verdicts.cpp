@@ -351,6 +351,29 @@ TEST_CASE("a candidate's numbers are the values of its precision: eval's documen
   }
 }
 
+TEST_CASE("an origin in a float document is the double it is written as", "[verdicts][verify][candidate]") {
+  // A sphere lit from the side at height 0.3: eval computes the item in a frame at the light's height,
+  // the double nearest 0.3 (not a float). Read back from eval's float document, that origin stays the
+  // double: rounded to the document's float it moved the frame by 1.2e-8 and the results judged were
+  // not the ones computed.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "side light",
+      "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}}],
+      "lights": [{"id": "lamp", "position": [3, 0, 0.3]}], "requests": {"reflections": []}})",
+                               "side.json");
+  const Precision flt = *parse_precision("float");
+  const auto doc = eval_json(eval_report(sc, flt, Method::direct, std::nullopt, AccuracyOptions{}));
+  REQUIRE(doc["shadows"][0].contains("origin"));
+  const ResultSet read = candidate_results_text(sc, doc.dump(), "eval.json", flt);
+  REQUIRE(read.shadows.size() == 1);
+  REQUIRE(read.shadows[0].origin);
+  CHECK((*read.shadows[0].origin)(2) == to_rational(0.3));
+  const VerifyReport computed = verify_results(sc, computed_results(sc, flt, Method::direct), VerifyOptions{16, 3});
+  const VerifyReport judged = verify_results(sc, read, VerifyOptions{16, 3});
+  REQUIRE(computed.checks[0].report);
+  REQUIRE(judged.checks[0].report);
+  CHECK(computed.checks[0].report->geometric_error == judged.checks[0].report->geometric_error);
+}
+
 namespace {
 
 ResultSet exact_results(const Scene& sc) {

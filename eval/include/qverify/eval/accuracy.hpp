@@ -159,8 +159,6 @@ struct CoveredBound {
     CertifiedBound bound;
   };
   std::vector<Part> parts;
-  /// Only the parts whose bound is finite (what is left is measured on samples instead).
-  CoveredBound finite() const;
   /// Throws std::logic_error where a part's first-order bound is below the error sampled on one of
   /// its results, `sampled(name)` (a bug in the bound); a part bounded by second order somewhere
   /// (CertifiedBound::euclidean) may be, where a first-order distance means nothing.
