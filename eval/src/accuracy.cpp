@@ -636,8 +636,9 @@ double size_down(const Measure& size) {
 
 namespace {
 
-/// Combines a certified bound with the largest sampled error of the same results (which it must not be
-/// below) and the sampled error of the results it does not cover (times the margin).
+/// Combines a certified bound with the largest sampled error of the same results (the larger counts:
+/// CoveredBound::check has checked a first-order bound against them) and the sampled error of the
+/// results it does not cover (times the margin).
 ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
                                std::vector<std::string> certified, double target) {
   // (checked part by part before, CoveredBound::check; a bound of the Euclidean distance near a point
@@ -682,12 +683,12 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
   if (geo_) {
     generators_ = generator_geometries(A, L, pts.generator_offsets);
     if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
-    cover_ = {true, true, !generators_.empty(), geo_->R_floor > 0 || (geo_->R_ball && R_crossing)};
+    cover_ = {true, true, !generators_.empty(),
+              geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
     return;
   }
   ball_ = pts.ball;
   const Measure reach = to_measure(ball_.reach);
-  const Vec4<Q>& h = h_;
   const Q s = L.dot(pi_ref_);
   P_ref_ = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
@@ -725,7 +726,7 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
     if (P) out.certified.emplace_back("P"), out.parts.back().names.emplace_back("P");
     if (polar) out.certified.emplace_back("polar_plane"), out.parts.back().names.emplace_back("polar_plane");
     if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
-    // where h meets the terminator, R in the ball about the whole of it (ItemPoints::ball)
+    // where h meets the terminator, R in the ball about the whole of it (ShadowGeometry::R_ball)
     if (R && cover_.R)
       add(geo_->R_floor > 0 ? *terminator_quadric_bound(*geo_, origin, *R, size, target) : R_ball_bound(*R, origin, size),
           "R");
@@ -806,11 +807,11 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
         pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   const auto sampled = [](const ShadowError& err, const Measure& size) {
-    return [&err, size](const std::string& name) {
-      if (name == "P") return relative(err.P, size);
-      if (name == "polar_plane") return relative(err.polar, size);
-      if (name == "P_generators") return relative(err.generators, size);
-      return std::max(relative(err.R, size), relative(err.R_plane, size));  // "R"
+    return [p = &err, size](const std::string& name) {  // (err: the caller's, alive while this is used)
+      if (name == "P") return relative(p->P, size);
+      if (name == "polar_plane") return relative(p->polar, size);
+      if (name == "P_generators") return relative(p->generators, size);
+      return std::max(relative(p->R, size), relative(p->R_plane, size));  // "R"
     };
   };
   // (a part whose bound is not finite, a result so far off that its gradient bound is swamped, leaves

@@ -160,8 +160,9 @@ struct CoveredBound {
   };
   std::vector<Part> parts;
   /// Throws std::logic_error where a part's first-order bound is below the error sampled on one of
-  /// its results, `sampled(name)` (a bug in the bound); a part bounded by second order somewhere
-  /// (CertifiedBound::euclidean) may be, where a first-order distance means nothing.
+  /// its results, `sampled(name)` (a bug in the bound); a part whose bound is Euclidean somewhere
+  /// (CertifiedBound::euclidean: second order near a cone's apex; R as a plane pair, always) may be,
+  /// where a first-order distance means nothing.
   void check(const std::function<Measure(const std::string&)>& sampled) const;
 };
 

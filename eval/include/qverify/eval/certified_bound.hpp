@@ -68,9 +68,9 @@ struct CertifiedBound {
   double attained = 0;  ///< a relative distance attained at a point of the geometry (sup >= attained)
   int boxes = 0;        ///< boxes evaluated
   /// Somewhere (near a point where the reference's gradient vanishes: a cone's apex, the line of a
-  /// plane pair) `upper` bounds the Euclidean distance to the result, by second order
-  /// (ball_quadric_bound), not the first-order one, which is unbounded there: a sampled point's
-  /// first-order distance may then exceed `upper`.
+  /// plane pair) `upper` bounds the Euclidean distance to the result, by second order or the root
+  /// bound V / G (ball_quadric_bound; ball_plane_pair_bound always), not the first-order one, which
+  /// is unbounded there: a sampled point's first-order distance may then exceed `upper`.
   bool euclidean = false;
 };
 
@@ -108,7 +108,8 @@ struct ShadowGeometry {
   /// of a rounded R exists) or misses it by less than the enclosures can tell.
   Measure R_floor = 0;
   /// Where R_floor is 0: a ball about the terminator's expansion point that holds all of it and the
-  /// polar plane inside it (reach: the largest offset from above), where R is bounded by second order.
+  /// polar plane inside it (reach: the largest offset from above), where R is bounded as a plane pair
+  /// (ball_plane_pair_bound).
   std::optional<Ball> R_ball;
 };
 std::optional<ShadowGeometry> shadow_geometry(const Mat4<Rational>& A, const Vec4<Rational>& L);
@@ -256,8 +257,9 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// Infinite where a shell has neither. Coarser than the branch and bound (no
 /// parameters), the shells keep it within a small factor of a rounded result's error where the
 /// reference's gradient grows with the distance (hyperboloids, paraboloids).
-/// `euclidean_only`: every shell bounds the Euclidean distance (ball_plane_pair_bound adds it to one):
-/// first order where the gradient bound G and |hat_xyz,xyz|_F = h give G^2 >= V h (V the value's
+/// `euclidean_only` (`ref` symmetric): every shell bounds the Euclidean distance (ball_plane_pair_bound
+/// adds it to one): first order where the gradient bound G of the symmetrised form and h =
+/// |(hat + hat^T)_xyz,xyz / 2|_F give G^2 >= V h (V the value's
 /// bound; then a root lies within V / G along the gradient: along a unit u the form is a + 2 b t +
 /// c t^2, |c| <= h, b >= G), else second order.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,

@@ -49,7 +49,8 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 
 /// Does a shadow item want the frame at the light's height? Where h meets the terminator near the
 /// object: always for an ellipsoid (its terminator is bounded), else where the light's height is within
-/// 4 sizes (s2 = size_squared) of the quadric's centre; an unbounded terminator crossed far away
+/// 4 sizes (s2 = size_squared; 1 for a cone, 4 units then) of the quadric's centre (none for a
+/// paraboloid: it keeps its frame, bounded looser); an unbounded terminator crossed far away
 /// (a cylinder's, say) is bounded at first order in the item's ball, and a frame there would only put
 /// the object away from its origin.
 bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
