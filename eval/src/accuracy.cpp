@@ -746,16 +746,8 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, cons
 
 CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
   if (!crosses(h_, ball_)) {
-    // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz, |h . x| >=
-    // |h . (c, 1)| - |y| |h_xyz|
-    const Measure h_centre = abs(to_measure(Q(Vec3<Q>(h_.head<3>()).dot(ball_.centre) + h_(3))));
-    const Measure h_normal = sqrt(to_measure(Q(h_.head<3>().squaredNorm())));
-    const Measure pi_normal = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
-    const ShellFloor floor = [=](const Measure&, const Measure& outer) {
-      const Measure gap = h_centre - outer * h_normal;
-      return gap > 0 ? Measure(gap * pi_normal) : Measure(0);
-    };
-    return ball_quadric_bound(R, R_ref_, ball_, origin, floor, size);
+    // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz
+    return ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size);
   }
   return ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
 }

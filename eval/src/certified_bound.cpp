@@ -940,6 +940,16 @@ CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, co
   });
 }
 
+ShellFloor plane_pair_floor(const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball) {
+  const Measure q_centre = abs(to_measure(Q(Vec3<Q>(q.head<3>()).dot(ball.centre) + q(3))));
+  const Measure q_normal = sqrt(to_measure(Q(q.head<3>().squaredNorm())));
+  const Measure p_normal = sqrt(to_measure(Q(p.head<3>().squaredNorm())));
+  return [=](const Measure&, const Measure& outer) {
+    const Measure gap = q_centre - outer * q_normal;
+    return gap > 0 ? Measure(gap * p_normal) : Measure(0);
+  };
+}
+
 CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball,
                                      const std::optional<Vec3<Q>>& o, double size) {
   if (hat_in.isZero()) return {kInf, 0, 1};
@@ -962,14 +972,7 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
   const Mat4<Q> Ti = translation_of(o ? std::optional<Vec3<Q>>(Vec3<Q>(-*o)) : std::nullopt);
   const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(p1 * q_o.transpose() + q_o * p1.transpose()) * Ti;
   const Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper))};
-  const Measure q_centre = abs(to_measure(Q(Vec3<Q>(q.head<3>()).dot(ball.centre) + q(3))));
-  const Measure q_normal = sqrt(to_measure(Q(q.head<3>().squaredNorm())));
-  const Measure p_normal = sqrt(to_measure(Q(p1.head<3>().squaredNorm())));
-  const ShellFloor floor = [&](const Measure&, const Measure& outer) {
-    const Measure gap = q_centre - outer * q_normal;
-    return gap > 0 ? Measure(gap * p_normal) : Measure(0);
-  };
-  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, floor, 1.0, true);
+  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, plane_pair_floor(p1, q, grown), 1.0, true);
   if (!(d2.upper < kInf)) return {kInf, 0, 1};
   return upward([&] {
     CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);

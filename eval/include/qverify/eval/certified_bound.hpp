@@ -268,6 +268,10 @@ CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational
 CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
                                 const std::optional<Vec3<Rational>>& origin, double size);
 
+/// The floor of a plane pair p q^T + q p^T's gradient on p in the shells of a ball: there it is
+/// (q . x) p_xyz, and |q . x| >= |q . (c, 1)| - outer |q_xyz| (0 where q crosses the shell).
+ShellFloor plane_pair_floor(const Vec4<Rational>& p, const Vec4<Rational>& q, const Ball& ball);
+
 /// A result hat whose reference is a plane pair p q^T + q p^T (R = pi h^T + h pi^T) whose planes cross
 /// in the ball, over the points of p in it, in two steps. A rounded plane pair is a hyperboloid about
 /// sqrt(eps) from the line where the planes cross, but hat = p' q^T + q p'^T + F, p' = lambda p + e,
