@@ -432,6 +432,8 @@ int run_audit_command(const Options& o, bool with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;
   }
+  create_output_directory(o.out_dir);  // then its files, before the work (an unwritable report fails at once)
+  for (const auto& f : audit_report_files(o.out_dir)) check_writable(f);
   const AuditReport report = run_audit(sc, opt);
   write_audit_report(o.out_dir, report);
   if (o.as_json) std::cout << audit_json(report).dump(2) << "\n";
@@ -462,6 +464,11 @@ int run_stress_command(const Options& o, bool with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;
   }
+  std::vector<std::string> run_families = o.families;
+  if (run_families.empty())
+    for (const auto& f : stress_families()) run_families.push_back(f.name);
+  create_output_directory(o.out_dir);  // then its files, before the sweeps (an unwritable report fails at once)
+  for (const auto& f : stress_report_files(o.out_dir, run_families)) check_writable(f);
   const StressReport report = run_stress(opt);
   write_stress_report(o.out_dir, report);
   if (o.as_json) std::cout << stress_json(report).dump(2) << "\n";

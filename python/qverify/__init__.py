@@ -294,8 +294,10 @@ def stress(fn=None, *, shadow=None, reflection=None, families=None, out=None, na
             (path "fn", "shadow" or "reflection"), an unknown family or one
             of a kind without a function ("families[1]"), a bad name,
             samples or accuracy.
-        OSError: `out` cannot be created or written (`filename` is the
-            path); raised before the sweep when the directory cannot be made.
+        OSError: `out` or a report file in it cannot be created or written
+            (errno, strerror and `filename` set, the subclass by errno:
+            IsADirectoryError, PermissionError ...); raised before the sweep,
+            from a check that the directory can be made and takes the files.
 
     Example:
         >>> def naive_shadow(A, L):  # world coordinates, plain doubles

@@ -214,6 +214,10 @@ py::object stress_py(const py::object& shadow_in, const py::object& reflection_i
         opt.families.push_back(names[i]);
     }
   }
+  if (write_report) {  // the report's files checked before the sweeps, as the CLI does: an unwritable one fails at once
+    create_output_directory(out_dir);
+    for (const auto& f : stress_report_files(out_dir, opt.families)) check_writable(f);
+  }
   opt.candidate = item_candidate(name, shadow_function(shadow_in), reflection_function(reflection_in));
   StressReport report;
   bool aborted = false;
@@ -250,15 +254,16 @@ py::list families_py() {
 namespace qverify::py_glue {
 
 void bind_stress(py::module_& m) {
-  // A file or directory that cannot be written: OSError with `filename` (the path), message "cannot ... PATH: REASON".
+  // A file or directory that cannot be written: OSError(errno, reason, path), as Python's own file functions
+  // raise it (errno, strerror and filename set; str() "[Errno 21] Is a directory: 'PATH'"), its subclass
+  // chosen by errno (IsADirectoryError, FileNotFoundError, PermissionError ...).
   py::register_exception_translator([](std::exception_ptr p) {
     if (!p) return;
     try {
       std::rethrow_exception(p);
     } catch (const FileWriteError& e) {
-      py::object err = py::reinterpret_borrow<py::object>(PyExc_OSError)(e.what());
-      err.attr("filename") = e.path.string();
-      PyErr_SetObject(PyExc_OSError, err.ptr());
+      py::object err = py::reinterpret_borrow<py::object>(PyExc_OSError)(e.code, e.reason, e.path.string());
+      PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(err.ptr())), err.ptr());
     }
   });
   m.def("_stress", &stress_py, py::arg("shadow"), py::arg("reflection"), py::arg("families"), py::arg("out"),

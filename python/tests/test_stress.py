@@ -203,6 +203,24 @@ def test_an_unwritable_out_is_an_error_naming_the_path(tmp_path):
         qverify.stress(shadow=lambda A, L: A, families=["far-from-origin"], out=blocker / "report")
     assert str(blocker / "report") in str(e.value)
     assert e.value.filename == str(blocker / "report")
+    assert e.value.strerror == "Not a directory"
+
+
+def test_an_unwritable_report_fails_before_the_function_is_called(tmp_path):
+    (tmp_path / "report.json").mkdir()  # a directory where the report goes
+    calls = []
+
+    def shadow(A, L):
+        calls.append(1)
+        return A
+
+    with pytest.raises(OSError) as e:
+        qverify.stress(shadow=shadow, families=["far-from-origin"], out=tmp_path)
+    assert isinstance(e.value, IsADirectoryError)
+    assert e.value.filename == str(tmp_path / "report.json")
+    assert str(e.value) == "[Errno 21] Is a directory: '" + str(tmp_path / "report.json") + "'"
+    assert calls == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.json"]
 
 
 def test_stress_families_lists_both_kinds():

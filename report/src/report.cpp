@@ -178,26 +178,43 @@ std::string candidate_html(const json& doc) {
 
 }  // namespace
 
+std::vector<std::filesystem::path> audit_report_files(const std::filesystem::path& dir) {
+  return {dir / "error-vs-time.svg", dir / "report.json", dir / "report.html"};
+}
+
+std::vector<std::filesystem::path> stress_report_files(const std::filesystem::path& dir,
+                                                       const std::vector<std::string>& families) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& f : families) files.push_back(dir / (f + ".svg"));
+  files.push_back(dir / "report.json");
+  files.push_back(dir / "report.html");
+  return files;
+}
+
 void write_audit_report(const std::filesystem::path& dir, const AuditReport& report) {
+  const auto files = audit_report_files(dir);
   const std::string svg = render_svg(report.error_vs_time);
-  write_file(dir / "error-vs-time.svg", svg);
+  write_file(files[0], svg);
   const nlohmann::ordered_json doc = audit_json(report);
-  write_file(dir / "report.json", doc.dump(2) + "\n");
-  write_file(dir / "report.html", audit_html(doc, svg));
+  write_file(files[1], doc.dump(2) + "\n");
+  write_file(files[2], audit_html(doc, svg));
 }
 
 void write_stress_report(const std::filesystem::path& dir, const StressReport& report) {
   std::vector<std::pair<std::string, std::string>> svgs;
   for (const auto& [name, plot] : report.plots) svgs.emplace_back(name, render_svg(plot));
-  for (const auto& [name, svg] : svgs) write_file(dir / (name + ".svg"), svg);
+  std::vector<std::string> names;
+  for (const auto& [name, svg] : svgs) names.push_back(name);
+  const auto files = stress_report_files(dir, names);
+  for (std::size_t k = 0; k < svgs.size(); ++k) write_file(files[k], svgs[k].second);
   const nlohmann::ordered_json doc = stress_json(report);
-  write_file(dir / "report.json", doc.dump(2) + "\n");
+  write_file(files[svgs.size()], doc.dump(2) + "\n");
   std::string html = stress_html(doc, svgs);
   if (report.candidate) {
     const std::size_t at = html.rfind("</body>");
     html.insert(at == std::string::npos ? html.size() : at, candidate_html(doc));
   }
-  write_file(dir / "report.html", html);
+  write_file(files[svgs.size() + 1], html);
 }
 
 }  // namespace qverify

@@ -14,9 +14,10 @@ namespace {
 
 std::string os_reason(int err) { return std::generic_category().message(err); }
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& reason) {
-  throw FileWriteError("cannot write " + path.string() + ": " + reason, path, reason);
+[[noreturn]] void fail(const std::filesystem::path& path, int err, const std::string& reason) {
+  throw FileWriteError("cannot write " + path.string() + ": " + reason, path, reason, err);
 }
+[[noreturn]] void fail(const std::filesystem::path& path, int err) { fail(path, err, os_reason(err)); }
 
 /// Closes a descriptor once; the destructor covers the paths that throw.
 struct Descriptor {
@@ -29,28 +30,37 @@ struct Descriptor {
     fd = -1;
     return r;
   }
+  Descriptor() = default;
+  Descriptor(Descriptor&& o) noexcept : fd(o.fd) { o.fd = -1; }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  Descriptor& operator=(Descriptor&&) = delete;
 };
 
-}  // namespace
-
-void write_file(const std::filesystem::path& path, std::string_view contents) {
+/// A fresh temporary next to `path` (same file system, so a rename is atomic), open for writing.
+Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::path& tmp) {
   const std::string base = path.filename().string();
-  if (base.empty() || base == "." || base == "..") fail(path, "not a file name");
+  if (base.empty() || base == "." || base == "..") fail(path, EINVAL, "not a file name");
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-
-  // A fresh temporary next to the target (same file system, so the rename is atomic).
   static std::atomic<unsigned long> counter{0};
-  std::filesystem::path tmp;
   Descriptor d;
   for (int attempt = 0; d.fd < 0; ++attempt) {
     tmp = dir / ("." + base + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     d.fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (d.fd < 0 && (errno != EEXIST || attempt > 100)) fail(path, os_reason(errno));
+    if (d.fd < 0 && (errno != EEXIST || attempt > 100)) fail(path, errno);
   }
+  return d;
+}
+
+}  // namespace
+
+void write_file(const std::filesystem::path& path, std::string_view contents) {
+  std::filesystem::path tmp;
+  Descriptor d = open_temporary(path, tmp);
   auto give_up = [&](int err) {
     if (d.fd >= 0) d.release_and_close();
     ::unlink(tmp.c_str());
-    fail(path, os_reason(err));
+    fail(path, err);
   };
 
   const char* p = contents.data();
@@ -70,15 +80,31 @@ void write_file(const std::filesystem::path& path, std::string_view contents) {
   if (::rename(tmp.c_str(), path.c_str()) != 0) give_up(errno);
 }
 
+void check_writable(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail(path, EISDIR);  // rename(2) would say so, after the work
+  std::filesystem::path tmp;
+  Descriptor d = open_temporary(path, tmp);
+  d.release_and_close();
+  ::unlink(tmp.c_str());
+}
+
 void create_output_directory(const std::filesystem::path& dir) {
   if (dir.empty()) return;  // the current directory
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   std::string reason;
-  if (ec) reason = ec.message();
-  else if (!std::filesystem::is_directory(dir, ec)) reason = ec ? ec.message() : "exists and is not a directory";
+  int code = 0;
+  if (!ec && !std::filesystem::is_directory(dir, ec) && !ec) {
+    reason = "exists and is not a directory";
+    code = ENOTDIR;
+  }
+  if (ec) {
+    reason = ec.message();
+    code = ec.value();
+  }
   if (!reason.empty())
-    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason);
+    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason, code);
 }
 
 }  // namespace qverify

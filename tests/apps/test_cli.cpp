@@ -396,7 +396,7 @@ TEST_CASE("an --out directory that cannot be created is exit 2 naming it, before
   }
 }
 
-TEST_CASE("a report that cannot be written is exit 2 naming it, and nothing claims it was written", "[cli][files]") {
+TEST_CASE("a report that cannot be written is exit 2 naming it, before any work, and nothing claims it was written", "[cli][files]") {
   for (const std::string cmd : {"audit", "stress"}) {
     const auto dir = fresh_dir(cmd + "-blocked");
     std::filesystem::create_directories(dir / "report.json");  // a directory where the report goes
@@ -412,8 +412,8 @@ TEST_CASE("a report that cannot be written is exit 2 naming it, and nothing clai
       CHECK(r.err.find("Is a directory") != std::string::npos);
     }
     CHECK(std::filesystem::is_directory(dir / "report.json"));
-    for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporary left behind
-      CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+    // checked before the work: no plot written before the failure either, and no temporary left behind
+    for (const auto& e : std::filesystem::directory_iterator(dir)) CHECK(e.path().filename() == "report.json");
   }
 }
 
@@ -447,6 +447,24 @@ TEST_CASE("write_file replaces its target whole and leaves no temporary", "[cli]
     CHECK(e.reason == "No such file or directory");
     CHECK(std::string(e.what()) == "cannot write " + (dir / "missing" / "x.txt").string() + ": No such file or directory");
   }
+  // check_writable: the same reasons as write_file, before any work, and nothing left behind
+  CHECK_NOTHROW(qverify::check_writable(dir / "new.txt"));
+  CHECK_NOTHROW(qverify::check_writable(target));
+  try {
+    qverify::check_writable(dir);
+    FAIL("no error");
+  } catch (const qverify::FileWriteError& e) {
+    CHECK(e.reason == "Is a directory");
+  }
+  try {
+    qverify::check_writable(dir / "missing" / "x.txt");
+    FAIL("no error");
+  } catch (const qverify::FileWriteError& e) {
+    CHECK(e.reason == "No such file or directory");
+  }
+  std::size_t after = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++after;
+  CHECK(after == 1);
   CHECK_THROWS_AS(qverify::create_output_directory(target / "sub"), qverify::FileWriteError);
   CHECK_THROWS_AS(qverify::create_output_directory(target), qverify::FileWriteError);
   CHECK_NOTHROW(qverify::create_output_directory(dir / "a" / "b"));

@@ -260,8 +260,9 @@ struct WorkDir {
   WorkDir() {
     std::string templ = (std::filesystem::temp_directory_path() / "qverify-candidate-XXXXXX").string();
     if (!::mkdtemp(templ.data())) {
-      const std::string reason = std::strerror(errno);
-      throw FileWriteError("cannot create directory " + templ + ": " + reason, templ, reason);
+      const int code = errno;
+      const std::string reason = std::strerror(code);
+      throw FileWriteError("cannot create directory " + templ + ": " + reason, templ, reason, code);
     }
     path = templ;
   }

@@ -22,6 +22,14 @@ void write_audit_report(const std::filesystem::path& dir, const AuditReport& rep
 /// Writes DIR/report.json, DIR/report.html and DIR/FAMILY.svg per family.
 void write_stress_report(const std::filesystem::path& dir, const StressReport& report);
 
+/// The files write_audit_report writes into DIR, to be checked before the
+/// audit runs (check_writable, scene/files.hpp): an unwritable report fails
+/// before minutes of measuring, not after.
+std::vector<std::filesystem::path> audit_report_files(const std::filesystem::path& dir);
+/// The files write_stress_report writes into DIR for these families, likewise.
+std::vector<std::filesystem::path> stress_report_files(const std::filesystem::path& dir,
+                                                       const std::vector<std::string>& families);
+
 /// report.html of `qverify audit` from its report.json document and the plot.
 std::string audit_html(const nlohmann::ordered_json& doc, const std::string& svg);
 

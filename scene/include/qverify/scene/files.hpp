@@ -18,10 +18,11 @@ namespace qverify {
 /// A file or directory that could not be written or created. `what()` is
 /// "cannot write PATH: REASON" (or "cannot create directory PATH: REASON").
 struct FileWriteError : std::runtime_error {
-  FileWriteError(const std::string& message, std::filesystem::path path, std::string reason)
-      : std::runtime_error(message), path(std::move(path)), reason(std::move(reason)) {}
+  FileWriteError(const std::string& message, std::filesystem::path path, std::string reason, int code)
+      : std::runtime_error(message), path(std::move(path)), reason(std::move(reason)), code(code) {}
   std::filesystem::path path;  ///< the file or directory that failed
   std::string reason;          ///< the operating system's reason, e.g. "Is a directory"
+  int code;                    ///< its errno value (EISDIR; EINVAL for a path that names no file)
 };
 
 /// Writes `contents` to `path`: to a temporary file in the same directory
@@ -34,5 +35,11 @@ void write_file(const std::filesystem::path& path, std::string_view contents);
 /// directory. Throws FileWriteError when it cannot be created or exists as
 /// something else.
 void create_output_directory(const std::filesystem::path& dir);
+
+/// Checks, before any work, that `write_file(path, ...)` can succeed as far as
+/// the file system can tell now: `path` is not a directory, and its directory
+/// takes a new file (one is created and removed). Throws FileWriteError with
+/// the reason `write_file` would give. A full disk still surfaces at the write.
+void check_writable(const std::filesystem::path& path);
 
 }  // namespace qverify
