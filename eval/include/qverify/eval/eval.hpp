@@ -384,3 +384,13 @@ Evaluation<S> evaluate_checked(const Scene& sc, Method method, std::optional<Fra
 inline const char* method_name(Method m) { return m == Method::paper ? "paper" : "direct"; }
 
 }  // namespace qverify
+
+/// evaluate<T> and typed_scene<T> are compiled once for each scalar of the ladder, with the rest of
+/// the pipeline (eval/src/inst_*.cpp, QVERIFY_INSTANTIATE), not again in every file that calls them:
+/// verify, studies and render each compiled the exact pipeline anew (the largest part of their build).
+#include <qverify/exact/scalar_list.hpp>
+#define QVERIFY_EXTERN_EVALUATE(T)                                                                              \
+  extern template qverify::Evaluation<T> qverify::evaluate<T>(const qverify::Scene&, qverify::Method,            \
+                                                              std::optional<qverify::Frame>);                   \
+  extern template qverify::TypedScene<T> qverify::typed_scene<T>(const qverify::Scene&);
+QVERIFY_FOR_EACH_SCALAR(QVERIFY_EXTERN_EVALUATE)

@@ -15,7 +15,10 @@
                                                           qverify::Method, std::optional<qverify::Frame>,            \
                                                           const std::optional<qverify::AccuracyOptions>&);           \
   template qverify::TimedResult qverify::timed_results<T>(const qverify::Scene&, const qverify::Precision&,          \
-                                                          qverify::Method, double, int);
+                                                          qverify::Method, double, int);                             \
+  template qverify::Evaluation<T> qverify::evaluate<T>(const qverify::Scene&, qverify::Method,                       \
+                                                       std::optional<qverify::Frame>);                               \
+  template qverify::TypedScene<T> qverify::typed_scene<T>(const qverify::Scene&);
 
 #define QVERIFY_EXTERN(T)                                                                                            \
   extern template qverify::EvalReport qverify::eval_report<T>(const qverify::Scene&, const qverify::Precision&,      \
