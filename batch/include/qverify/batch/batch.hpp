@@ -102,6 +102,10 @@ inline void store_fence() {
 }
 
 /// Runs f(begin, end) over [0, n) on `threads` threads (contiguous chunks).
+/// Chunks start at multiples of 64 items, so that a chunk's blocks of W rows
+/// start on whole vectors of the pack (64 items of 4, 10 or 12 doubles are
+/// whole lines) wherever the batch's storage does, and stream whole
+/// (stream_pieces, pack.hpp).
 template <class F> void parallel_for(Eigen::Index n, int threads, F&& f) {
   threads = std::max(1, threads);
   if (threads == 1 || n < 1024) {
@@ -109,7 +113,7 @@ template <class F> void parallel_for(Eigen::Index n, int threads, F&& f) {
     return;
   }
   std::vector<std::thread> pool;
-  const Eigen::Index chunk = (n + threads - 1) / threads;
+  const Eigen::Index chunk = ((n + threads - 1) / threads + 63) / 64 * 64;
   for (int t = 0; t < threads; ++t) {
     const Eigen::Index b = t * chunk, e = std::min(n, b + chunk);
     if (b < e) pool.emplace_back([&f, b, e] { f(b, e); });
@@ -186,6 +190,13 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
         // "bench"). The values stored are the same either way.
         __m128d out[N / 2][width];
         for (int k = 0; k < N; k += 2) to_lane_pairs(v[k], v[k + 1], out[k / 2]);
+        if (stride == N && pack_aligned(row0)) {  // the W rows are one contiguous block: whole vectors
+          __m128d seq[N / 2 * width];
+          for (int j = 0; j < width; ++j)
+            for (int k = 0; k < N; k += 2) seq[j * (N / 2) + k / 2] = out[k / 2][j];
+          stream_pieces(row0, seq);
+          return;
+        }
         for (int j = 0; j < width; ++j)
           for (int k = 0; k < N; k += 2) _mm_stream_pd(row0 + j * stride + k, out[k / 2][j]);
         return;
