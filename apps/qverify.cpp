@@ -415,11 +415,18 @@ int run_verify(const Options& o) {
   return v.failed > 0 ? kFound : kOk;
 }
 
-/// The candidate program of audit and stress, after its --out directory exists (a bad --out fails
-/// before the candidate's work directory is made).
+/// The candidate program of audit and stress.
 Candidate candidate_of(const Options& o) {
-  create_output_directory(o.out_dir);
   return process_candidate(o.candidate_name, o.candidate_cmd, o.candidate_timeout);
+}
+
+/// audit's and stress's --out directory made and its files checked before any work (an unwritable
+/// report fails at once, not after the sweeps): the reports, and with a candidate its reproducers'
+/// directory failures/, written during the run.
+void check_outputs(const Options& o, const std::vector<std::filesystem::path>& files, bool with_candidate) {
+  create_output_directory(o.out_dir);
+  for (const auto& f : files) check_writable(f);
+  if (with_candidate) check_output_directory(std::filesystem::path(o.out_dir) / "failures");
 }
 
 int run_audit_command(const Options& o, bool with_candidate) {
@@ -428,12 +435,11 @@ int run_audit_command(const Options& o, bool with_candidate) {
   opt.out_dir = o.out_dir;
   opt.batch_seconds = o.batch_ms / 1000;
   opt.progress = progress_after_two_seconds();
+  check_outputs(o, audit_report_files(o.out_dir), with_candidate);
   if (with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;
   }
-  create_output_directory(o.out_dir);  // then its files, before the work (an unwritable report fails at once)
-  for (const auto& f : audit_report_files(o.out_dir)) check_writable(f);
   const AuditReport report = run_audit(sc, opt);
   write_audit_report(o.out_dir, report);
   if (o.as_json) std::cout << audit_json(report).dump(2) << "\n";
@@ -460,15 +466,14 @@ int run_stress_command(const Options& o, bool with_candidate) {
   opt.families = o.families;
   opt.samples = o.stress_samples;
   opt.progress = progress_after_two_seconds();
+  std::vector<std::string> run_families = o.families;
+  if (run_families.empty())
+    for (const auto& f : stress_families()) run_families.push_back(f.name);
+  check_outputs(o, stress_report_files(o.out_dir, run_families), with_candidate);
   if (with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;
   }
-  std::vector<std::string> run_families = o.families;
-  if (run_families.empty())
-    for (const auto& f : stress_families()) run_families.push_back(f.name);
-  create_output_directory(o.out_dir);  // then its files, before the sweeps (an unwritable report fails at once)
-  for (const auto& f : stress_report_files(o.out_dir, run_families)) check_writable(f);
   const StressReport report = run_stress(opt);
   write_stress_report(o.out_dir, report);
   if (o.as_json) std::cout << stress_json(report).dump(2) << "\n";

@@ -294,7 +294,8 @@ def stress(fn=None, *, shadow=None, reflection=None, families=None, out=None, na
             (path "fn", "shadow" or "reflection"), an unknown family or one
             of a kind without a function ("families[1]"), a bad name,
             samples or accuracy.
-        OSError: `out` or a report file in it cannot be created or written
+        OSError: `out`, a report file in it or its failures/ directory
+            cannot be created or written
             (errno, strerror and `filename` set, the subclass by errno:
             IsADirectoryError, PermissionError ...); raised before the sweep,
             from a check that the directory can be made and takes the files.

@@ -217,6 +217,7 @@ py::object stress_py(const py::object& shadow_in, const py::object& reflection_i
   if (write_report) {  // the report's files checked before the sweeps, as the CLI does: an unwritable one fails at once
     create_output_directory(out_dir);
     for (const auto& f : stress_report_files(out_dir, opt.families)) check_writable(f);
+    check_output_directory(std::filesystem::path(out_dir) / "failures");  // the reproducers, written during the run
   }
   opt.candidate = item_candidate(name, shadow_function(shadow_in), reflection_function(reflection_in));
   StressReport report;
@@ -262,7 +263,10 @@ void bind_stress(py::module_& m) {
     try {
       std::rethrow_exception(p);
     } catch (const FileWriteError& e) {
-      py::object err = py::reinterpret_borrow<py::object>(PyExc_OSError)(e.code, e.reason, e.path.string());
+      // the path as os.fsdecode gives it: a name that is not UTF-8 still reaches Python
+      const py::object path = py::reinterpret_steal<py::object>(PyUnicode_DecodeFSDefault(e.path.c_str()));
+      if (!path) throw py::error_already_set();
+      py::object err = py::reinterpret_borrow<py::object>(PyExc_OSError)(e.code, e.reason, path);
       PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(err.ptr())), err.ptr());
     }
   });

@@ -223,6 +223,20 @@ def test_an_unwritable_report_fails_before_the_function_is_called(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.json"]
 
 
+def test_an_unwritable_reproducer_directory_fails_before_the_function_is_called(tmp_path):
+    (tmp_path / "failures").write_text("a file where the reproducers go")
+    calls = []
+
+    def shadow(A, L):
+        calls.append(1)
+        return A
+
+    with pytest.raises(NotADirectoryError) as e:
+        qverify.stress(shadow=shadow, families=["far-from-origin"], out=tmp_path)
+    assert e.value.filename == str(tmp_path / "failures")
+    assert calls == []
+
+
 def test_stress_families_lists_both_kinds():
     fams = qverify.stress_families()
     kinds = {f["name"]: f["kind"] for f in fams}

@@ -81,12 +81,25 @@ void write_file(const std::filesystem::path& path, std::string_view contents) {
 }
 
 void check_writable(const std::filesystem::path& path) {
+  // rename(2) would say so, after the work; a symbolic link to a directory it replaces (the link itself)
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(path, EISDIR);  // rename(2) would say so, after the work
+  if (std::filesystem::symlink_status(path, ec).type() == std::filesystem::file_type::directory) fail(path, EISDIR);
   std::filesystem::path tmp;
   Descriptor d = open_temporary(path, tmp);
   d.release_and_close();
   ::unlink(tmp.c_str());
+}
+
+void check_output_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  const auto type = std::filesystem::status(dir, ec).type();
+  if (type == std::filesystem::file_type::not_found) return check_writable(dir);  // the parent takes a new entry
+  if (type != std::filesystem::file_type::directory) {
+    const std::string reason = ec ? ec.message() : "exists and is not a directory";
+    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason,
+                         ec ? ec.value() : ENOTDIR);
+  }
+  check_writable(dir / "x");  // a temporary next to a file named x in it
 }
 
 void create_output_directory(const std::filesystem::path& dir) {

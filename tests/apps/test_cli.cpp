@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <array>
 #include <map>
 #include <set>
@@ -461,6 +462,16 @@ TEST_CASE("write_file replaces its target whole and leaves no temporary", "[cli]
     FAIL("no error");
   } catch (const qverify::FileWriteError& e) {
     CHECK(e.reason == "No such file or directory");
+  }
+  // check_output_directory: a directory to be made, or one that takes files; not a file
+  CHECK_NOTHROW(qverify::check_output_directory(dir / "to-be-made"));
+  CHECK_NOTHROW(qverify::check_output_directory(dir));
+  try {
+    qverify::check_output_directory(target);
+    FAIL("no error");
+  } catch (const qverify::FileWriteError& e) {
+    CHECK(e.reason == "exists and is not a directory");
+    CHECK(e.code == ENOTDIR);
   }
   std::size_t after = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++after;

@@ -48,7 +48,8 @@ template <class S> void check_batch_equals_items(int threads) {
     AffineBatch<S> M;
     shadow_batch<S>(A, L, m, P, pi, R, threads);
     reflection_batch<S>(A, planes, m, M, B, threads);
-    for (Eigen::Index i = 0; i < n; i += 37) {
+    // every item in floating point (the packs' stores included), every 37th in exact arithmetic
+    for (Eigen::Index i = 0; i < n; i += std::is_same_v<S, Q> ? 37 : 1) {
       const Mat4<S> a = gather_sym(A, i);
       const Vec4<S> l = L.row(i).transpose();
       const ShadowResult<S> s = shadow<S>(a, l, m);
@@ -66,6 +67,35 @@ template <class S> void check_batch_equals_items(int threads) {
 
 TEST_CASE("batch results equal the single-item results: double on 2 threads", "[batch]") {
   check_batch_equals_items<double>(2);
+}
+
+// The three ways a block of packs reaches its rows: whole vectors (contiguous rows aligned to the pack),
+// row by row (aligned to 16 bytes only, or rows farther apart than their entries), and element by
+// element (not even 16-byte aligned). Batches of Eigen matrices take the first; the others are what
+// a caller's own rows can meet, and each must write exactly the lanes' values where they belong.
+TEST_CASE("a block of double packs is stored to its rows whole, row by row and entry by entry", "[batch][pack]") {
+  using Ln = BatchLanes<double>;
+  constexpr int W = Ln::width;
+  const auto check_store = [&](auto n_tag, Eigen::Index stride, Eigen::Index offset) {
+    constexpr int N = decltype(n_tag)::value;
+    INFO("N " << N << ", stride " << stride << ", offset " << offset);
+    DoublePack v[N];
+    for (int k = 0; k < N; ++k) v[k] = DoublePack([&](auto j) { return 1000.0 * k + static_cast<double>(j) + 0.25; });
+    Eigen::VectorXd buf = Eigen::VectorXd::Constant(offset + W * stride + 8, -1.0);
+    Ln::store<N>(buf.data() + offset, stride, v);
+    store_fence();
+    for (Eigen::Index x = 0; x < buf.size(); ++x) {
+      const Eigen::Index rel = x - offset, j = rel / stride, k = rel % stride;
+      const bool written = rel >= 0 && j < W && k < N;
+      CHECK(buf(x) == (written ? 1000.0 * k + static_cast<double>(j) + 0.25 : -1.0));
+    }
+  };
+  for (Eigen::Index offset : {0, 1, 2, 8}) {  // 0: aligned to the pack; 2: to 16 bytes only (W > 2); 1: to 8
+    check_store(std::integral_constant<int, 4>{}, 4, offset);
+    check_store(std::integral_constant<int, 10>{}, 10, offset);
+    check_store(std::integral_constant<int, 12>{}, 12, offset);
+    check_store(std::integral_constant<int, 10>{}, 12, offset);  // rows farther apart than their entries
+  }
 }
 
 TEST_CASE("batch results equal the single-item results: exact rationals", "[batch]") {

@@ -102,10 +102,11 @@ inline void store_fence() {
 }
 
 /// Runs f(begin, end) over [0, n) on `threads` threads (contiguous chunks).
-/// Chunks start at multiples of 64 items, so that a chunk's blocks of W rows
-/// start on whole vectors of the pack (64 items of 4, 10 or 12 doubles are
-/// whole lines) wherever the batch's storage does, and stream whole
-/// (stream_pieces, pack.hpp).
+/// Chunks start at multiples of 64 items (a multiple of every pack width W),
+/// so that every block of W rows starts on a whole vector of the pack where
+/// the batch's storage does (W rows of N doubles are N vectors), and streams
+/// whole (stream_pieces, pack.hpp). With fewer than 64 items per thread some
+/// threads get none.
 template <class F> void parallel_for(Eigen::Index n, int threads, F&& f) {
   threads = std::max(1, threads);
   if (threads == 1 || n < 1024) {
@@ -182,8 +183,9 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
 #if defined(__SSE2__)
     if constexpr (N % 2 == 0) {
       if (aligned_rows(row0, stride)) {
-        // Transposed whole first, then streamed row by row: each row's stores are consecutive,
-        // so at most two lines of each output batch are partly written at a time. Streamed
+        // Transposed whole first, then streamed in memory order: the block as whole vectors where
+        // it is one (its rows contiguous and aligned), else row by row, each row's stores
+        // consecutive: at most two lines of each output batch are partly written at a time. Streamed
         // entry pair by entry pair across the rows instead, all the block's lines fill at once
         // (8 rows of 10 doubles: 10 lines with AVX-512), more than the write-combining buffers
         // hold: on AMD Zen 4 the AVX-512 build then took 2-3x the AVX2 one's time (README,

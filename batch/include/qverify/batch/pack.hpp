@@ -145,14 +145,17 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
   static_assert(Count % per == 0, "a whole number of vectors");
   for (int q = 0; q < Count; q += per) {
 #if defined(__AVX512F__)
+    static_assert(per == 4, "a 512-bit pack");
     typedef double V8 __attribute__((vector_size(64)));
     typedef double V4 __attribute__((vector_size(32)));
     const V4 lo = _mm256_set_m128d(seq[q + 1], seq[q]), hi = _mm256_set_m128d(seq[q + 3], seq[q + 2]);
     const V8 line = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
     _mm512_stream_pd(dst + 2 * q, static_cast<__m512d>(line));
 #elif defined(__AVX__)
+    static_assert(per == 2, "a 256-bit pack");
     _mm256_stream_pd(dst + 2 * q, _mm256_set_m128d(seq[q + 1], seq[q]));
 #else
+    static_assert(per == 1, "a 128-bit pack");
     _mm_stream_pd(dst + 2 * q, seq[q]);
 #endif
   }

@@ -394,3 +394,4 @@ inline const char* method_name(Method m) { return m == Method::paper ? "paper" :
                                                               std::optional<qverify::Frame>);                   \
   extern template qverify::TypedScene<T> qverify::typed_scene<T>(const qverify::Scene&);
 QVERIFY_FOR_EACH_SCALAR(QVERIFY_EXTERN_EVALUATE)
+#undef QVERIFY_EXTERN_EVALUATE

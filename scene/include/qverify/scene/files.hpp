@@ -18,11 +18,11 @@ namespace qverify {
 /// A file or directory that could not be written or created. `what()` is
 /// "cannot write PATH: REASON" (or "cannot create directory PATH: REASON").
 struct FileWriteError : std::runtime_error {
-  FileWriteError(const std::string& message, std::filesystem::path path, std::string reason, int code)
+  FileWriteError(const std::string& message, std::filesystem::path path, std::string reason, int code = 0)
       : std::runtime_error(message), path(std::move(path)), reason(std::move(reason)), code(code) {}
   std::filesystem::path path;  ///< the file or directory that failed
   std::string reason;          ///< the operating system's reason, e.g. "Is a directory"
-  int code;                    ///< its errno value (EISDIR; EINVAL for a path that names no file)
+  int code;                    ///< its errno value (EISDIR; EINVAL for a path that names no file; 0 if none)
 };
 
 /// Writes `contents` to `path`: to a temporary file in the same directory
@@ -41,5 +41,11 @@ void create_output_directory(const std::filesystem::path& dir);
 /// takes a new file (one is created and removed). Throws FileWriteError with
 /// the reason `write_file` would give. A full disk still surfaces at the write.
 void check_writable(const std::filesystem::path& path);
+
+/// Checks, before any work, that create_output_directory(dir) and then
+/// write_file into it can succeed as far as the file system can tell now,
+/// without creating anything: dir is a directory that takes a new file, or
+/// does not exist and its parent takes a new entry. Throws FileWriteError.
+void check_output_directory(const std::filesystem::path& dir);
 
 }  // namespace qverify
