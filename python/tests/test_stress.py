@@ -206,35 +206,28 @@ def test_an_unwritable_out_is_an_error_naming_the_path(tmp_path):
     assert e.value.strerror == "Not a directory"
 
 
-def test_an_unwritable_report_fails_before_the_function_is_called(tmp_path):
-    (tmp_path / "report.json").mkdir()  # a directory where the report goes
+@pytest.mark.parametrize(
+    "blocker, error",
+    [("report.json", IsADirectoryError),  # a directory where the report goes
+     ("failures", NotADirectoryError)],  # a file where the reproducers go
+)
+def test_an_unwritable_output_fails_before_the_function_is_called(tmp_path, blocker, error):
+    if error is IsADirectoryError:
+        (tmp_path / blocker).mkdir()
+    else:
+        (tmp_path / blocker).write_text("not a directory")
     calls = []
 
     def shadow(A, L):
         calls.append(1)
         return A
 
-    with pytest.raises(OSError) as e:
+    with pytest.raises(error) as e:
         qverify.stress(shadow=shadow, families=["far-from-origin"], out=tmp_path)
-    assert isinstance(e.value, IsADirectoryError)
-    assert e.value.filename == str(tmp_path / "report.json")
-    assert str(e.value) == "[Errno 21] Is a directory: '" + str(tmp_path / "report.json") + "'"
+    assert e.value.filename == str(tmp_path / blocker)
+    assert str(e.value) == "[Errno %d] %s: '%s'" % (e.value.errno, e.value.strerror, tmp_path / blocker)
     assert calls == []
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.json"]
-
-
-def test_an_unwritable_reproducer_directory_fails_before_the_function_is_called(tmp_path):
-    (tmp_path / "failures").write_text("a file where the reproducers go")
-    calls = []
-
-    def shadow(A, L):
-        calls.append(1)
-        return A
-
-    with pytest.raises(NotADirectoryError) as e:
-        qverify.stress(shadow=shadow, families=["far-from-origin"], out=tmp_path)
-    assert e.value.filename == str(tmp_path / "failures")
-    assert calls == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == [blocker]
 
 
 def test_stress_families_lists_both_kinds():
