@@ -158,8 +158,9 @@ template <class S, class Enable = void> struct BatchLanes : ScalarLanes<S> {};
 /// Doubles, W rows at a time. Rows of 4, 10 and 12 doubles start 16-byte
 /// aligned in Eigen's storage, so entries (k, k+1) of a row are one aligned
 /// pair: W pairs are transposed into two packs (to/from_lane_pairs) and the
-/// results are streamed back (non-temporal: they are not read again soon), one
-/// row after the other.
+/// results are streamed back (non-temporal: they are not read again soon): the
+/// block as whole vectors of the pack where its rows are contiguous and aligned
+/// to it (stream_pieces; every block of a batch), else one row after the other.
 template <> struct BatchLanes<double> : ScalarLanes<double> {
   using Pack = DoublePack;
   static constexpr int width = static_cast<int>(DoublePack::size());
