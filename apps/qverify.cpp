@@ -420,22 +420,13 @@ Candidate candidate_of(const Options& o) {
   return process_candidate(o.candidate_name, o.candidate_cmd, o.candidate_timeout);
 }
 
-/// audit's and stress's --out directory made and its files checked before any work (an unwritable
-/// report fails at once, not after the sweeps): the reports, and with a candidate its reproducers'
-/// directory failures/, written during the run.
-void check_outputs(const Options& o, const std::vector<std::filesystem::path>& files, bool with_candidate) {
-  create_output_directory(o.out_dir);
-  for (const auto& f : files) check_writable(f);
-  if (with_candidate) check_output_directory(std::filesystem::path(o.out_dir) / "failures");
-}
-
 int run_audit_command(const Options& o, bool with_candidate) {
   const Scene sc = load_scene(o.scene_file);
   AuditOptions opt;
   opt.out_dir = o.out_dir;
   opt.batch_seconds = o.batch_ms / 1000;
   opt.progress = progress_after_two_seconds();
-  check_outputs(o, audit_report_files(o.out_dir), with_candidate);
+  check_report_outputs(o.out_dir, audit_report_files(o.out_dir), with_candidate);  // before any work
   if (with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;
@@ -469,7 +460,7 @@ int run_stress_command(const Options& o, bool with_candidate) {
   std::vector<std::string> run_families = o.families;
   if (run_families.empty())
     for (const auto& f : stress_families()) run_families.push_back(f.name);
-  check_outputs(o, stress_report_files(o.out_dir, run_families), with_candidate);
+  check_report_outputs(o.out_dir, stress_report_files(o.out_dir, run_families), with_candidate);
   if (with_candidate) {
     opt.candidate = candidate_of(o);
     opt.accuracy = o.accuracy;

@@ -214,11 +214,8 @@ py::object stress_py(const py::object& shadow_in, const py::object& reflection_i
         opt.families.push_back(names[i]);
     }
   }
-  if (write_report) {  // the report's files checked before the sweeps, as the CLI does: an unwritable one fails at once
-    create_output_directory(out_dir);
-    for (const auto& f : stress_report_files(out_dir, opt.families)) check_writable(f);
-    check_output_directory(std::filesystem::path(out_dir) / "failures");  // the reproducers, written during the run
-  }
+  // the report's files checked before the sweeps, as the CLI does: an unwritable one fails at once
+  if (write_report) check_report_outputs(out_dir, stress_report_files(out_dir, opt.families), true);
   opt.candidate = item_candidate(name, shadow_function(shadow_in), reflection_function(reflection_in));
   StressReport report;
   bool aborted = false;

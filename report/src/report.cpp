@@ -191,6 +191,13 @@ std::vector<std::filesystem::path> stress_report_files(const std::filesystem::pa
   return files;
 }
 
+void check_report_outputs(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files,
+                          bool reproducers) {
+  create_output_directory(dir);
+  for (const auto& f : files) check_writable(f);
+  if (reproducers) check_output_directory(dir / "failures");
+}
+
 void write_audit_report(const std::filesystem::path& dir, const AuditReport& report) {
   const auto files = audit_report_files(dir);
   const std::string svg = render_svg(report.error_vs_time);

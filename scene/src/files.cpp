@@ -18,6 +18,11 @@ std::string os_reason(int err) { return std::generic_category().message(err); }
   throw FileWriteError("cannot write " + path.string() + ": " + reason, path, reason, err);
 }
 [[noreturn]] void fail(const std::filesystem::path& path, int err) { fail(path, err, os_reason(err)); }
+[[noreturn]] void fail_directory(const std::filesystem::path& dir, const std::error_code& ec) {
+  const std::string reason = ec ? ec.message() : "exists and is not a directory";
+  throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason,
+                       ec ? ec.value() : ENOTDIR);
+}
 
 /// Closes a descriptor once; the destructor covers the paths that throw.
 struct Descriptor {
@@ -94,11 +99,7 @@ void check_output_directory(const std::filesystem::path& dir) {
   std::error_code ec;
   const auto type = std::filesystem::status(dir, ec).type();
   if (type == std::filesystem::file_type::not_found) return check_writable(dir);  // the parent takes a new entry
-  if (type != std::filesystem::file_type::directory) {
-    const std::string reason = ec ? ec.message() : "exists and is not a directory";
-    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason,
-                         ec ? ec.value() : ENOTDIR);
-  }
+  if (type != std::filesystem::file_type::directory) fail_directory(dir, ec);
   check_writable(dir / "x");  // a temporary next to a file named x in it
 }
 
@@ -106,18 +107,7 @@ void create_output_directory(const std::filesystem::path& dir) {
   if (dir.empty()) return;  // the current directory
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  std::string reason;
-  int code = 0;
-  if (!ec && !std::filesystem::is_directory(dir, ec) && !ec) {
-    reason = "exists and is not a directory";
-    code = ENOTDIR;
-  }
-  if (ec) {
-    reason = ec.message();
-    code = ec.value();
-  }
-  if (!reason.empty())
-    throw FileWriteError("cannot create directory " + dir.string() + ": " + reason, dir, reason, code);
+  if (ec || !std::filesystem::is_directory(dir, ec)) fail_directory(dir, ec);
 }
 
 }  // namespace qverify

@@ -29,6 +29,11 @@ std::vector<std::filesystem::path> audit_report_files(const std::filesystem::pat
 /// The files write_stress_report writes into DIR for these families, likewise.
 std::vector<std::filesystem::path> stress_report_files(const std::filesystem::path& dir,
                                                        const std::vector<std::string>& families);
+/// Before any work of audit or stress (the CLI and Python alike): makes DIR, checks that these report
+/// files can be written there and, with `reproducers` (a candidate runs), that DIR/failures/ can hold
+/// the reproducers written during the run. Throws FileWriteError naming the path.
+void check_report_outputs(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files,
+                          bool reproducers);
 
 /// report.html of `qverify audit` from its report.json document and the plot.
 std::string audit_html(const nlohmann::ordered_json& doc, const std::string& svg);
