@@ -1,33 +1,36 @@
 # QVERIFY_ARCH=auto: which -march the build takes (included from the top-level CMakeLists.txt).
-# Sets QVERIFY_MARCH (empty: the compiler's default, the x86-64 baseline), QVERIFY_INTERVAL_MARCH
-# (the -march of a second copy of the interval batch kernel, run where the processor has it; empty
-# when the build's own is the faster), QVERIFY_DIGIT_MARCH (the same for the exact digit blocks of
-# exact/digit_batch.hpp) and QVERIFY_ARCH_NOTE (how the choices were made, for the configure
-# message).
+# Sets QVERIFY_MARCH (empty: the compiler's default, the x86-64 baseline), QVERIFY_DOUBLE_MARCH,
+# QVERIFY_INTERVAL_MARCH and QVERIFY_DIGIT_MARCH (the -march of a second copy of the double batch
+# kernel, of the interval batch kernel and of the exact digit blocks, run where the processor has
+# it; empty when the build's own is the faster) and QVERIFY_ARCH_NOTE (how the choices were made,
+# for the configure message).
 #
-# The widest instruction set is not always the fastest: on AMD Zen 4 (one of this project's machines) the
-# AVX-512 build of the batch kernel measured 2-3x slower than the AVX2 one before the store order
-# of batch/batch.hpp was fixed (README, "bench"). So when this machine runs both x86-64-v4 (AVX-512)
-# and x86-64-v3 (AVX2), the choice is made by measurement: cmake/arch_probe.cpp, which times the
-# direct shadow batch in double and in certified intervals, is built with each -march and the
-# probes are run in turn, seven times each (best of each; a run takes 0.1-0.3 s); x86-64-v4 is taken
-# for the build only when its double kernel is more than 10% faster. The interval kernel is
-# measured on its own: it is bound by arithmetic and registers, not by memory, and on AMD Zen 5
-# (family 26) the AVX-512 one took 2/3 of the AVX2 one's time while the double kernel was 5-10%
-# faster with AVX2. When the other level's interval kernel is more than 10% faster than the
-# build's, the exact library carries a second copy of it compiled for that level, which the batch
-# functions of exact/interval_batch.hpp run when the processor has it (asked at run time). The exact
-# digit blocks (exact/digit_batch.hpp: integers of 4 or 8 items at once) are measured and chosen the
-# same way: on Zen 5 the AVX-512 ones took about 2/3 of the AVX2 ones' time.
-# The margin is the noise of the probe on a shared 2-core machine: after the store-order fix the two
-# are at parity on AMD Zen 4, and best-of-three with a 5% margin chose v4 at one configure and v3
-# at the next. Ties go to the narrower set: valgrind then runs the release CLI, and ./run-tests
-# needs no second build without AVX-512. The decision and both timings are
-# cached (QVERIFY_ARCH_MEASURED, internal) for this compiler and these sources of the kernel, so a
-# reconfigure does not measure again; `cmake -U QVERIFY_ARCH_MEASURED <build>` measures again.
+# The build takes x86-64-v3 (AVX2, FMA) wherever the machine runs it, also on a machine with
+# AVX-512: valgrind, which cannot execute AVX-512, then runs the release build itself, and
+# ./run-tests needs no second tree for it (a release tree of AVX-512 made it build the CLI once
+# more, 4 1/2 minutes of a 20-minute suite). Where the vector width pays is the three batch kernels,
+# and each of them runs on the faster of the two levels where the processor has both: when this
+# machine runs x86-64-v4 (AVX-512 F/BW/CD/DQ/VL) too, each kernel is measured with both -march
+# values and, when x86-64-v4 is more than 10% faster, the exact library carries a second copy of it
+# compiled for x86-64-v4, which its dispatcher (exact/double_batch.hpp, interval_batch.hpp,
+# digit_batch.hpp) runs when the processor has it (asked at run time: never under valgrind).
+#
+# The widest instruction set is not always the fastest, hence the measurement: on AMD Zen 4 (one of this
+# project's machines) the AVX-512 double batch kernel measured 2-3x slower than the AVX2 one before
+# the store order of batch/batch.hpp was fixed (README, "bench"), and 30% faster after its stores
+# became whole vectors; on AMD Zen 5 (family 26) the AVX-512 interval kernel and digit blocks took
+# about 2/3 of the AVX2 ones' time while the double kernel was 5-10% faster with AVX2. The probe is
+# cmake/arch_probe.cpp, which times the direct shadow batch in double and in certified intervals,
+# and the exact digit blocks, built with each -march; the probes run in turn, seven times each
+# (best of each; a run takes 0.1-0.3 s).
+# The margin is the noise of the probe on a shared 2-core machine: at parity (AMD Zen 4 after the
+# store-order fix) best-of-three with a 5% margin chose v4 at one configure and v3 at the next.
+# The decisions and the timings are cached (QVERIFY_ARCH_MEASURED, internal) for this compiler,
+# these sources of the kernels and this file, so a reconfigure does not measure again;
+# `cmake -U QVERIFY_ARCH_MEASURED <build>` measures again.
 # When the probe cannot be built or run (cross build, a compiler without the -march, no CPU
-# support), the rule is the widest level this machine runs, as before the measurement (a probe
-# that failed is remembered the same way, and not tried again at every configure).
+# support), the build is x86-64-v3 without second kernels (a probe that failed is remembered the
+# same way, and not tried again at every configure).
 
 include(CheckCXXSourceRuns)
 
@@ -47,6 +50,7 @@ check_cxx_source_runs([=[
   }]=] QVERIFY_HOST_HAS_AVX512)
 
 set(QVERIFY_MARCH "")
+set(QVERIFY_DOUBLE_MARCH "")
 set(QVERIFY_INTERVAL_MARCH "")
 set(QVERIFY_DIGIT_MARCH "")
 set(QVERIFY_ARCH_NOTE "")
@@ -55,7 +59,8 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp ${CMAKE_CURRENT_LIST_DIR}/arch_probe_project/CMakeLists.txt
       ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/batch.hpp ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/pack.hpp
       ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/interval_pack.hpp
-      ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/digit_pack.hpp ${PROJECT_SOURCE_DIR}/exact/src/digit_batch_impl.hpp)
+      ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/digit_pack.hpp ${PROJECT_SOURCE_DIR}/exact/src/digit_batch_impl.hpp
+      ${CMAKE_CURRENT_LIST_FILE})
   set(_qv_key "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_COMPILER}")
   foreach(_qv_file IN LISTS _qv_probe_sources)
     file(SHA256 ${_qv_file} _qv_hash)
@@ -179,45 +184,34 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         endforeach()
       endif()
       if(_qv_ok)
-        # The build: x86-64-v4 only when its double kernel is more than 10% faster (v4 * 100 < v3 * 90).
-        math(EXPR _qv_v4_scaled "${_qv_best_double_4} * 100")
-        math(EXPR _qv_v3_scaled "${_qv_best_double_3} * 90")
-        if(_qv_v4_scaled LESS _qv_v3_scaled)
-          set(_qv_choice x86-64-v4)
-          set(_qv_other 3)
-          set(_qv_own 4)
-        else()
-          set(_qv_choice x86-64-v3)
-          set(_qv_other 4)
-          set(_qv_own 3)
-        endif()
-        # A second interval kernel, and a second exact digit kernel: each only when the other level's is
-        # more than 10% faster than the build's, each measured on its own.
-        foreach(_qv_kernel interval exact)
+        # A second kernel for each of the three: only when its x86-64-v4 copy is more than 10% faster
+        # than the build's x86-64-v3 one (v4 * 100 < v3 * 90), each measured on its own.
+        foreach(_qv_kernel double interval exact)
           set(_qv_second_${_qv_kernel} none)
-          if(_qv_${_qv_kernel}_ok)
-            math(EXPR _qv_other_scaled "${_qv_best_${_qv_kernel}_${_qv_other}} * 100")
-            math(EXPR _qv_own_scaled "${_qv_best_${_qv_kernel}_${_qv_own}} * 90")
-            if(_qv_other_scaled LESS _qv_own_scaled)
-              set(_qv_second_${_qv_kernel} x86-64-v${_qv_other})
+          if(_qv_kernel STREQUAL "double" OR _qv_${_qv_kernel}_ok)
+            math(EXPR _qv_v4_scaled "${_qv_best_${_qv_kernel}_4} * 100")
+            math(EXPR _qv_v3_scaled "${_qv_best_${_qv_kernel}_3} * 90")
+            if(_qv_v4_scaled LESS _qv_v3_scaled)
+              set(_qv_second_${_qv_kernel} x86-64-v4)
             endif()
           else()
             set(_qv_text_${_qv_kernel}_3 failed)
             set(_qv_text_${_qv_kernel}_4 failed)
           endif()
         endforeach()
-        set(_qv_measured "${_qv_key};${_qv_choice};${_qv_text_double_3};${_qv_text_double_4};${_qv_second_interval};${_qv_text_interval_3};${_qv_text_interval_4};${_qv_second_exact};${_qv_text_exact_3};${_qv_text_exact_4}")
+        set(_qv_measured "${_qv_key};${_qv_second_double};${_qv_text_double_3};${_qv_text_double_4};${_qv_second_interval};${_qv_text_interval_3};${_qv_text_interval_4};${_qv_second_exact};${_qv_text_exact_3};${_qv_text_exact_4}")
         set(_qv_how "measured now")
       else()
         # remembered too, so that every reconfigure does not try again (-U QVERIFY_ARCH_MEASURED does)
-        set(_qv_measured "${_qv_key};x86-64-v4;failed;failed;none;failed;failed;none;failed;failed")
+        set(_qv_measured "${_qv_key};none;failed;failed;none;failed;failed;none;failed;failed")
       endif()
       set(QVERIFY_ARCH_MEASURED "${_qv_measured}" CACHE INTERNAL
-          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the build's -march; ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4; the same for the exact digit kernel")
+          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the -march of a second double kernel (none); ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4; the same for the exact digit kernel")
     endif()
   endif()
+  set(QVERIFY_MARCH x86-64-v3)
   if(_qv_measured)
-    list(GET _qv_measured 1 QVERIFY_MARCH)
+    list(GET _qv_measured 1 _qv_second_double)
     list(GET _qv_measured 2 _qv_v3_ns)
     list(GET _qv_measured 3 _qv_v4_ns)
     list(GET _qv_measured 4 _qv_second)
@@ -229,17 +223,18 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
   endif()
   if(_qv_measured AND NOT _qv_v3_ns STREQUAL "failed")
     set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_v3_ns} ns/item, v4 ${_qv_v4_ns}; interval v3 ${_qv_interval_v3_ns}, v4 ${_qv_interval_v4_ns}; exact v3 ${_qv_exact_v3_ns}, v4 ${_qv_exact_v4_ns}; one thread; ${_qv_how}")
-    if(NOT _qv_second STREQUAL "none")
-      set(QVERIFY_INTERVAL_MARCH ${_qv_second})
-      string(APPEND QVERIFY_ARCH_NOTE "; interval batches: a second kernel for ${_qv_second}, run where the processor has it")
-    endif()
-    if(NOT _qv_second_exact STREQUAL "none")
-      set(QVERIFY_DIGIT_MARCH ${_qv_second_exact})
-      string(APPEND QVERIFY_ARCH_NOTE "; exact digit blocks: a second kernel for ${_qv_second_exact}, run where the processor has it")
-    endif()
+    foreach(_qv_pair "double;_qv_second_double;double batches" "INTERVAL;_qv_second;interval batches" "DIGIT;_qv_second_exact;exact digit blocks")
+      list(GET _qv_pair 0 _qv_name)
+      list(GET _qv_pair 1 _qv_var)
+      list(GET _qv_pair 2 _qv_what)
+      if(NOT ${_qv_var} STREQUAL "none")
+        string(TOUPPER ${_qv_name} _qv_name)
+        set(QVERIFY_${_qv_name}_MARCH ${${_qv_var}})
+        string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel for ${${_qv_var}}, run where the processor has it")
+      endif()
+    endforeach()
   else()
-    set(QVERIFY_MARCH x86-64-v4)
-    set(QVERIFY_ARCH_NOTE "not measured, the probe did not build or run: the widest level this machine runs")
+    set(QVERIFY_ARCH_NOTE "not measured, the probe did not build or run: no second kernels")
   endif()
 elseif(QVERIFY_HOST_HAS_X86_64_V3)
   set(QVERIFY_MARCH x86-64-v3)

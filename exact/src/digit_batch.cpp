@@ -18,15 +18,8 @@
 namespace qverify {
 namespace {
 
-/// Does the second digit kernel exist in this build and run on this processor? (Asked once.)
-bool second_digit_kernel_here() {
-#if QVERIFY_DIGIT_SECOND_KERNEL_LEVEL
-  static const bool here = processor_runs_level(QVERIFY_DIGIT_SECOND_KERNEL_LEVEL);
-  return here;
-#else
-  return false;
-#endif
-}
+/// Does the second kernel exist in this build and run on this processor?
+bool second_digit_kernel_here() { return second_kernel_runs(QVERIFY_DIGIT_SECOND_KERNEL_LEVEL); }
 
 template <class Items> long dispatch(DigitOp op, const Items& in, DigitBlocks& out) {
   if (in.n < 0) throw std::invalid_argument("digit_blocks: a negative item count");

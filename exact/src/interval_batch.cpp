@@ -14,15 +14,8 @@
 namespace qverify {
 namespace {
 
-/// Does the second interval kernel exist in this build and run on this processor? (Asked once.)
-bool second_kernel_here() {
-#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
-  static const bool here = processor_runs_level(QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL);
-  return here;
-#else
-  return false;
-#endif
-}
+/// Does the second kernel exist in this build and run on this processor?
+bool second_kernel_here() { return second_kernel_runs(QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL); }
 
 }  // namespace
 
@@ -32,7 +25,7 @@ void interval_shadow_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4B
                            SymBatch<CGAL::Interval_nt<Pr>>& R, int threads) {
 #if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL  // (else no call to it, not even an unreachable one: -O0 keeps those)
   if (method == Method::direct && second_kernel_here()) {
-    const Eigen::Index n = A.rows();
+    const Eigen::Index n = batch_items("interval_shadow_batch", A.rows(), L.rows());
     P.resize(n, 10), pi.resize(n, 4), R.resize(n, 10);
     second_kernel::shadow(A, L, P, pi, R, threads);
     return;
@@ -47,7 +40,7 @@ void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A,
                                AffineBatch<CGAL::Interval_nt<Pr>>& M, SymBatch<CGAL::Interval_nt<Pr>>& B, int threads) {
 #if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
   if (method == Method::direct && second_kernel_here()) {
-    const Eigen::Index n = A.rows();
+    const Eigen::Index n = batch_items("interval_reflection_batch", A.rows(), planes.rows());
     M.resize(n, 12), B.resize(n, 10);
     second_kernel::reflection(A, planes, M, B, threads);
     return;

@@ -130,14 +130,16 @@ json processor_json(const ProcessorInfo& p) {
           {"model", optional_number(p.model)},
           {"instruction_set", p.instruction_set},
           {"lanes", p.lanes},
+          {"double_kernel", p.double_kernel},
           {"interval_kernel", p.interval_kernel},
           {"exact_kernel", p.exact_kernel},
           {"exact_lanes", p.exact_lanes},
           {"supports", p.supports},
           {"logical_cpus", p.logical_cpus},
-          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for; interval_kernel: what "
-                     "the interval batches run here (a second kernel compiled for another instruction set, chosen at "
-                     "run time, where the build measured it faster); exact_kernel, exact_lanes: the same for the exact "
+          {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for; double_kernel, "
+                     "lanes: what the double batches run here (a second kernel compiled for another instruction set, "
+                     "chosen at run time, where the build measured it faster), and its doubles per instruction; "
+                     "interval_kernel: the same for the interval batches; exact_kernel, exact_lanes: the same for the exact "
                      "digit blocks (exact/digit_batch.hpp), and the items of a block"}};
 }
 
@@ -158,9 +160,10 @@ json bench_json(const BenchReport& b) {
           {"inputs", inputs_json(b)},
           {"timing", timing_note(b)},
           {"simd", {{"lanes", b.processor.lanes},
-                    {"instruction_set", b.processor.instruction_set},
+                    {"instruction_set", b.processor.double_kernel},
                     {"interval_instruction_set", b.processor.interval_kernel},
-                    {"note", "double and interval batches run W items per instruction (batch/pack.hpp); the "
+                    {"note", "double and interval batches run W items per instruction (batch/pack.hpp): the "
+                             "double batches on instruction_set (exact/double_batch.hpp), W = lanes; the "
                              "interval batches on interval_instruction_set (exact/interval_batch.hpp)"}}},
           {"exact_arithmetic", exact_arithmetic_json(b)},
           {"verification", verification_json(b.verification)},
@@ -173,10 +176,11 @@ std::string bench_text(const BenchReport& b) {
   const ProcessorInfo& cpu = b.processor;
   auto number = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("null"); };
   fmt::format_to(put,
-                 "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run), {} lanes ({}; interval "
-                 "batches: {}; exact digit blocks: {}, {} items at once)\n"
+                 "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run); build: {}; double batches: "
+                 "{}, {} lanes; interval batches: {}; exact digit blocks: {}, {} items at once\n"
                  "processor: {} {} (family {}, model {})\n\n",
-                 b.n, b.threads, b.memory_bandwidth_gbps, cpu.lanes, cpu.instruction_set, cpu.interval_kernel,
+                 b.n, b.threads, b.memory_bandwidth_gbps, cpu.instruction_set, cpu.double_kernel, cpu.lanes,
+                 cpu.interval_kernel,
                  cpu.exact_kernel, cpu.exact_lanes,
                  cpu.vendor.value_or("?"),
                  cpu.model_name.value_or("?"), number(cpu.family), number(cpu.model));

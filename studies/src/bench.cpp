@@ -1,6 +1,7 @@
 #include <qverify/batch/batch.hpp>
 #include <qverify/core/mirror_division_free.hpp>
 #include <qverify/exact/digit_batch.hpp>
+#include <qverify/exact/double_batch.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/interval_batch.hpp>
 #include <qverify/exact/rounding.hpp>
@@ -417,10 +418,11 @@ ProcessorInfo processor_info() {
   for (const auto& [flag, name] : {std::pair{"sse2", "SSE2"}, {"avx2", "AVX2"}, {"avx512f", "AVX-512"}, {"avx512ifma", "AVX-512 IFMA"}})
     if (flags.find(std::string(" ") + flag + " ") != std::string::npos) p.supports.push_back(name);
   p.instruction_set = build_instruction_set();
+  p.double_kernel = double_batch_kernel();
   p.interval_kernel = interval_batch_kernel();
   p.exact_kernel = digit_blocks_kernel();
   p.exact_lanes = digit_blocks_lanes();
-  p.lanes = static_cast<int>(DoublePack::size());
+  p.lanes = double_batch_lanes();
   p.logical_cpus = std::thread::hardware_concurrency();
   return p;
 }
@@ -1043,8 +1045,8 @@ class BenchRun {
   void direct_rows(FloatBuffers& b) {
     std::vector<std::vector<double>> t(3 * 4);
     const std::vector<std::function<void()>> jobs{
-        [&] { shadow_batch<double>(b.A, b.L, Method::direct, b.P, b.pi, b.R, T_); },
-        [&] { reflection_batch<double>(b.A, b.L, Method::direct, b.M, b.B, T_); },
+        [&] { double_shadow_batch(b.A, b.L, Method::direct, b.P, b.pi, b.R, T_); },
+        [&] { double_reflection_batch(b.A, b.L, Method::direct, b.M, b.B, T_); },
         [&] { interval_shadow_batch<false>(b.AI, b.LI, Method::direct, b.PI, b.piI, b.RI, T_); },
         [&] { interval_reflection_batch<false>(b.AI, b.LI, Method::direct, b.MI, b.BI, T_); }};
     for (int r = 0; r < rounds_; ++r) {
@@ -1074,8 +1076,8 @@ class BenchRun {
     for (Kind kind : kKinds) {
       generation_s_ += b.fill(kind, n_, T_);
       const auto tp = interleaved_times(rounds_,
-                                        {[&] { shadow_batch<double>(b.A, b.L, Method::paper, b.P, b.pi, b.R, T_); },
-                                         [&] { reflection_batch<double>(b.A, b.L, Method::paper, b.M, b.B, T_); }},
+                                        {[&] { double_shadow_batch(b.A, b.L, Method::paper, b.P, b.pi, b.R, T_); },
+                                         [&] { double_reflection_batch(b.A, b.L, Method::paper, b.M, b.B, T_); }},
                                         progress(std::string(kind_name(kind)) + ": double paper rows"));
       rows_.push_back(batch_row(kind, "shadow", "double", "paper", tp[0], kShadowBytes, n_));
       rows_.push_back(batch_row(kind, "reflection", "double", "paper", tp[1], kReflectionBytes, n_));

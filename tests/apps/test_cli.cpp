@@ -2,6 +2,7 @@
 #include "cli_run.hpp"
 
 #include <qverify/exact/digit_batch.hpp>
+#include <qverify/exact/double_batch.hpp>
 #include <qverify/exact/interval_batch.hpp>
 #include <qverify/scene/files.hpp>
 
@@ -330,7 +331,12 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
   CHECK(doc["exact_arithmetic"]["candidates"][0]["arithmetic"] == "DigitPack<24>");
   for (const auto& c : doc["exact_arithmetic"]["candidates"]) CHECK(c["shadow_ns_per_item"].get<double>() > 0);
   CHECK(doc["memory_bandwidth_gbps_runs"].size() == 4);  // two copies a round
-  // what the interval rows ran on: the library's own answer (exact/interval_batch.hpp), in both places
+  // what the double and interval rows ran on: the library's own answers (exact/double_batch.hpp,
+  // exact/interval_batch.hpp), in both places
+  CHECK(doc["processor"]["double_kernel"] == std::string(qverify::double_batch_kernel()));
+  CHECK(doc["processor"]["lanes"] == qverify::double_batch_lanes());
+  CHECK(doc["simd"]["instruction_set"] == doc["processor"]["double_kernel"]);
+  CHECK(doc["simd"]["lanes"] == doc["processor"]["lanes"]);
   CHECK(doc["processor"]["interval_kernel"] == std::string(qverify::interval_batch_kernel()));
   CHECK(doc["simd"]["interval_instruction_set"] == doc["processor"]["interval_kernel"]);
   CHECK(doc["processor"]["instruction_set"] == std::string(qverify::build_instruction_set()));

@@ -1,8 +1,10 @@
 // The batch API computes exactly what the single-item functions compute.
+#include "dispatch_check.hpp"
 #include "laws.hpp"
 
 #include <qverify/batch/batch.hpp>
 #include <qverify/batch/items.hpp>
+#include <qverify/exact/double_batch.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/interval_batch.hpp>
 
@@ -25,7 +27,10 @@ template <class S> bool same_upper(const SymBatch<S>& X, Eigen::Index i, const M
   return true;
 }
 
-template <class S> void check_batch_equals_items(int threads) {
+/// `dispatched`: double batches by double_shadow_batch / double_reflection_batch
+/// (exact/double_batch.hpp), which run the second kernel where the build has one and this
+/// processor runs it (else the same template as the others).
+template <class S> void check_batch_equals_items(int threads, bool dispatched = false) {
   test::RandomRationals rng(5);
   // above the single-thread cut-off, so threads really split the work; odd, so that chunks end
   // in items that do not fill a pack
@@ -46,8 +51,16 @@ template <class S> void check_batch_equals_items(int threads) {
     SymBatch<S> P, R, B;
     Vec4Batch<S> pi;
     AffineBatch<S> M;
-    shadow_batch<S>(A, L, m, P, pi, R, threads);
-    reflection_batch<S>(A, planes, m, M, B, threads);
+    if constexpr (std::is_same_v<S, double>) {
+      if (dispatched) {
+        double_shadow_batch(A, L, m, P, pi, R, threads);
+        double_reflection_batch(A, planes, m, M, B, threads);
+      }
+    }
+    if (!dispatched) {
+      shadow_batch<S>(A, L, m, P, pi, R, threads);
+      reflection_batch<S>(A, planes, m, M, B, threads);
+    }
     // every item in floating point (the packs' stores included), every 37th in exact arithmetic
     for (Eigen::Index i = 0; i < n; i += std::is_same_v<S, Q> ? 37 : 1) {
       const Mat4<S> a = gather_sym(A, i);
@@ -67,6 +80,35 @@ template <class S> void check_batch_equals_items(int threads) {
 
 TEST_CASE("batch results equal the single-item results: double on 2 threads", "[batch]") {
   check_batch_equals_items<double>(2);
+}
+
+TEST_CASE("the fastest double kernel here (exact/double_batch.hpp) gives the single-item results bit for bit",
+          "[batch][pack][dispatch]") {
+  INFO("double kernel: " << double_batch_kernel() << "; the build's: " << build_instruction_set());
+  test::check_dispatch(double_batch_second_kernel(), double_batch_dispatched(), double_batch_kernel());
+  CHECK(double_batch_lanes() == (double_batch_dispatched() ? (std::string(double_batch_second_kernel()) == "x86-64-v4" ? 8 : 4)
+                                                           : static_cast<int>(DoublePack::size())));
+  check_batch_equals_items<double>(2, true);
+  check_batch_equals_items<double>(1, true);
+}
+
+TEST_CASE("a batch whose second input has another number of rows is refused before anything is read", "[batch]") {
+  SymBatch<double> A(5, 10), P, R;
+  Vec4Batch<double> L(4, 4), pi;
+  AffineBatch<double> M;
+  A.setOnes(), L.setOnes();
+  for (Method m : {Method::direct, Method::paper}) {
+    CHECK_THROWS_WITH(shadow_batch<double>(A, L, m, P, pi, R, 2), Catch::Contains("5 quadrics but 4 rows"));
+    CHECK_THROWS_AS(reflection_batch<double>(A, L, m, M, P, 2), std::invalid_argument);
+    CHECK_THROWS_WITH(double_shadow_batch(A, L, m, P, pi, R, 2), Catch::Contains("5 quadrics but 4 rows"));
+    CHECK_THROWS_AS(double_reflection_batch(A, L, m, M, P, 2), std::invalid_argument);
+  }
+  SymBatch<CGAL::Interval_nt<false>> AI(3, 10), PI, RI;
+  Vec4Batch<CGAL::Interval_nt<false>> LI(7, 4), piI;
+  AffineBatch<CGAL::Interval_nt<false>> MI;
+  CHECK_THROWS_WITH(interval_shadow_batch<false>(AI, LI, Method::direct, PI, piI, RI, 2), Catch::Contains("3 quadrics but 7 rows"));
+  CHECK_THROWS_AS(interval_reflection_batch<false>(AI, LI, Method::direct, MI, PI, 2), std::invalid_argument);
+  CHECK(P.size() == 0);  // nothing computed
 }
 
 // The three ways a block of packs reaches its rows: whole vectors (contiguous rows aligned to the pack),
@@ -303,20 +345,7 @@ TEST_CASE("interval batches: non-finite inputs, overflow and a divisor around 0 
 TEST_CASE("the fastest interval kernel here (exact/interval_batch.hpp) gives the same bounds, faults included",
           "[batch][pack][dispatch]") {
   INFO("interval kernel: " << interval_batch_kernel() << "; the build's: " << build_instruction_set());
-  // The second kernel runs wherever the build has one and the processor its instruction set: a
-  // dispatch that silently fell back to the build's kernel would pass the comparisons below.
-  const std::string second = interval_batch_second_kernel();
-  __builtin_cpu_init();
-  const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
-  const bool v4 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                  __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
-                  __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
-                  __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
-  if (second == "x86-64-v4") CHECK(interval_batch_dispatched() == v4);
-  else if (second == "x86-64-v3") CHECK(interval_batch_dispatched() == v3);
-  else CHECK(!interval_batch_dispatched());
-  CHECK((std::string(interval_batch_kernel()).find("(run-time dispatch)") != std::string::npos) ==
-        interval_batch_dispatched());
+  test::check_dispatch(interval_batch_second_kernel(), interval_batch_dispatched(), interval_batch_kernel());
   check_interval_batch<false>(false, true);
   check_interval_batch<true>(false, true);
   check_interval_batch<false>(true, true);

@@ -9,6 +9,7 @@
 #include <qverify/exact/digit_pack.hpp>
 #include <qverify/exact/wide_int.hpp>
 
+#include "dispatch_check.hpp"
 #include "laws.hpp"
 
 #include <catch2/catch.hpp>
@@ -414,15 +415,7 @@ TEST_CASE("digit blocks: every whole block's results equal GMP rationals, item b
   // the kernel that ran is the one the build chose and this processor runs (a dispatch that fell
   // back to the build's kernel would pass every comparison above)
   const std::string second = digit_blocks_second_kernel();
-  __builtin_cpu_init();
-  const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
-  const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                  __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
-                  __builtin_cpu_supports("avx512vl");
-  if (second == "x86-64-v4") CHECK(digit_blocks_dispatched() == v4);
-  else if (second == "x86-64-v3") CHECK(digit_blocks_dispatched() == v3);
-  else CHECK(!digit_blocks_dispatched());
-  CHECK((std::string(digit_blocks_kernel()).find("(run-time dispatch)") != std::string::npos) == digit_blocks_dispatched());
+  test::check_dispatch(second, digit_blocks_dispatched(), digit_blocks_kernel());
   if (digit_blocks_dispatched()) CHECK(W == (second == "x86-64-v4" ? 8 : 4));
   a[0] = std::numeric_limits<double>::infinity();
   DigitBlocks out;

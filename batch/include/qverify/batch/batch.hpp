@@ -18,7 +18,7 @@
 /// AVX-512), the certified intervals likewise (exact/interval_pack.hpp).
 /// Entry k of W consecutive rows is gathered into one pack and the results are
 /// transposed back into rows on the way out. The packed results are bitwise
-/// the single-item results (tests/core/test_batch.cpp). The paper route runs one
+/// the single-item results (tests/batch/test_batch.cpp). The paper route runs one
 /// item at a time (it is the reference route, not the fast one).
 ///
 /// Matrices only: the status words are per-item decisions (shadow_flags),
@@ -31,6 +31,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -291,13 +293,23 @@ template <class Ln, class Setup, class Item> void for_each_block(Eigen::Index n,
   });
 }
 
+/// The number of items of a batch: A's rows, which the other input (lights or planes) must have
+/// too; else std::invalid_argument, before anything is read (a shorter one would be read beyond
+/// its end).
+inline Eigen::Index batch_items(const char* function, Eigen::Index quadrics, Eigen::Index others) {
+  if (others != quadrics)
+    throw std::invalid_argument(std::string(function) + ": " + std::to_string(quadrics) + " quadrics but " +
+                                std::to_string(others) + " rows of the second input (one per quadric)");
+  return quadrics;
+}
+
 /// P, pi and R of every item (quadric A.row(i), light L.row(i)) by `method`.
 /// Method paper on an item whose frame does not exist uses the direct formulas.
 /// `setup` runs once per thread before its chunk (e.g. to set a rounding mode).
 template <class S, class Setup>
 void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, SymBatch<S>& P, Vec4Batch<S>& pi,
                   SymBatch<S>& R, int threads, Setup&& setup) {
-  const Eigen::Index n = A.rows();
+  const Eigen::Index n = batch_items("shadow_batch", A.rows(), L.rows());
   P.resize(n, 10);
   pi.resize(n, 4);
   R.resize(n, 10);
@@ -340,7 +352,7 @@ void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, Sy
 template <class S, class Setup>
 void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method method, AffineBatch<S>& M,
                       SymBatch<S>& B, int threads, bool scaled, Setup&& setup) {
-  const Eigen::Index n = A.rows();
+  const Eigen::Index n = batch_items("reflection_batch", A.rows(), planes.rows());
   M.resize(n, 12);
   B.resize(n, 10);
   auto item = [&](auto lanes, Eigen::Index i) QVERIFY_FLATTEN {

@@ -55,7 +55,7 @@ void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Protected>>& A,
                                int threads);
 
 /// The widest x86 vector extension the library was compiled for ("AVX-512", "AVX2", "AVX",
-/// "SSE2", "scalar"): what the double batches run.
+/// "SSE2", "scalar"): what the batches run where they have no second kernel (double_batch.hpp).
 const char* build_instruction_set();
 
 /// Whether the two functions above run the second kernel here (it was built, and this processor

@@ -42,7 +42,10 @@ struct ProcessorInfo {
   std::optional<std::string> vendor, model_name;  ///< /proc/cpuinfo's vendor_id and model name (first processor)
   std::optional<int> family, model;               ///< its cpu family and model
   std::string instruction_set;                    ///< the widest x86 vector extension this build was compiled for
-  int lanes = 1;                                  ///< doubles per instruction of the batches (batch/pack.hpp)
+  /// What the double batches run (exact/double_batch.hpp): the build's instruction set, or a
+  /// second kernel's, e.g. "AVX-512 (run-time dispatch)"; and its doubles per instruction (batch/pack.hpp)
+  std::string double_kernel;
+  int lanes = 1;
   /// What the interval batches run (exact/interval_batch.hpp): the build's instruction set, or
   /// a second kernel's, e.g. "AVX-512 (run-time dispatch)"
   std::string interval_kernel;
