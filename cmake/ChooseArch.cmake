@@ -2,35 +2,40 @@
 # Sets QVERIFY_MARCH (empty: the compiler's default, the x86-64 baseline), QVERIFY_DOUBLE_MARCH,
 # QVERIFY_INTERVAL_MARCH and QVERIFY_DIGIT_MARCH (the -march of a second copy of the double batch
 # kernel, of the interval batch kernel and of the exact digit blocks, run where the processor has
-# it; empty when the build's own is the faster) and QVERIFY_ARCH_NOTE (how the choices were made,
-# for the configure message).
+# it; empty when the build's own is the faster), QVERIFY_DOUBLE_COMPILER (the compiler of the second
+# double kernel when it is not the build's: clang++) and QVERIFY_ARCH_NOTE (how the choices were
+# made, for the configure message).
 #
 # The build takes x86-64-v3 (AVX2, FMA) wherever the machine runs it, also on a machine with
 # AVX-512: valgrind, which cannot execute AVX-512, then runs the release build itself, and
 # ./run-tests needs no second tree for it (a release tree of AVX-512 made it build the CLI once
-# more, 4 1/2 minutes of a 20-minute suite). Where the vector width pays is the three batch kernels,
-# and each of them runs on the faster of the two levels where the processor has both: when this
-# machine runs x86-64-v4 (AVX-512 F/BW/CD/DQ/VL) too, each kernel is measured with both -march
-# values and, when x86-64-v4 is more than 10% faster, the exact library carries a second copy of it
-# compiled for x86-64-v4, which its dispatcher (exact/double_batch.hpp, interval_batch.hpp,
-# digit_batch.hpp) runs when the processor has it (asked at run time: never under valgrind).
+# more, 4 1/2 minutes of a 20-minute suite). Where the code generation pays is the three batch
+# kernels, and each of them runs the fastest of its measured variants: the build's compiler with
+# x86-64-v3 (the build's own kernel) and, where this machine runs AVX-512 (F/BW/CD/DQ/VL), with
+# x86-64-v4; for the double kernel also clang++ with each level, where the build's compiler is GCC
+# and clang++ is installed. When the fastest variant is more than 10% faster than the build's own,
+# the exact library carries a second copy of the kernel compiled that way, which its dispatcher
+# (exact/double_batch.hpp, interval_batch.hpp, digit_batch.hpp) runs when the processor has the
+# level (asked at run time: never an AVX-512 copy under valgrind).
 #
-# The widest instruction set is not always the fastest, hence the measurement: on AMD Zen 4 (one of this
-# project's machines) the AVX-512 double batch kernel measured 2-3x slower than the AVX2 one before
-# the store order of batch/batch.hpp was fixed (README, "bench"), and 30% faster after its stores
-# became whole vectors; on AMD Zen 5 (family 26) the AVX-512 interval kernel and digit blocks took
-# about 2/3 of the AVX2 ones' time while the double kernel was 5-10% faster with AVX2. The probe is
-# cmake/arch_probe.cpp, which times the direct shadow batch in double and in certified intervals,
-# and the exact digit blocks, built with each -march; the probes run in turn, seven times each
-# (best of each; a run takes 0.1-0.3 s).
+# Neither the widest instruction set nor one compiler is always the fastest, hence the measurement:
+# on AMD Zen 4 (one of this project's machines) the AVX-512 double batch kernel measured 2-3x slower
+# than the AVX2 one before the store order of batch/batch.hpp was fixed (README, "bench"), and 30%
+# faster after its stores became whole vectors; on AMD Zen 5 (family 26) the AVX-512 interval kernel
+# and digit blocks took about 2/3 of the AVX2 ones' time while the double kernel was 5-10% faster
+# with AVX2, and clang 14 compiled the double kernel a quarter faster than GCC 12 (GCC keeps the
+# 4x4 matrices of packs on the stack: about three times clang's stack accesses; README, "bench"), the interval
+# and digit kernels no faster. The probe is cmake/arch_probe.cpp, which times the direct shadow
+# batch in double and in certified intervals, and the exact digit blocks, built each way; the
+# probes run in turn, seven times each (best of each; a run takes 0.1-0.3 s).
 # The margin is the noise of the probe on a shared 2-core machine: at parity (AMD Zen 4 after the
 # store-order fix) best-of-three with a 5% margin chose v4 at one configure and v3 at the next.
-# The decisions and the timings are cached (QVERIFY_ARCH_MEASURED, internal) for this compiler,
+# The decisions and the timings are cached (QVERIFY_ARCH_MEASURED, internal) for these compilers,
 # these sources of the kernels and this file, so a reconfigure does not measure again;
 # `cmake -U QVERIFY_ARCH_MEASURED <build>` measures again.
 # When the probe cannot be built or run (cross build, a compiler without the -march, no CPU
 # support), the build is x86-64-v3 without second kernels (a probe that failed is remembered the
-# same way, and not tried again at every configure).
+# same way, and not tried again at every configure); a clang probe that fails only leaves clang out.
 
 include(CheckCXXSourceRuns)
 
@@ -49,19 +54,44 @@ check_cxx_source_runs([=[
            __builtin_cpu_supports("avx512vl") ? 0 : 1;
   }]=] QVERIFY_HOST_HAS_AVX512)
 
+# The variants measured: g3 and g4, the build's compiler with -march=x86-64-v3 / x86-64-v4 (g4 where
+# the machine runs AVX-512 and QVERIFY_AVX512 is on); with GCC as the build's compiler and clang++
+# installed, also c3 and c4, the double kernel compiled by clang (double only: the interval and
+# digit kernels measured no faster with it).
+set(QVERIFY_KERNEL_CLANG_VERSION "")
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND QVERIFY_HOST_HAS_X86_64_V3)
+  find_program(QVERIFY_KERNEL_CLANG NAMES clang++ clang++-14 clang++-15 clang++-16
+               DOC "clang++ for a measured second double batch kernel (QVERIFY_ARCH=auto)")
+  if(QVERIFY_KERNEL_CLANG)
+    execute_process(COMMAND ${QVERIFY_KERNEL_CLANG} -dumpversion OUTPUT_VARIABLE QVERIFY_KERNEL_CLANG_VERSION
+                    OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  endif()
+endif()
 set(QVERIFY_MARCH "")
 set(QVERIFY_DOUBLE_MARCH "")
+set(QVERIFY_DOUBLE_COMPILER "")  # empty: the build's compiler
 set(QVERIFY_INTERVAL_MARCH "")
 set(QVERIFY_DIGIT_MARCH "")
 set(QVERIFY_ARCH_NOTE "")
-if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
-  # Both run here: measure (or take the cached measurement of the same compiler and kernels).
+if(QVERIFY_HOST_HAS_X86_64_V3)
+  set(QVERIFY_MARCH x86-64-v3)
+  set(_qv_variants g3)
+  if(QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
+    list(APPEND _qv_variants g4)
+  endif()
+  if(QVERIFY_KERNEL_CLANG_VERSION)
+    list(APPEND _qv_variants c3)
+    if("g4" IN_LIST _qv_variants)
+      list(APPEND _qv_variants c4)
+    endif()
+  endif()
+  # Measure (or take the cached measurement of the same compilers, variants and kernels).
   set(_qv_probe_sources ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp ${CMAKE_CURRENT_LIST_DIR}/arch_probe_project/CMakeLists.txt
       ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/batch.hpp ${PROJECT_SOURCE_DIR}/batch/include/qverify/batch/pack.hpp
       ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/interval_pack.hpp
       ${PROJECT_SOURCE_DIR}/exact/include/qverify/exact/digit_pack.hpp ${PROJECT_SOURCE_DIR}/exact/src/digit_batch_impl.hpp
       ${CMAKE_CURRENT_LIST_FILE})
-  set(_qv_key "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_COMPILER}")
+  set(_qv_key "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_COMPILER} ${_qv_variants} clang ${QVERIFY_KERNEL_CLANG} ${QVERIFY_KERNEL_CLANG_VERSION}")
   foreach(_qv_file IN LISTS _qv_probe_sources)
     file(SHA256 ${_qv_file} _qv_hash)
     string(APPEND _qv_key " ${_qv_hash}")
@@ -75,7 +105,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
       set(_qv_how "measured at an earlier configure")
     endif()
   endif()
-  if(NOT _qv_measured AND NOT CMAKE_CROSSCOMPILING)
+  if(NOT _qv_measured AND NOT CMAKE_CROSSCOMPILING AND NOT _qv_variants STREQUAL "g3")
     find_package(Eigen3 3.4 QUIET NO_MODULE)
     # the interval probe needs CGAL's headers and, through qverify's scalar headers, GMP and MPFR;
     # without them only the double kernel is measured (and no second interval kernel is built)
@@ -87,8 +117,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
     set(_qv_probe_definitions "")
     set(_qv_probe_libraries Eigen3::Eigen)
     if(_qv_cgal_include AND _qv_gmp AND _qv_mpfr)
-      list(APPEND _qv_probe_kernels interval)
-      list(APPEND _qv_probe_kernels exact)
+      list(APPEND _qv_probe_kernels interval exact)
       string(APPEND _qv_probe_includes ";${PROJECT_SOURCE_DIR}/exact/include;${PROJECT_SOURCE_DIR}/exact/src;${_qv_cgal_include}")
       set(_qv_probe_definitions -DQVERIFY_PROBE_INTERVAL=1)
       list(APPEND _qv_probe_libraries ${_qv_mpfr} ${_qv_gmp})
@@ -97,7 +126,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
     unset(_qv_gmp CACHE)
     unset(_qv_mpfr CACHE)
     if(TARGET Eigen3::Eigen)
-      message(STATUS "qverify: timing the batch kernels with -march=x86-64-v3 and x86-64-v4 (QVERIFY_ARCH=auto)")
+      message(STATUS "qverify: timing the batch kernels (${_qv_variants}; QVERIFY_ARCH=auto)")
       set(_qv_ok TRUE)
       # Eigen is an imported target here: the probe project takes its include directories
       get_target_property(_qv_eigen_include Eigen3::Eigen INTERFACE_INCLUDE_DIRECTORIES)
@@ -119,17 +148,39 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
         file(WRITE ${_qv_probe_dir}/build.log "${_qv_log}")
         message(STATUS "qverify: the arch probes did not build (CMakeFiles/qverify_arch_probe/build.log)")
       endif()
-      # Seven runs of each kernel and level, in turn (a shared machine's speed drifts; each run is
+      set(_qv_exe_g3 ${_qv_probe_dir}/arch_probe_v3)
+      set(_qv_exe_g4 ${_qv_probe_dir}/arch_probe_v4)
+      # The clang probes: the double kernel alone (no CGAL, GMP, MPFR), 3 s each to compile.
+      foreach(_qv_level 3 4)
+        if("c${_qv_level}" IN_LIST _qv_variants AND _qv_ok)
+          set(_qv_exe_c${_qv_level} ${_qv_probe_dir}/arch_probe_clang_v${_qv_level})
+          set(_qv_clang_includes "")
+          foreach(_qv_dir IN ITEMS ${PROJECT_SOURCE_DIR}/core/include ${PROJECT_SOURCE_DIR}/batch/include ${_qv_eigen_include})
+            list(APPEND _qv_clang_includes -I${_qv_dir})
+          endforeach()
+          execute_process(COMMAND ${QVERIFY_KERNEL_CLANG} -O3 -DNDEBUG -std=gnu++17 -march=x86-64-v${_qv_level}
+                                  -ffp-contract=off ${_qv_clang_includes} ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
+                                  -o ${_qv_exe_c${_qv_level}}
+                          RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_log ERROR_VARIABLE _qv_log TIMEOUT 120)
+          if(NOT _qv_rc STREQUAL "0")
+            file(WRITE ${_qv_probe_dir}/clang_v${_qv_level}.log "${_qv_log}")
+            message(STATUS "qverify: the clang arch probe did not build (CMakeFiles/qverify_arch_probe/clang_v${_qv_level}.log)")
+            list(REMOVE_ITEM _qv_variants c${_qv_level})
+          endif()
+        endif()
+      endforeach()
+      # Seven runs of each kernel and variant, in turn (a shared machine's speed drifts; each run is
       # itself the best of eight passes over 2^19 items, of five over 2^17 for the slower intervals,
       # whose batches take twice the memory), and the best of each. A run's time is mostly touching
       # its memory the first time (2^20 items took 1.2 s a run, of which 0.08 s in the kernel):
       # half the items, still five times the largest cache, halved the configure's 29 s of probing.
       foreach(_qv_kernel double interval exact)
-        foreach(_qv_level 3 4)
-          set(_qv_best_${_qv_kernel}_${_qv_level} "")
-          set(_qv_text_${_qv_kernel}_${_qv_level} failed)
+        foreach(_qv_variant g3 g4 c3 c4)
+          set(_qv_best_${_qv_kernel}_${_qv_variant} "")
+          set(_qv_text_${_qv_kernel}_${_qv_variant} -)  # not measured
         endforeach()
       endforeach()
+      set(_qv_double_ok TRUE)
       set(_qv_interval_ok FALSE)
       set(_qv_exact_ok FALSE)
       if("interval" IN_LIST _qv_probe_kernels)
@@ -151,91 +202,110 @@ if(QVERIFY_HOST_HAS_X86_64_V3 AND QVERIFY_HOST_HAS_AVX512 AND QVERIFY_AVX512)
             else()
               continue()
             endif()
-            foreach(_qv_level 3 4)
-              execute_process(COMMAND ${CMAKE_BINARY_DIR}/CMakeFiles/qverify_arch_probe/arch_probe_v${_qv_level}
-                                      ${_qv_kernel} ${_qv_items} ${_qv_passes}
+            foreach(_qv_variant IN LISTS _qv_variants)
+              if(NOT _qv_kernel STREQUAL "double" AND _qv_variant MATCHES "^c")
+                continue()
+              endif()
+              if(_qv_text_${_qv_kernel}_${_qv_variant} STREQUAL "failed")
+                continue()
+              endif()
+              execute_process(COMMAND ${_qv_exe_${_qv_variant}} ${_qv_kernel} ${_qv_items} ${_qv_passes}
                               RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_out ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE
                               TIMEOUT 60)
               if(NOT _qv_rc STREQUAL "0" OR NOT _qv_out MATCHES "^[0-9]+\\.[0-9]+$")
-                message(STATUS "qverify: the ${_qv_kernel} arch probe built with -march=x86-64-v${_qv_level} did not run (${_qv_rc})")
-                # a double probe that fails spoils the measurement; another one only its second kernel
-                if(_qv_kernel STREQUAL "double")
-                  set(_qv_ok FALSE)
-                else()
+                message(STATUS "qverify: the ${_qv_kernel} arch probe ${_qv_variant} did not run (${_qv_rc})")
+                # the build's own double probe failing spoils the measurement; another one only its variant
+                if(_qv_variant STREQUAL "g3")
                   set(_qv_${_qv_kernel}_ok FALSE)
                 endif()
-                break()
+                set(_qv_text_${_qv_kernel}_${_qv_variant} failed)
+                set(_qv_best_${_qv_kernel}_${_qv_variant} "")
+                continue()
               endif()
               # CMake compares only integers: hundredths of a ns
               string(REPLACE "." "" _qv_centi "${_qv_out}")
               math(EXPR _qv_centi "${_qv_centi} + 0")
-              if(_qv_best_${_qv_kernel}_${_qv_level} STREQUAL "" OR _qv_centi LESS _qv_best_${_qv_kernel}_${_qv_level})
-                set(_qv_best_${_qv_kernel}_${_qv_level} ${_qv_centi})
-                set(_qv_text_${_qv_kernel}_${_qv_level} ${_qv_out})
+              if(_qv_best_${_qv_kernel}_${_qv_variant} STREQUAL "" OR _qv_centi LESS _qv_best_${_qv_kernel}_${_qv_variant})
+                set(_qv_best_${_qv_kernel}_${_qv_variant} ${_qv_centi})
+                set(_qv_text_${_qv_kernel}_${_qv_variant} ${_qv_out})
               endif()
             endforeach()
-            if(NOT _qv_ok)
-              break()
-            endif()
           endforeach()
-          if(NOT _qv_ok)
+          if(NOT _qv_double_ok)
             break()
           endif()
         endforeach()
       endif()
-      if(_qv_ok)
-        # A second kernel for each of the three: only when its x86-64-v4 copy is more than 10% faster
-        # than the build's x86-64-v3 one (v4 * 100 < v3 * 90), each measured on its own.
+      if(_qv_ok AND _qv_double_ok)
+        # A second kernel for each of the three: the fastest other variant, when it is more than 10%
+        # faster than the build's own (g3): best * 100 < g3 * 90; each kernel measured on its own.
         foreach(_qv_kernel double interval exact)
           set(_qv_second_${_qv_kernel} none)
-          if(_qv_kernel STREQUAL "double" OR _qv_${_qv_kernel}_ok)
-            math(EXPR _qv_v4_scaled "${_qv_best_${_qv_kernel}_4} * 100")
-            math(EXPR _qv_v3_scaled "${_qv_best_${_qv_kernel}_3} * 90")
-            if(_qv_v4_scaled LESS _qv_v3_scaled)
-              set(_qv_second_${_qv_kernel} x86-64-v4)
+          if(NOT _qv_${_qv_kernel}_ok)
+            continue()
+          endif()
+          set(_qv_fastest "")
+          foreach(_qv_variant IN LISTS _qv_variants)
+            if(_qv_variant STREQUAL "g3" OR _qv_best_${_qv_kernel}_${_qv_variant} STREQUAL "")
+              continue()
             endif()
-          else()
-            set(_qv_text_${_qv_kernel}_3 failed)
-            set(_qv_text_${_qv_kernel}_4 failed)
+            if(NOT _qv_fastest OR _qv_best_${_qv_kernel}_${_qv_variant} LESS _qv_best_${_qv_kernel}_${_qv_fastest})
+              set(_qv_fastest ${_qv_variant})
+            endif()
+          endforeach()
+          if(_qv_fastest)
+            math(EXPR _qv_other_scaled "${_qv_best_${_qv_kernel}_${_qv_fastest}} * 100")
+            math(EXPR _qv_own_scaled "${_qv_best_${_qv_kernel}_g3} * 90")
+            if(_qv_other_scaled LESS _qv_own_scaled)
+              set(_qv_second_${_qv_kernel} ${_qv_fastest})
+            endif()
           endif()
         endforeach()
-        set(_qv_measured "${_qv_key};${_qv_second_double};${_qv_text_double_3};${_qv_text_double_4};${_qv_second_interval};${_qv_text_interval_3};${_qv_text_interval_4};${_qv_second_exact};${_qv_text_exact_3};${_qv_text_exact_4}")
+        set(_qv_measured "${_qv_key};${_qv_second_double};${_qv_text_double_g3};${_qv_text_double_g4};${_qv_second_interval};${_qv_text_interval_g3};${_qv_text_interval_g4};${_qv_second_exact};${_qv_text_exact_g3};${_qv_text_exact_g4};${_qv_text_double_c3};${_qv_text_double_c4}")
         set(_qv_how "measured now")
       else()
         # remembered too, so that every reconfigure does not try again (-U QVERIFY_ARCH_MEASURED does)
-        set(_qv_measured "${_qv_key};none;failed;failed;none;failed;failed;none;failed;failed")
+        set(_qv_measured "${_qv_key};none;failed;failed;none;failed;failed;none;failed;failed;failed;failed")
       endif()
       set(QVERIFY_ARCH_MEASURED "${_qv_measured}" CACHE INTERNAL
-          "QVERIFY_ARCH=auto: key (compiler, kernel sources); the -march of a second double kernel (none); ns/item of the double kernel with x86-64-v3 and x86-64-v4; the -march of a second interval kernel (none); ns/item of the interval kernel with x86-64-v3 and x86-64-v4; the same for the exact digit kernel")
+          "QVERIFY_ARCH=auto: key (compilers, variants, kernel sources); the variant of a second double kernel (none, g4, c3, c4); ns/item of the double kernel g3, g4; the same for the interval kernel and the exact digit kernel; ns/item of the double kernel c3, c4 (-: not measured)")
     endif()
   endif()
-  set(QVERIFY_MARCH x86-64-v3)
   if(_qv_measured)
     list(GET _qv_measured 1 _qv_second_double)
-    list(GET _qv_measured 2 _qv_v3_ns)
-    list(GET _qv_measured 3 _qv_v4_ns)
-    list(GET _qv_measured 4 _qv_second)
-    list(GET _qv_measured 5 _qv_interval_v3_ns)
-    list(GET _qv_measured 6 _qv_interval_v4_ns)
+    list(GET _qv_measured 2 _qv_g3_ns)
+    list(GET _qv_measured 3 _qv_g4_ns)
+    list(GET _qv_measured 4 _qv_second_interval)
+    list(GET _qv_measured 5 _qv_interval_g3_ns)
+    list(GET _qv_measured 6 _qv_interval_g4_ns)
     list(GET _qv_measured 7 _qv_second_exact)
-    list(GET _qv_measured 8 _qv_exact_v3_ns)
-    list(GET _qv_measured 9 _qv_exact_v4_ns)
+    list(GET _qv_measured 8 _qv_exact_g3_ns)
+    list(GET _qv_measured 9 _qv_exact_g4_ns)
+    list(GET _qv_measured 10 _qv_c3_ns)
+    list(GET _qv_measured 11 _qv_c4_ns)
   endif()
-  if(_qv_measured AND NOT _qv_v3_ns STREQUAL "failed")
-    set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_v3_ns} ns/item, v4 ${_qv_v4_ns}; interval v3 ${_qv_interval_v3_ns}, v4 ${_qv_interval_v4_ns}; exact v3 ${_qv_exact_v3_ns}, v4 ${_qv_exact_v4_ns}; one thread; ${_qv_how}")
-    foreach(_qv_pair "double;_qv_second_double;double batches" "INTERVAL;_qv_second;interval batches" "DIGIT;_qv_second_exact;exact digit blocks")
+  if(_qv_measured AND NOT _qv_g3_ns STREQUAL "failed")
+    set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_g3_ns} ns/item, v4 ${_qv_g4_ns}")
+    if(QVERIFY_KERNEL_CLANG_VERSION)
+      string(APPEND QVERIFY_ARCH_NOTE ", clang ${QVERIFY_KERNEL_CLANG_VERSION} v3 ${_qv_c3_ns}, v4 ${_qv_c4_ns}")
+    endif()
+    string(APPEND QVERIFY_ARCH_NOTE "; interval v3 ${_qv_interval_g3_ns}, v4 ${_qv_interval_g4_ns}; exact v3 ${_qv_exact_g3_ns}, v4 ${_qv_exact_g4_ns}; one thread; ${_qv_how}")
+    foreach(_qv_pair "DOUBLE;_qv_second_double;double batches" "INTERVAL;_qv_second_interval;interval batches" "DIGIT;_qv_second_exact;exact digit blocks")
       list(GET _qv_pair 0 _qv_name)
       list(GET _qv_pair 1 _qv_var)
       list(GET _qv_pair 2 _qv_what)
-      if(NOT ${_qv_var} STREQUAL "none")
-        string(TOUPPER ${_qv_name} _qv_name)
-        set(QVERIFY_${_qv_name}_MARCH ${${_qv_var}})
-        string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel for ${${_qv_var}}, run where the processor has it")
+      set(_qv_variant ${${_qv_var}})
+      if(_qv_variant MATCHES "^([gc])([34])$")
+        set(QVERIFY_${_qv_name}_MARCH x86-64-v${CMAKE_MATCH_2})
+        if(CMAKE_MATCH_1 STREQUAL "c")
+          set(QVERIFY_${_qv_name}_COMPILER ${QVERIFY_KERNEL_CLANG})
+          string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel compiled by clang ${QVERIFY_KERNEL_CLANG_VERSION} for x86-64-v${CMAKE_MATCH_2}, run where the processor has it")
+        else()
+          string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel for x86-64-v${CMAKE_MATCH_2}, run where the processor has it")
+        endif()
       endif()
     endforeach()
-  else()
+  elseif(NOT _qv_variants STREQUAL "g3")
     set(QVERIFY_ARCH_NOTE "not measured, the probe did not build or run: no second kernels")
   endif()
-elseif(QVERIFY_HOST_HAS_X86_64_V3)
-  set(QVERIFY_MARCH x86-64-v3)
 endif()

@@ -1,5 +1,6 @@
 // The second double kernel: the generic batch template of batch/batch.hpp on DoublePack, compiled
-// with the -march of the second kernels (exact/CMakeLists.txt; exact/double_batch.hpp says why and
+// with the -march (and, where measured faster, the compiler: clang++) chosen for it
+// (exact/CMakeLists.txt; exact/double_batch.hpp says why and
 // when it runs). Direct method only: the paper route runs item by item.
 #include "double_batch_kernel.hpp"
 

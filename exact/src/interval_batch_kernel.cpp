@@ -1,5 +1,5 @@
 // The second interval kernel: the generic batch template of batch/batch.hpp on IntervalPack,
-// compiled with -march=QVERIFY_INTERVAL_MARCH (exact/CMakeLists.txt; exact/interval_batch.hpp says
+// compiled with -march=QVERIFY_INTERVAL_MARCH (QVERIFY_SECOND_KERNEL_LEVEL; exact/CMakeLists.txt; exact/interval_batch.hpp says
 // why and when it runs). Direct method only: the paper route runs item by item.
 #include "interval_batch_kernel.hpp"
 
@@ -7,9 +7,9 @@
 
 // The point of this file is its instruction set: a -march lost or overridden on the way (a later
 // flag wins) must fail the build, not give a second copy of the build's own kernel.
-#if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 4 && !defined(__AVX512F__)
+#if QVERIFY_SECOND_KERNEL_LEVEL == 4 && !defined(__AVX512F__)
 #error "the second interval kernel must be compiled with AVX-512 (-march=x86-64-v4)"
-#elif QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL == 3 && !defined(__AVX2__)
+#elif QVERIFY_SECOND_KERNEL_LEVEL == 3 && !defined(__AVX2__)
 #error "the second interval kernel must be compiled with AVX2 (-march=x86-64-v3)"
 #endif
 
