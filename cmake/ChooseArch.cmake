@@ -20,12 +20,13 @@
 #
 # Neither the widest instruction set nor one compiler is always the fastest, hence the measurement:
 # on AMD Zen 4 (one of this project's machines) the AVX-512 double batch kernel measured 2-3x slower
-# than the AVX2 one before the store order of batch/batch.hpp was fixed (README, "bench"), and 30%
-# faster after its stores became whole vectors; on AMD Zen 5 (family 26) the AVX-512 interval kernel
-# and digit blocks took about 2/3 of the AVX2 ones' time while the double kernel was 5-10% faster
-# with AVX2, and clang 14 compiled the double kernel a quarter faster than GCC 12 (GCC keeps the
-# 4x4 matrices of packs on the stack: about three times clang's stack accesses; README, "bench"), the interval
-# and digit kernels no faster. The probe is cmake/arch_probe.cpp, which times the direct shadow
+# than the AVX2 one before the store order of batch/batch.hpp was fixed (README, "bench"); on AMD
+# Zen 5 (family 26) it measured 30% faster than AVX2 once its stores became whole vectors, and level
+# with it on other days (9.50 against 9.73 ns per item, 2026-12-03); there the AVX-512 interval
+# kernel and digit blocks take about 2/3 of the AVX2 ones' time, and clang 14 compiles the double
+# kernel's AVX2 form in 70% of GCC 12's time (GCC keeps the 4x4 matrices of packs on the stack: about
+# three times clang's stack accesses; README, "bench"), while clang's interval kernel, faster than
+# GCC's AVX2 one, is no faster than GCC's AVX-512 one. The probe is cmake/arch_probe.cpp, which times the direct shadow
 # batch in double and in certified intervals, and the exact digit blocks, built each way; the
 # probes run in turn, seven times each (best of each; a run takes 0.1-0.3 s).
 # The margin is the noise of the probe on a shared 2-core machine: at parity (AMD Zen 4 after the
@@ -33,8 +34,8 @@
 # The decisions and the timings are cached (QVERIFY_ARCH_MEASURED, internal) for these compilers,
 # these sources of the kernels and this file, so a reconfigure does not measure again;
 # `cmake -U QVERIFY_ARCH_MEASURED <build>` measures again.
-# When the probe cannot be built or run (cross build, a compiler without the -march, no CPU
-# support), the build is x86-64-v3 without second kernels (a probe that failed is remembered the
+# A cross build gets the baseline (the host checks below fail). When the probe cannot be built or
+# run (a compiler without the -march, no CPU support), the build is x86-64-v3 without second kernels (a probe that failed is remembered the
 # same way, and not tried again at every configure); a clang probe that fails only leaves clang out.
 
 include(CheckCXXSourceRuns)
@@ -43,8 +44,8 @@ include(CheckCXXSourceRuns)
 check_cxx_source_runs([=[
   int main() {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2") &&
-           __builtin_cpu_supports("f16c") && __builtin_cpu_supports("movbe") ? 0 : 1;
+    // (not "f16c" and "movbe", which clang 14 does not know: every processor with these three has both)
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2") ? 0 : 1;
   }]=] QVERIFY_HOST_HAS_X86_64_V3)
 check_cxx_source_runs([=[
   int main() {
@@ -56,8 +57,10 @@ check_cxx_source_runs([=[
 
 # The variants measured: g3 and g4, the build's compiler with -march=x86-64-v3 / x86-64-v4 (g4 where
 # the machine runs AVX-512 and QVERIFY_AVX512 is on); with GCC as the build's compiler and clang++
-# installed, also c3 and c4, the double kernel compiled by clang (double only: the interval and
-# digit kernels measured no faster with it).
+# installed, also c3 and c4, the double kernel compiled by clang (double only: see above). The
+# clang probe and the clang kernel (exact/CMakeLists.txt) take the same flags and include paths
+# (QVERIFY_KERNEL_CLANG_FLAGS, qverify_kernel_clang_includes), so that what is measured is what is
+# built: -O3 whatever the build type, and the build's -ffp-contract=off.
 set(QVERIFY_KERNEL_CLANG_VERSION "")
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND QVERIFY_HOST_HAS_X86_64_V3)
   find_program(QVERIFY_KERNEL_CLANG NAMES clang++ clang++-14 clang++-15 clang++-16
@@ -67,6 +70,17 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND QVERIFY_HOST_HAS_X86_64_V3)
                     OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   endif()
 endif()
+set(QVERIFY_KERNEL_CLANG_FLAGS -O3 -DNDEBUG -std=gnu++17 -ffp-contract=off)
+function(qverify_kernel_clang_includes out_var eigen_include)
+  set(r "")
+  foreach(dir IN ITEMS core/include batch/include exact/include)
+    list(APPEND r -I${PROJECT_SOURCE_DIR}/${dir})
+  endforeach()
+  foreach(dir IN LISTS eigen_include)  # a third party's headers: not our warnings
+    list(APPEND r -isystem ${dir})
+  endforeach()
+  set(${out_var} ${r} PARENT_SCOPE)
+endfunction()
 set(QVERIFY_MARCH "")
 set(QVERIFY_DOUBLE_MARCH "")
 set(QVERIFY_DOUBLE_COMPILER "")  # empty: the build's compiler
@@ -100,7 +114,8 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
   set(_qv_measured "")
   if(DEFINED QVERIFY_ARCH_MEASURED)
     list(GET QVERIFY_ARCH_MEASURED 0 _qv_cached_key)
-    if(_qv_cached_key STREQUAL _qv_key)
+    list(LENGTH QVERIFY_ARCH_MEASURED _qv_cached_fields)
+    if(_qv_cached_key STREQUAL _qv_key AND _qv_cached_fields EQUAL 12)
       set(_qv_measured ${QVERIFY_ARCH_MEASURED})
       set(_qv_how "measured at an earlier configure")
     endif()
@@ -116,7 +131,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
     set(_qv_probe_includes "${PROJECT_SOURCE_DIR}/core/include;${PROJECT_SOURCE_DIR}/batch/include")
     set(_qv_probe_definitions "")
     set(_qv_probe_libraries Eigen3::Eigen)
-    if(_qv_cgal_include AND _qv_gmp AND _qv_mpfr)
+    if(_qv_cgal_include AND _qv_gmp AND _qv_mpfr AND "g4" IN_LIST _qv_variants)  # (else nothing to choose for them)
       list(APPEND _qv_probe_kernels interval exact)
       string(APPEND _qv_probe_includes ";${PROJECT_SOURCE_DIR}/exact/include;${PROJECT_SOURCE_DIR}/exact/src;${_qv_cgal_include}")
       set(_qv_probe_definitions -DQVERIFY_PROBE_INTERVAL=1)
@@ -143,7 +158,8 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
                               "-DPROBE_LIBRARIES=${_qv_libraries_arg}"
                               "-DPROBE_OUTPUT=${_qv_probe_dir}"
                   OUTPUT_VARIABLE _qv_log)
-      if(NOT _qv_compiled OR NOT EXISTS ${_qv_probe_dir}/arch_probe_v3 OR NOT EXISTS ${_qv_probe_dir}/arch_probe_v4)
+      if(NOT _qv_compiled OR NOT EXISTS ${_qv_probe_dir}/arch_probe_v3
+         OR ("g4" IN_LIST _qv_variants AND NOT EXISTS ${_qv_probe_dir}/arch_probe_v4))
         set(_qv_ok FALSE)
         file(WRITE ${_qv_probe_dir}/build.log "${_qv_log}")
         message(STATUS "qverify: the arch probes did not build (CMakeFiles/qverify_arch_probe/build.log)")
@@ -154,12 +170,9 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
       foreach(_qv_level 3 4)
         if("c${_qv_level}" IN_LIST _qv_variants AND _qv_ok)
           set(_qv_exe_c${_qv_level} ${_qv_probe_dir}/arch_probe_clang_v${_qv_level})
-          set(_qv_clang_includes "")
-          foreach(_qv_dir IN ITEMS ${PROJECT_SOURCE_DIR}/core/include ${PROJECT_SOURCE_DIR}/batch/include ${_qv_eigen_include})
-            list(APPEND _qv_clang_includes -I${_qv_dir})
-          endforeach()
-          execute_process(COMMAND ${QVERIFY_KERNEL_CLANG} -O3 -DNDEBUG -std=gnu++17 -march=x86-64-v${_qv_level}
-                                  -ffp-contract=off ${_qv_clang_includes} ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
+          qverify_kernel_clang_includes(_qv_clang_includes "${_qv_eigen_include}")
+          execute_process(COMMAND ${QVERIFY_KERNEL_CLANG} ${QVERIFY_KERNEL_CLANG_FLAGS} -march=x86-64-v${_qv_level}
+                                  ${_qv_clang_includes} ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
                                   -o ${_qv_exe_c${_qv_level}}
                           RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_log ERROR_VARIABLE _qv_log TIMEOUT 120)
           if(NOT _qv_rc STREQUAL "0")

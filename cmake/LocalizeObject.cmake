@@ -1,8 +1,9 @@
 # cmake -DLINKER=ld -DOBJCOPY=objcopy -DNM=nm -DKEEP=prefix -DOUTPUT=out.o -DINPUTS="a.o;b.o" -P LocalizeObject.cmake
 #
 # Links INPUTS into one relocatable object OUTPUT in which every defined symbol is local except
-# those whose (mangled) names start with KEEP, then checks that it is so. For the second interval
-# kernel (exact/CMakeLists.txt): an object compiled with another -march defines its own copies of
+# those whose (mangled) names start with KEEP, then checks that it is so. For the second batch
+# kernels (exact/CMakeLists.txt; one call per compiler and -march): an object compiled with another
+# -march or compiler defines its own copies of
 # every inline function it uses (Eigen's, CGAL's, the standard library's) as weak symbols in
 # COMDAT groups, and the final link keeps one copy of each group for the whole program, possibly
 # the AVX-512 one for code that must run without AVX-512. `ld -r --force-group-allocation` takes

@@ -9,8 +9,9 @@
 /// that valgrind, which does not emulate AVX-512, runs it (QVERIFY_ARCH=auto,
 /// cmake/ChooseArch.cmake). Whether the 8-lane AVX-512 kernel is faster
 /// depends on the processor: on AMD Zen 4 it was 2-3x slower than AVX2 before
-/// the batches stored whole vectors, and 30% faster after; on AMD Zen 5 the
-/// AVX2 one was 5-10% faster. So does the compiler: on Zen 5, clang 14's AVX2
+/// the store order of the batches was fixed; on AMD Zen 5 it was 30% faster
+/// once they stored whole vectors, and level with AVX2 on other days. So does
+/// the compiler: on Zen 5, clang 14's AVX2
 /// kernel took 70% of GCC 12's time (GCC keeps the matrices of packs on the
 /// stack).
 ///

@@ -4,12 +4,11 @@
 ///
 /// `shadow_batch` and `reflection_batch` (batch/batch.hpp) of CGAL intervals
 /// run the generic formulas on IntervalPack (interval_pack.hpp), compiled
-/// for the build's instruction set. Unlike the double batches, which are
-/// bound by memory, interval packs are bound by arithmetic and registers: a
-/// product is about a dozen vector operations (sign-selected corners) on two
-/// registers per value. On AMD Zen 5 (family 26) the AVX-512 kernel (8 lanes,
-/// 32 registers) took about 2/3 of the AVX2 one's time, while the double
-/// kernel was 5-10% faster with AVX2, which the build therefore takes.
+/// for the build's instruction set (x86-64-v3 with QVERIFY_ARCH=auto, so that
+/// valgrind runs the build). Interval packs are bound by arithmetic and
+/// registers: a product is about a dozen vector operations (sign-selected
+/// corners) on two registers per value. On AMD Zen 5 (family 26) the AVX-512
+/// kernel (8 lanes, 32 registers) takes about 2/3 of the AVX2 one's time.
 ///
 /// These functions are those batches, with one difference: a build that
 /// measured a faster interval kernel for another instruction set than its
