@@ -137,8 +137,9 @@ json processor_json(const ProcessorInfo& p) {
           {"supports", p.supports},
           {"logical_cpus", p.logical_cpus},
           {"source", "/proc/cpuinfo (first processor); instruction_set: what this build was compiled for; double_kernel, "
-                     "lanes: what the double batches run here (a second kernel compiled for another instruction set, "
-                     "chosen at run time, where the build measured it faster), and its doubles per instruction; "
+                     "lanes: what the double batches run here (a second kernel compiled for another instruction set or by "
+                     "another compiler, chosen at run time, where the build measured it faster), and its doubles per "
+                     "instruction; "
                      "interval_kernel: the same for the interval batches; exact_kernel, exact_lanes: the same for the exact "
                      "digit blocks (exact/digit_batch.hpp), and the items of a block"}};
 }

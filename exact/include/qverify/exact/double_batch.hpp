@@ -49,7 +49,8 @@ bool double_batch_dispatched();
 const char* double_batch_second_kernel();
 
 /// Which kernel the two functions above run on this processor: the build's instruction set
-/// ("AVX2", ...), or that of the second copy, e.g. "AVX-512 (run-time dispatch)".
+/// ("AVX2", ...), or that of the second copy, e.g. "AVX-512 (run-time dispatch)" or, compiled by
+/// clang, "AVX2, clang 14.0.6 (run-time dispatch)".
 const char* double_batch_kernel();
 
 /// Doubles per instruction of that kernel (2, 4 or 8).

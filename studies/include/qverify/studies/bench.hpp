@@ -43,7 +43,8 @@ struct ProcessorInfo {
   std::optional<int> family, model;               ///< its cpu family and model
   std::string instruction_set;                    ///< the widest x86 vector extension this build was compiled for
   /// What the double batches run (exact/double_batch.hpp): the build's instruction set, or a
-  /// second kernel's, e.g. "AVX-512 (run-time dispatch)"; and its doubles per instruction (batch/pack.hpp)
+  /// second kernel's, e.g. "AVX-512 (run-time dispatch)" or "AVX2, clang 14.0.6 (run-time
+  /// dispatch)"; and its doubles per instruction (batch/pack.hpp)
   std::string double_kernel;
   int lanes = 1;
   /// What the interval batches run (exact/interval_batch.hpp): the build's instruction set, or
