@@ -305,6 +305,10 @@ Commands declare_commands(CLI::App& app, Options& o) {
   c.bench->add_option("--n", o.bench.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
   c.bench->add_option("--threads", o.bench.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
   c.bench->add_option("--repeats", o.bench.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(CLI::Range(1, 50));
+  c.bench->add_flag("!--no-huge-pages", o.bench.huge_pages,
+                    "Do not advise huge pages for the buffers of the double and interval rows and of the bandwidth "
+                    "copy (they are advised by default, as the batch functions do for the outputs they allocate): "
+                    "the pages malloc gives, for comparison");
   c.bench->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
 
   c.paper = app.add_subcommand("paper", "Audit every printed formula (1)-(11) of the paper against its definition, exactly");

@@ -118,6 +118,8 @@ template <class S> void law_routes_agree(const Mat4<S>& A, const Vec4<S>& L, con
   CHECK(proportional(p.P, d.P, Factor::positive, law_tol<S>()));
   CHECK(proportional(p.polar_plane, d.polar_plane, Factor::positive, law_tol<S>()));
   CHECK(proportional(p.R, d.R, Factor::nonzero, law_tol<S>()));
+  // the direct R forms only the terms of pi h^T + h pi^T without a zero factor of h: the same plane pair
+  CHECK(proportional(d.R, plane_pair<S>(d.polar_plane, frame_plane<S>(L)), Factor::positive, law_tol<S>()));
   // eq. (4) as printed is the tangent cone in the frame of C: D = a3 C - (C e3)(C e3)^T
   const Mat4<S>& C = p.paper.C;
   CHECK(proportional(p.paper.D, tangent_cone<S>(C, Vec4<S>(S(0), S(0), S(1), S(0))), Factor::positive, law_tol<S>()));

@@ -27,7 +27,7 @@ void double_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L, 
 #if QVERIFY_DOUBLE_SECOND_KERNEL_LEVEL  // (else no call to it, not even an unreachable one: -O0 keeps those)
   if (method == Method::direct && second_double_kernel_here()) {
     const Eigen::Index n = batch_items("double_shadow_batch", A.rows(), L.rows());
-    P.resize(n, 10), pi.resize(n, 4), R.resize(n, 10);  // here: the copy never allocates
+    sized_output(P, n), sized_output(pi, n), sized_output(R, n);  // here: the copy never allocates
     second_kernel::shadow(A, L, P, pi, R, threads);
     return;
   }
@@ -40,7 +40,7 @@ void double_reflection_batch(const SymBatch<double>& A, const Vec4Batch<double>&
 #if QVERIFY_DOUBLE_SECOND_KERNEL_LEVEL
   if (method == Method::direct && second_double_kernel_here()) {
     const Eigen::Index n = batch_items("double_reflection_batch", A.rows(), planes.rows());
-    M.resize(n, 12), B.resize(n, 10);
+    sized_output(M, n), sized_output(B, n);
     second_kernel::reflection(A, planes, M, B, threads);
     return;
   }

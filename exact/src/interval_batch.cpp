@@ -26,7 +26,7 @@ void interval_shadow_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A, const Vec4B
 #if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL  // (else no call to it, not even an unreachable one: -O0 keeps those)
   if (method == Method::direct && second_kernel_here()) {
     const Eigen::Index n = batch_items("interval_shadow_batch", A.rows(), L.rows());
-    P.resize(n, 10), pi.resize(n, 4), R.resize(n, 10);
+    sized_output(P, n), sized_output(pi, n), sized_output(R, n);
     second_kernel::shadow(A, L, P, pi, R, threads);
     return;
   }
@@ -41,7 +41,7 @@ void interval_reflection_batch(const SymBatch<CGAL::Interval_nt<Pr>>& A,
 #if QVERIFY_INTERVAL_SECOND_KERNEL_LEVEL
   if (method == Method::direct && second_kernel_here()) {
     const Eigen::Index n = batch_items("interval_reflection_batch", A.rows(), planes.rows());
-    M.resize(n, 12), B.resize(n, 10);
+    sized_output(M, n), sized_output(B, n);
     second_kernel::reflection(A, planes, M, B, threads);
     return;
   }

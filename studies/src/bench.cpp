@@ -172,6 +172,42 @@ double median_of(std::vector<double> t) {
   return t[t.size() / 2];
 }
 
+/// Sizes a buffer of the bench to n rows, advised huge pages when `huge` (batch/pages.hpp), before it is
+/// first written.
+template <class Derived> void bench_sized(Eigen::PlainObjectBase<Derived>& x, Eigen::Index n, bool huge) {
+  x.resize(n, Eigen::NoChange);
+  if (huge) advise_huge_pages(x);
+}
+
+/// The first line of a text file, or "" when it cannot be read.
+std::string first_line(const char* path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+/// The pages the run's buffers got (BenchPages): the system's transparent huge page mode and the
+/// process's anonymous memory on huge pages (/proc/self/smaps_rollup), taken once the buffers are written.
+BenchPages bench_pages(bool advised, std::size_t buffer_bytes) {
+  BenchPages p;
+  p.huge_pages_advised = advised;
+  const std::string mode = first_line("/sys/kernel/mm/transparent_hugepage/enabled");  // "always [madvise] never"
+  const auto open = mode.find('['), close = mode.find(']');
+  if (open != std::string::npos && close != std::string::npos && close > open)
+    p.transparent_huge_pages = mode.substr(open + 1, close - open - 1);
+  p.buffer_bytes = buffer_bytes;
+  std::ifstream in("/proc/self/smaps_rollup");
+  for (std::string key; in >> key;) {
+    if (key == "AnonHugePages:") {
+      std::size_t kib = 0;
+      if (in >> kib) p.anon_huge_page_bytes = kib * 1024;
+      break;
+    }
+  }
+  return p;
+}
+
 /// Stream copy of as many bytes as `bytes` (half read, half written) on `threads`
 /// threads: one sample of the machine's sustainable bandwidth. The copy writes with
 /// non-temporal stores of whole vectors of the pack, as the double batches do
@@ -181,10 +217,12 @@ double median_of(std::vector<double> t) {
 struct StreamCopy {
   static constexpr Eigen::Index W = static_cast<Eigen::Index>(DoublePack::size());
   Eigen::VectorXd src, dst;
-  explicit StreamCopy(std::size_t bytes) {
+  /// Pages as the rows' buffers get them (`huge`: advised huge pages, FloatBuffers), so that the rows and
+  /// their yardstick run on the same kind of pages.
+  StreamCopy(std::size_t bytes, bool huge) {
     const auto half = static_cast<Eigen::Index>(bytes / 2 / sizeof(double) / W * W);
-    src = Eigen::VectorXd::Constant(half, 1.0);
-    dst = Eigen::VectorXd::Zero(half);
+    bench_sized(src, half, huge), bench_sized(dst, half, huge);
+    src.setConstant(1.0), dst.setZero();
   }
   double bytes() const { return static_cast<double>(2 * src.size() * sizeof(double)); }
   void operator()(int threads) {
@@ -509,12 +547,19 @@ struct FloatBuffers {
   Vec4Batch<I> piI;
   AffineBatch<I> MI;
 
-  /// Allocates the buffers of n items, the outputs zeroed.
-  explicit FloatBuffers(Eigen::Index n)
-      : A(n, 10), L(n, 4), AI(n, 10), LI(n, 4), P(SymBatch<double>::Zero(n, 10)), R(SymBatch<double>::Zero(n, 10)),
-        B(SymBatch<double>::Zero(n, 10)), pi(Vec4Batch<double>::Zero(n, 4)), M(AffineBatch<double>::Zero(n, 12)),
-        PI(n, 10), RI(n, 10), BI(n, 10), piI(n, 4), MI(n, 12) {
+  /// Allocates the buffers of n items, each advised huge pages when `huge` (before anything is written to it,
+  /// as the batch functions do for the outputs they allocate: batch/pages.hpp), the outputs zeroed.
+  FloatBuffers(Eigen::Index n, bool huge) {
+    auto size = [&](auto&... x) { (bench_sized(x, n, huge), ...); };
+    size(A, L, AI, LI, P, R, B, pi, M, PI, RI, BI, piI, MI);
+    P.setZero(), R.setZero(), B.setZero(), pi.setZero(), M.setZero();
     PI.setZero(), RI.setZero(), BI.setZero(), piI.setZero(), MI.setZero();
+  }
+
+  /// The bytes of all the buffers.
+  std::size_t bytes() const {
+    auto of = [](const auto&... x) { return (... + (sizeof(x(0, 0)) * static_cast<std::size_t>(x.size()))); };
+    return of(A, L, AI, LI, P, R, B, pi, M, PI, RI, BI, piI, MI);
   }
 
   /// The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals); returns the seconds it took
@@ -914,11 +959,11 @@ class BenchRun {
   explicit BenchRun(const BenchOptions& opt)
       : opt_(opt), n_(opt.n), T_(opt.threads), rounds_(opt.repeats),
         nx_(std::min<Eigen::Index>(n_, bench_exact_items(n_))),
-        copy_(static_cast<std::size_t>(n_) * kShadowBytes) {}
+        copy_(static_cast<std::size_t>(n_) * kShadowBytes, opt.huge_pages) {}
 
   /// The double and interval rows, direct (interleaved with the bandwidth copy) and paper, on every kind of input.
   void float_rows() {
-    FloatBuffers buf(n_);
+    FloatBuffers buf(n_, opt_.huge_pages);
     direct_rows(buf);
     paper_rows(buf);
   }
@@ -1009,6 +1054,7 @@ class BenchRun {
     r.memory_bandwidth_gbps = bandwidth / 1e9;
     for (double t : copy_times_) r.memory_bandwidth_gbps_runs.push_back(copy_.bytes() / t / 1e9);
     r.generation_s = generation_s_;
+    r.pages = pages_;
     r.exact_arithmetic_items = std::min<Eigen::Index>(nx_, kCandidateItems);
     r.exact_arithmetic = std::move(candidates_);
     r.verification = verification_;
@@ -1063,6 +1109,7 @@ class BenchRun {
       }
       timed_copy();
     }
+    pages_ = bench_pages(opt_.huge_pages, b.bytes() + static_cast<std::size_t>(copy_.bytes()));
     for (std::size_t k = 0; k < 3; ++k) {
       rows_.push_back(batch_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n_));
       rows_.push_back(batch_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n_));
@@ -1174,6 +1221,7 @@ class BenchRun {
   std::vector<BenchRow> rows_;
   std::vector<ExactArithmeticCandidate> candidates_;
   BenchVerification verification_;
+  BenchPages pages_;  ///< the pages the double and interval rows' buffers got
 };
 
 }  // namespace

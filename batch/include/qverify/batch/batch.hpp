@@ -26,6 +26,7 @@
 
 #include <qverify/core/mirror.hpp>
 #include <qverify/batch/pack.hpp>
+#include <qverify/batch/pages.hpp>
 #include <qverify/batch/rows.hpp>
 #include <qverify/core/shadow.hpp>
 
@@ -303,6 +304,14 @@ inline Eigen::Index batch_items(const char* function, Eigen::Index quadrics, Eig
   return quadrics;
 }
 
+/// Sizes an output batch to n rows. Storage it allocates anew is advised huge pages before
+/// anything is written to it (pages.hpp says why); storage of the right size is reused as it is.
+template <class Derived> void sized_output(Eigen::PlainObjectBase<Derived>& X, Eigen::Index n) {
+  if (X.rows() == n) return;
+  X.resize(n, Eigen::NoChange);
+  advise_huge_pages(X);
+}
+
 /// P, pi and R of every item (quadric A.row(i), light L.row(i)) by `method`.
 /// Method paper on an item whose frame does not exist uses the direct formulas.
 /// `setup` runs once per thread before its chunk (e.g. to set a rounding mode).
@@ -310,9 +319,7 @@ template <class S, class Setup>
 void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, SymBatch<S>& P, Vec4Batch<S>& pi,
                   SymBatch<S>& R, int threads, Setup&& setup) {
   const Eigen::Index n = batch_items("shadow_batch", A.rows(), L.rows());
-  P.resize(n, 10);
-  pi.resize(n, 4);
-  R.resize(n, 10);
+  sized_output(P, n), sized_output(pi, n), sized_output(R, n);
   auto item = [&](auto lanes, Eigen::Index i) QVERIFY_FLATTEN {
     using Ln = decltype(lanes);
     using T = typename Ln::Pack;
@@ -353,8 +360,7 @@ template <class S, class Setup>
 void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method method, AffineBatch<S>& M,
                       SymBatch<S>& B, int threads, bool scaled, Setup&& setup) {
   const Eigen::Index n = batch_items("reflection_batch", A.rows(), planes.rows());
-  M.resize(n, 12);
-  B.resize(n, 10);
+  sized_output(M, n), sized_output(B, n);
   auto item = [&](auto lanes, Eigen::Index i) QVERIFY_FLATTEN {
     using Ln = decltype(lanes);
     using T = typename Ln::Pack;

@@ -53,9 +53,20 @@ template <class S> Vec4<S> frame_plane(const Vec4<S>& L) {
   return Vec4<S>(S(0), S(0), L(3), S(-L(2)));
 }
 
-/// R from a precomputed polar plane AL (batches reuse it).
+/// R = pi h^T + h pi^T from a precomputed polar plane pi = AL (batches reuse
+/// it), with h = frame_plane(L). h has no x and y components, so the x-y block
+/// of R is zero and every other entry has at most two non-zero terms:
+///   R_ij = 0 (i, j < 2),  R_ij = pi_i h_j (i < 2 <= j),  R_ij = pi_i h_j + h_i pi_j (2 <= i, j).
+/// The terms with a zero factor are not formed: the same values as plane_pair
+/// (up to the sign of a zero in floating point), with 9 products instead of 20,
+/// which the interval batches, at some ten operations per product, feel.
 template <class S> Mat4<S> terminator_quadric_from_polar(const Vec4<S>& L, const Vec4<S>& AL) {
-  return plane_pair<S>(AL, frame_plane<S>(L));
+  const Vec4<S> h = frame_plane<S>(L);
+  return symmetric_from<S>([&](int i, int j) {  // i <= j
+    if (j < 2) return S(0);
+    if (i < 2) return S(AL(i) * h(j));
+    return S(AL(i) * h(j) + h(i) * AL(j));
+  });
 }
 
 /// The quadric R of eq. (6) by the direct route: the polar plane pi read as a

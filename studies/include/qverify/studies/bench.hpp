@@ -26,6 +26,9 @@ struct BenchOptions {
   long n = 10000000;
   int threads = static_cast<int>(std::thread::hardware_concurrency());
   int repeats = 5;  ///< rounds: each row is timed once per round, best of
+  /// Advise huge pages for the buffers of the double and interval rows and of the bandwidth copy alike
+  /// (batch/pages.hpp); false: the pages malloc gives (4 KiB on most systems), for comparison.
+  bool huge_pages = true;
   std::function<void(const std::string&)> progress;
 };
 
@@ -106,6 +109,16 @@ struct BenchVerification {
   double sampling_shadow_s = 0, sampling_reflection_s = 0;
 };
 
+/// The pages the buffers of the double and interval rows and of the bandwidth copy got.
+struct BenchPages {
+  bool huge_pages_advised = false;     ///< BenchOptions::huge_pages
+  std::string transparent_huge_pages;  ///< the system's mode: always, madvise or never ("" where unknown)
+  std::size_t buffer_bytes = 0;        ///< those buffers' bytes
+  /// The process's anonymous memory on huge pages once those buffers were written (/proc/self/smaps_rollup:
+  /// the buffers are most of it); 0 where unknown
+  std::size_t anon_huge_page_bytes = 0;
+};
+
 /// What a benchmark run measured.
 struct BenchReport {
   int threads = 0;
@@ -116,6 +129,7 @@ struct BenchReport {
   double memory_bandwidth_gbps = 0;               ///< the best stream copy of the run
   std::vector<double> memory_bandwidth_gbps_runs;  ///< every copy, in order (two per round)
   double generation_s = 0;                        ///< converting the inputs, untimed by the rows
+  BenchPages pages;
   long exact_arithmetic_items = 0;                ///< items of the exact arithmetic candidates (one thread)
   std::vector<ExactArithmeticCandidate> exact_arithmetic;
   BenchVerification verification;
