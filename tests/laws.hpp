@@ -113,13 +113,14 @@ template <class S> void law_terminator(const Mat4<S>& A, const Vec4<S>& L, const
 /// to a non-zero factor, B equal (the same M).
 template <class S> void law_routes_agree(const Mat4<S>& A, const Vec4<S>& L, const Vec4<S>& plane) {
   const auto d = shadow<S>(A, L, Method::direct);
+  // the direct R forms only the terms of pi h^T + h pi^T without a zero factor of h: the same plane
+  // pair, entry for entry (-0 == +0), for every light
+  CHECK((d.R.array() == plane_pair<S>(d.polar_plane, frame_plane<S>(L)).array()).all());
   const auto p = shadow<S>(A, L, Method::paper);
   if (p.has(ShadowFlag::singular_frame)) return;  // paper falls back to direct there
   CHECK(proportional(p.P, d.P, Factor::positive, law_tol<S>()));
   CHECK(proportional(p.polar_plane, d.polar_plane, Factor::positive, law_tol<S>()));
   CHECK(proportional(p.R, d.R, Factor::nonzero, law_tol<S>()));
-  // the direct R forms only the terms of pi h^T + h pi^T without a zero factor of h: the same plane pair
-  CHECK(proportional(d.R, plane_pair<S>(d.polar_plane, frame_plane<S>(L)), Factor::positive, law_tol<S>()));
   // eq. (4) as printed is the tangent cone in the frame of C: D = a3 C - (C e3)(C e3)^T
   const Mat4<S>& C = p.paper.C;
   CHECK(proportional(p.paper.D, tangent_cone<S>(C, Vec4<S>(S(0), S(0), S(1), S(0))), Factor::positive, law_tol<S>()));

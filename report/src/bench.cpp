@@ -146,13 +146,15 @@ json processor_json(const ProcessorInfo& p) {
 
 json pages_json(const BenchPages& p) {
   return {{"huge_pages_advised", p.huge_pages_advised},
+          {"advised_bytes", p.advised_bytes},
           {"transparent_huge_pages", p.transparent_huge_pages},
           {"buffer_bytes", p.buffer_bytes},
-          {"anon_huge_page_bytes", p.anon_huge_page_bytes},
+          {"buffer_huge_page_bytes", p.buffer_huge_page_bytes},
           {"note", "the buffers of the double and interval rows and of the bandwidth copy, all advised huge pages or "
-                   "none (--no-huge-pages; batch/pages.hpp); transparent_huge_pages: the system's mode "
-                   "(/sys/kernel/mm/transparent_hugepage/enabled); anon_huge_page_bytes: the process's anonymous memory "
-                   "on huge pages once those buffers were written (/proc/self/smaps_rollup)"}};
+                   "none (--no-huge-pages; batch/pages.hpp): huge_pages_advised when asked and the system took the "
+                   "advice (advised_bytes, the whole huge pages inside the buffers); transparent_huge_pages: the "
+                   "system's mode (/sys/kernel/mm/transparent_hugepage/enabled); buffer_huge_page_bytes: the huge "
+                   "pages of the mappings holding those buffers once they were written (/proc/self/smaps)"}};
 }
 
 }  // namespace
@@ -167,7 +169,8 @@ json bench_json(const BenchReport& b) {
           {"memory_bandwidth_gbps", b.memory_bandwidth_gbps},
           {"memory_bandwidth_gbps_runs", b.memory_bandwidth_gbps_runs},
           {"bandwidth_method", "parallel stream copy (non-temporal stores, like the double batches) of as many bytes "
-                               "as the double shadow row moves (read + write), run at the start and at the end of each of the " +
+                               "as the double shadow row moves (read + write), on the same kind of pages as the rows (pages), run at the "
+                               "start and at the end of each of the " +
                                    std::to_string(b.rounds) + " rounds, around the rows; the best copy"},
           {"pages", pages_json(b.pages)},
           {"inputs", inputs_json(b)},
@@ -191,15 +194,16 @@ std::string bench_text(const BenchReport& b) {
   fmt::format_to(put,
                  "{} items, {} threads, memory bandwidth {:.2f} GB/s (measured in this run); build: {}; double batches: "
                  "{}, {} lanes; interval batches: {}; exact digit blocks: {}, {} items at once\n"
-                 "processor: {} {} (family {}, model {})\npages: {} MiB of buffers, {}; {} MiB of the process on huge "
+                 "processor: {} {} (family {}, model {})\npages: {} MiB of buffers, {}; {} MiB of them on huge "
                  "pages (transparent huge pages: {})\n\n",
                  b.n, b.threads, b.memory_bandwidth_gbps, cpu.instruction_set, cpu.double_kernel, cpu.lanes,
                  cpu.interval_kernel,
                  cpu.exact_kernel, cpu.exact_lanes,
                  cpu.vendor.value_or("?"),
                  cpu.model_name.value_or("?"), number(cpu.family), number(cpu.model), b.pages.buffer_bytes >> 20,
-                 b.pages.huge_pages_advised ? "advised huge pages" : "not advised (--no-huge-pages)",
-                 b.pages.anon_huge_page_bytes >> 20,
+                 b.pages.huge_pages_advised ? fmt::format("{} MiB advised huge pages", b.pages.advised_bytes >> 20)
+                                            : std::string("not advised"),
+                 b.pages.buffer_huge_page_bytes >> 20,
                  b.pages.transparent_huge_pages.empty() ? std::string("unknown") : b.pages.transparent_huge_pages);
   fmt::format_to(put, "{:<17} {:<9} {:<8} {:<14} {:>12} {:>10} {:>6} {:>8} {:>9}\n", "op", "precision", "method", "inputs",
                  "items/s", "ns/item", "bytes", "roofline", "x double");

@@ -1,4 +1,5 @@
 #include <qverify/batch/batch.hpp>
+#include <qverify/batch/pages.hpp>
 #include <qverify/core/mirror_division_free.hpp>
 #include <qverify/exact/digit_batch.hpp>
 #include <qverify/exact/double_batch.hpp>
@@ -18,6 +19,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <numeric>
@@ -26,6 +28,7 @@
 #include <sstream>
 #include <thread>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace qverify {
@@ -172,12 +175,25 @@ double median_of(std::vector<double> t) {
   return t[t.size() / 2];
 }
 
-/// Sizes a buffer of the bench to n rows, advised huge pages when `huge` (batch/pages.hpp), before it is
-/// first written.
-template <class Derived> void bench_sized(Eigen::PlainObjectBase<Derived>& x, Eigen::Index n, bool huge) {
-  x.resize(n, Eigen::NoChange);
-  if (huge) advise_huge_pages(x);
-}
+/// The buffers of the double and interval rows and of the bandwidth copy: where each lies, and the bytes
+/// advised huge pages (for BenchPages).
+struct BufferPages {
+  std::vector<std::pair<std::uintptr_t, std::size_t>> spans;  ///< start and bytes of each buffer
+  std::size_t advised = 0;
+
+  /// Sizes a buffer to n rows, advised huge pages when `huge` (batch/pages.hpp) before it is first written.
+  template <class Derived> void size(Eigen::PlainObjectBase<Derived>& x, Eigen::Index n, bool huge) {
+    x.resize(n, Eigen::NoChange);
+    if (huge) advised += advise_huge_pages(x);
+    spans.emplace_back(reinterpret_cast<std::uintptr_t>(x.data()),
+                       sizeof(typename Derived::Scalar) * static_cast<std::size_t>(x.size()));
+  }
+  std::size_t bytes() const {
+    std::size_t b = 0;
+    for (const auto& s : spans) b += s.second;
+    return b;
+  }
+};
 
 /// The first line of a text file, or "" when it cannot be read.
 std::string first_line(const char* path) {
@@ -187,22 +203,35 @@ std::string first_line(const char* path) {
   return line;
 }
 
-/// The pages the run's buffers got (BenchPages): the system's transparent huge page mode and the
-/// process's anonymous memory on huge pages (/proc/self/smaps_rollup), taken once the buffers are written.
-BenchPages bench_pages(bool advised, std::size_t buffer_bytes) {
+/// The pages the buffers got (BenchPages), taken once they are written: the system's transparent huge page
+/// mode, and the huge pages of the mappings that hold them (/proc/self/smaps: each large buffer is a mapping
+/// of its own, malloc's mmap; a mapping shared with other data counts whole).
+BenchPages bench_pages(bool asked, const std::vector<const BufferPages*>& buffers) {
   BenchPages p;
-  p.huge_pages_advised = advised;
+  for (const BufferPages* b : buffers) p.advised_bytes += b->advised, p.buffer_bytes += b->bytes();
+  p.huge_pages_advised = asked && p.advised_bytes > 0;
   const std::string mode = first_line("/sys/kernel/mm/transparent_hugepage/enabled");  // "always [madvise] never"
   const auto open = mode.find('['), close = mode.find(']');
   if (open != std::string::npos && close != std::string::npos && close > open)
     p.transparent_huge_pages = mode.substr(open + 1, close - open - 1);
-  p.buffer_bytes = buffer_bytes;
-  std::ifstream in("/proc/self/smaps_rollup");
-  for (std::string key; in >> key;) {
-    if (key == "AnonHugePages:") {
+  auto holds_a_buffer = [&](std::uintptr_t lo, std::uintptr_t hi) {
+    for (const BufferPages* b : buffers)
+      for (const auto& [start, bytes] : b->spans)
+        if (start < hi && lo < start + bytes) return true;
+    return false;
+  };
+  std::ifstream in("/proc/self/smaps");
+  bool counting = false;  // the current mapping holds a buffer
+  for (std::string line; std::getline(in, line);) {
+    std::uintptr_t lo = 0, hi = 0;
+    char dash = 0;
+    std::istringstream fields(line);
+    if (line.find("AnonHugePages:") == 0) {
+      std::string key;
       std::size_t kib = 0;
-      if (in >> kib) p.anon_huge_page_bytes = kib * 1024;
-      break;
+      if (counting && (fields >> key >> kib)) p.buffer_huge_page_bytes += kib * 1024;
+    } else if (fields >> std::hex >> lo >> dash >> hi && dash == '-') {  // a mapping's first line: "lo-hi perms ..."
+      counting = holds_a_buffer(lo, hi);
     }
   }
   return p;
@@ -217,11 +246,12 @@ BenchPages bench_pages(bool advised, std::size_t buffer_bytes) {
 struct StreamCopy {
   static constexpr Eigen::Index W = static_cast<Eigen::Index>(DoublePack::size());
   Eigen::VectorXd src, dst;
+  BufferPages pages;
   /// Pages as the rows' buffers get them (`huge`: advised huge pages, FloatBuffers), so that the rows and
   /// their yardstick run on the same kind of pages.
   StreamCopy(std::size_t bytes, bool huge) {
     const auto half = static_cast<Eigen::Index>(bytes / 2 / sizeof(double) / W * W);
-    bench_sized(src, half, huge), bench_sized(dst, half, huge);
+    pages.size(src, half, huge), pages.size(dst, half, huge);
     src.setConstant(1.0), dst.setZero();
   }
   double bytes() const { return static_cast<double>(2 * src.size() * sizeof(double)); }
@@ -549,17 +579,13 @@ struct FloatBuffers {
 
   /// Allocates the buffers of n items, each advised huge pages when `huge` (before anything is written to it,
   /// as the batch functions do for the outputs they allocate: batch/pages.hpp), the outputs zeroed.
+  BufferPages pages;
+
   FloatBuffers(Eigen::Index n, bool huge) {
-    auto size = [&](auto&... x) { (bench_sized(x, n, huge), ...); };
+    auto size = [&](auto&... x) { (pages.size(x, n, huge), ...); };
     size(A, L, AI, LI, P, R, B, pi, M, PI, RI, BI, piI, MI);
     P.setZero(), R.setZero(), B.setZero(), pi.setZero(), M.setZero();
     PI.setZero(), RI.setZero(), BI.setZero(), piI.setZero(), MI.setZero();
-  }
-
-  /// The bytes of all the buffers.
-  std::size_t bytes() const {
-    auto of = [](const auto&... x) { return (... + (sizeof(x(0, 0)) * static_cast<std::size_t>(x.size()))); };
-    return of(A, L, AI, LI, P, R, B, pi, M, PI, RI, BI, piI, MI);
   }
 
   /// The inputs of one kind, converted into A, L (doubles) and AI, LI (intervals); returns the seconds it took
@@ -1109,7 +1135,7 @@ class BenchRun {
       }
       timed_copy();
     }
-    pages_ = bench_pages(opt_.huge_pages, b.bytes() + static_cast<std::size_t>(copy_.bytes()));
+    pages_ = bench_pages(opt_.huge_pages, {&b.pages, &copy_.pages});
     for (std::size_t k = 0; k < 3; ++k) {
       rows_.push_back(batch_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n_));
       rows_.push_back(batch_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n_));

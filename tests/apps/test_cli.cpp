@@ -295,6 +295,15 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
   CHECK(text.find("<figure id=\"plot\">") != std::string::npos);
 }
 
+TEST_CASE("bench --no-huge-pages leaves the buffers to malloc, and says so", "[cli]") {
+  const Run r = run("bench --n 1000 --repeats 1 --no-huge-pages --json");
+  REQUIRE(r.code == 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  CHECK(doc["pages"]["huge_pages_advised"] == false);
+  CHECK(doc["pages"]["advised_bytes"] == 0);
+  CHECK(doc["pages"]["buffer_bytes"].get<double>() > 1000.0 * (304 + 608));
+}
+
 TEST_CASE("bench --json reports plausible rows against the bandwidth measured in the same run", "[cli][bench]") {
   const Run r = run("bench --n 500000 --repeats 2 --json");
   REQUIRE(r.code == 0);
@@ -331,6 +340,15 @@ TEST_CASE("bench --json reports plausible rows against the bandwidth measured in
   CHECK(doc["exact_arithmetic"]["candidates"][0]["arithmetic"] == "DigitPack<24>");
   for (const auto& c : doc["exact_arithmetic"]["candidates"]) CHECK(c["shadow_ns_per_item"].get<double>() > 0);
   CHECK(doc["memory_bandwidth_gbps_runs"].size() == 4);  // two copies a round
+  // the pages of the rows' and the copy's buffers: advised huge pages by default, where the kernel has them
+  const auto& pages = doc["pages"];
+  CHECK(pages["buffer_bytes"].get<double>() > 500000.0 * (304 + 608));  // at least the double and interval rows'
+  CHECK(pages["advised_bytes"].get<double>() <= pages["buffer_bytes"].get<double>());
+  CHECK(pages["huge_pages_advised"] == (pages["advised_bytes"].get<double>() > 0));
+  if (std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled").good()) {
+    CHECK(pages["huge_pages_advised"] == true);
+    CHECK(pages["transparent_huge_pages"] != "");
+  }
   // what the double and interval rows ran on: the library's own answers (exact/double_batch.hpp,
   // exact/interval_batch.hpp), in both places
   CHECK(doc["processor"]["double_kernel"] == std::string(qverify::double_batch_kernel()));

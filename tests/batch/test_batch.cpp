@@ -258,6 +258,36 @@ TEST_CASE("interval packs give CGAL's bounds, operation by operation", "[batch][
   CHECK(refused > 1000);
 }
 
+TEST_CASE("the terminator quadric of intervals is the plane pair pi h^T + h pi^T, bound for bound", "[batch][pack]") {
+  // terminator_quadric_from_polar leaves out the terms with a zero factor of h and doubles the diagonal's one
+  // product (core/shadow.hpp): for CGAL intervals and for interval packs the same bounds as plane_pair
+  CGAL::Protect_FPU_rounding<true> upward;
+  std::mt19937_64 g(12);
+  constexpr int W = static_cast<int>(DoublePack::size());
+  for (int t = 0; t < 2000; ++t) {
+    Vec4<IF> pi[W], L[W];
+    for (int j = 0; j < W; ++j) {
+      for (int k = 0; k < 4; ++k) pi[j](k) = random_interval(g), L[j](k) = random_interval(g);
+      L[j](3) = t % 2 ? IF(0) : IF(1);  // parallel and point lights, one kind per pack
+    }
+    for (int j = 0; j < W; ++j) {
+      const Mat4<IF> R = terminator_quadric_from_polar<IF>(L[j], pi[j]);
+      const Mat4<IF> pair = plane_pair<IF>(pi[j], frame_plane<IF>(L[j]));
+      for (int k = 0; k < 16; ++k) REQUIRE(same_bounds(R(k), pair(k)));
+    }
+    Vec4<IntervalPack> ppi, pL;
+    for (int k = 0; k < 4; ++k) {
+      ppi(k) = IntervalPack{DoublePack([&](auto j) { return -pi[j](k).inf(); }), DoublePack([&](auto j) { return pi[j](k).sup(); })};
+      pL(k) = IntervalPack{DoublePack([&](auto j) { return -L[j](k).inf(); }), DoublePack([&](auto j) { return L[j](k).sup(); })};
+    }
+    const Mat4<IntervalPack> R = terminator_quadric_from_polar<IntervalPack>(pL, ppi);
+    for (int j = 0; j < W; ++j) {
+      const Mat4<IF> pair = plane_pair<IF>(pi[j], frame_plane<IF>(L[j]));
+      for (int k = 0; k < 16; ++k) REQUIRE(same_bounds(pack_lane(R(k), j), pair(k)));
+    }
+  }
+}
+
 namespace {
 /// Batches of CGAL intervals by packs, against the same formulas item by item with CGAL's
 /// Interval_nt (bound for bound), and against the exact results (enclosure). `dispatched`: by

@@ -10,8 +10,8 @@
 /// prefetchers and write-combining buffers track; measured by `qverify bench`.)
 ///
 /// One implementation of every formula: the items are computed by the *same*
-/// generic functions as a single item (polar_plane, tangent_cone_from_polar,
-/// terminator_quadric_from_polar, mirror_matrix, mirror_image_of_plane, the
+/// generic functions as a single item (polar_plane, tangent_cone_entries,
+/// terminator_entries, mirror_matrix, mirror_image_entries, the
 /// paper's route), instantiated either with the scalar itself, one item at a
 /// time, or with a SIMD pack of W items ("lanes", pack.hpp): the direct route
 /// in double runs W = 2 items per instruction on SSE2 (4 with AVX, 8 with
@@ -243,6 +243,16 @@ template <class Ln> void store_sym_lanes(typename Ln::Scalar* row0, const Mat4<t
   for (int k = 0; k < 10; ++k) v[k] = m(kSymRow[k], kSymCol[k]);
   Ln::template store<10>(row0, 10, v);
 }
+/// The ten entries f(i, j) (i <= j, in the row order kSymRow/kSymCol) of a symmetric result,
+/// stored straight from the formula's entry function (tangent_cone_entries, terminator_entries,
+/// mirror_image_entries): without the 4x4 matrix of packs that store_sym_lanes takes, which GCC
+/// keeps on the stack and copies (with the data in the caches, one thread, the interval shadow
+/// kernel went from 25.2 to 23.7-24.5 ns per item, GCC's double one from 8.1 to 6.7; README, "bench").
+template <class Ln, class F> void store_sym_entries(typename Ln::Scalar* row0, const F& f) {
+  typename Ln::Pack v[10];
+  for (int k = 0; k < 10; ++k) v[k] = f(kSymRow[k], kSymCol[k]);
+  Ln::template store<10>(row0, 10, v);
+}
 template <class Ln> void store_vec4_lanes(typename Ln::Scalar* row0, const Vec4<typename Ln::Pack>& p) {
   const typename Ln::Pack v[4] = {p(0), p(1), p(2), p(3)};
   Ln::template store<4>(row0, 4, v);
@@ -304,12 +314,16 @@ inline Eigen::Index batch_items(const char* function, Eigen::Index quadrics, Eig
   return quadrics;
 }
 
-/// Sizes an output batch to n rows. Storage it allocates anew is advised huge pages before
-/// anything is written to it (pages.hpp says why); storage of the right size is reused as it is.
-template <class Derived> void sized_output(Eigen::PlainObjectBase<Derived>& X, Eigen::Index n) {
-  if (X.rows() == n) return;
+/// Sizes an output batch to n rows; storage of the right size is reused as it is. Storage it
+/// allocates anew is advised huge pages before anything is written to it (pages.hpp says why),
+/// for scalars that Eigen leaves uninitialised (double, CGAL intervals): Eigen constructs the others
+/// (GMP rationals, MPFR numbers) in resize, which touches every page first. Returns the bytes
+/// advised.
+template <class Derived> std::size_t sized_output(Eigen::PlainObjectBase<Derived>& X, Eigen::Index n) {
+  if (X.rows() == n) return 0;
   X.resize(n, Eigen::NoChange);
-  advise_huge_pages(X);
+  if constexpr (Eigen::NumTraits<typename Derived::Scalar>::RequireInitialization) return 0;
+  else return advise_huge_pages(X);
 }
 
 /// P, pi and R of every item (quadric A.row(i), light L.row(i)) by `method`.
@@ -339,9 +353,9 @@ void shadow_batch(const SymBatch<S>& A, const Vec4Batch<S>& L, Method method, Sy
       }
     }
     const Vec4<T> p = polar_plane<T>(a, l);
-    store_sym_lanes<Ln>(&P(i, 0), tangent_cone_from_polar<T>(a, l, p));
+    store_sym_entries<Ln>(&P(i, 0), tangent_cone_entries<T>(a, l, p));
     store_vec4_lanes<Ln>(&pi(i, 0), p);
-    store_sym_lanes<Ln>(&R(i, 0), terminator_quadric_from_polar<T>(l, p));
+    store_sym_entries<Ln>(&R(i, 0), terminator_entries<T>(l, p));
   };
   if (method == Method::paper) for_each_block<ScalarLanes<S>>(n, threads, setup, item);
   else for_each_block<BatchLanes<S>>(n, threads, setup, item);
@@ -375,7 +389,7 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
       if (scaled) return store_sym_lanes<Ln>(&B(i, 0), mirror_image<T>(a, m));
       if (method == Method::paper) return store_sym_lanes<Ln>(&B(i, 0), mirror_image_paper<T>(a, m));
     }
-    store_sym_lanes<Ln>(&B(i, 0), mirror_image_from<T>(a, h, pl));
+    store_sym_entries<Ln>(&B(i, 0), mirror_image_entries<T>(a, h, pl));
   };
   if (method == Method::paper || scaled) for_each_block<ScalarLanes<S>>(n, threads, setup, item);
   else for_each_block<BatchLanes<S>>(n, threads, setup, item);

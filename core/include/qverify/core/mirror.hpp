@@ -84,15 +84,21 @@ template <class S> Mat4<S> mirror_image_paper(const Mat4<S>& A, const Mat4<S>& M
 /// and as u_4 = h_4 = 0 only the first three columns of A enter a:
 /// 12 + 3 + 4 + 20 = 39 products (two 4x4 products take 128), and the same B
 /// exactly in exact arithmetic (tests check the identity).
-/// `h` = mirror_half_direction(plane).
-template <class S> Mat4<S> mirror_image_from(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
+/// `h` = mirror_half_direction(plane). mirror_image_entries gives B_ij as a
+/// function of (i, j) (batches store the ten entries of packs straight from
+/// it, as tangent_cone_entries in shadow.hpp); it refers to A and the plane:
+/// use it while they live.
+template <class S> auto mirror_image_entries(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
   const Vec3<S> u(h(0) + h(0), h(1) + h(1), h(2) + h(2));
   Vec4<S> a;
   for (int i = 0; i < 4; ++i) a(i) = ordered_dot<S, 3>(A.row(i).template head<3>().transpose(), u);
   const S beta = ordered_dot<S, 3>(h.template head<3>(), a.template head<3>());  // u^T a / 2
   Vec4<S> c;
   for (int i = 0; i < 4; ++i) c(i) = a(i) - beta * plane(i);
-  return symmetric_from<S>([&](int i, int j) { return S(A(i, j) - (plane(i) * c(j) + c(i) * plane(j))); });
+  return [&A, &plane, c](int i, int j) { return S(A(i, j) - (plane(i) * c(j) + c(i) * plane(j))); };
+}
+template <class S> Mat4<S> mirror_image_from(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
+  return symmetric_from<S>(mirror_image_entries<S>(A, h, plane));
 }
 
 template <class S> Mat4<S> mirror_image_of_plane(const Mat4<S>& A, const Vec4<S>& plane) {

@@ -111,12 +111,14 @@ struct BenchVerification {
 
 /// The pages the buffers of the double and interval rows and of the bandwidth copy got.
 struct BenchPages {
-  bool huge_pages_advised = false;     ///< BenchOptions::huge_pages
+  /// BenchOptions::huge_pages, and the system took the advice (advised_bytes > 0)
+  bool huge_pages_advised = false;
+  std::size_t advised_bytes = 0;       ///< the bytes advised (whole huge pages inside the buffers)
   std::string transparent_huge_pages;  ///< the system's mode: always, madvise or never ("" where unknown)
   std::size_t buffer_bytes = 0;        ///< those buffers' bytes
-  /// The process's anonymous memory on huge pages once those buffers were written (/proc/self/smaps_rollup:
-  /// the buffers are most of it); 0 where unknown
-  std::size_t anon_huge_page_bytes = 0;
+  /// The huge pages of the mappings that hold those buffers once they were written (/proc/self/smaps);
+  /// 0 where none or unknown
+  std::size_t buffer_huge_page_bytes = 0;
 };
 
 /// What a benchmark run measured.
