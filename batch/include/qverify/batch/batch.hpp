@@ -260,6 +260,15 @@ void store_sym_entries(typename Ln::Scalar* row0, const F& f, std::index_sequenc
 template <class Ln, class F> void store_sym_entries(typename Ln::Scalar* row0, const F& f) {
   store_sym_entries<Ln>(row0, f, std::make_index_sequence<10>{});
 }
+/// The same for rows 1-3 of an affine matrix, f(i, j) for i < 3, j < 4 (mirror_matrix_entries).
+template <class Ln, class F, std::size_t... K>
+void store_affine_entries(typename Ln::Scalar* row0, const F& f, std::index_sequence<K...>) {
+  const typename Ln::Pack v[12] = {f(static_cast<int>(K / 4), static_cast<int>(K % 4))...};
+  Ln::template store<12>(row0, 12, v);
+}
+template <class Ln, class F> void store_affine_entries(typename Ln::Scalar* row0, const F& f) {
+  store_affine_entries<Ln>(row0, f, std::make_index_sequence<12>{});
+}
 template <class Ln> void store_vec4_lanes(typename Ln::Scalar* row0, const Vec4<typename Ln::Pack>& p) {
   const typename Ln::Pack v[4] = {p(0), p(1), p(2), p(3)};
   Ln::template store<4>(row0, 4, v);
@@ -387,15 +396,16 @@ void reflection_batch(const SymBatch<S>& A, const Vec4Batch<S>& planes, Method m
     using T = typename Ln::Pack;
     const Mat4<T> a = load_sym_lanes<Ln>(&A(i, 0));
     const Vec4<T> pl = load_vec4_lanes<Ln>(&planes(i, 0));
-    const Vec4<T> h = scaled ? Vec4<T>::Zero().eval() : mirror_half_direction<T>(pl);  // the one division
-    const Mat4<T> m = scaled ? scaled_mirror_matrix<T>(pl) : mirror_matrix_from<T>(h, pl);
-    const T rows[12] = {m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 0), m(1, 1),
-                        m(1, 2), m(1, 3), m(2, 0), m(2, 1), m(2, 2), m(2, 3)};
-    Ln::template store<12>(&M(i, 0), 12, rows);
     if constexpr (Ln::width == 1) {
-      if (scaled) return store_sym_lanes<Ln>(&B(i, 0), mirror_image<T>(a, m));
-      if (method == Method::paper) return store_sym_lanes<Ln>(&B(i, 0), mirror_image_paper<T>(a, m));
+      if (scaled || method == Method::paper) {
+        const Mat4<T> m = scaled ? scaled_mirror_matrix<T>(pl) : mirror_matrix<T>(pl);
+        store_affine_entries<Ln>(&M(i, 0), [&m](int r, int c) { return m(r, c); });
+        if (scaled) return store_sym_lanes<Ln>(&B(i, 0), mirror_image<T>(a, m));
+        return store_sym_lanes<Ln>(&B(i, 0), mirror_image_paper<T>(a, m));
+      }
     }
+    const Vec4<T> h = mirror_half_direction<T>(pl);  // the one division
+    store_affine_entries<Ln>(&M(i, 0), mirror_matrix_entries<T>(h, pl));
     store_sym_entries<Ln>(&B(i, 0), mirror_image_entries<T>(a, h, pl));
   };
   if (method == Method::paper || scaled) for_each_block<ScalarLanes<S>>(n, threads, setup, item);

@@ -25,13 +25,21 @@ template <class S> Vec4<S> mirror_half_direction(const Vec4<S>& plane) {
   return Vec4<S>(k * n(0), k * n(1), k * n(2), S(0));
 }
 
+/// The entries of rows 1-3 of M = E - 2 h w^T, M_ij = E_ij - (h_i + h_i) w_j
+/// (i < 3), from h = mirror_half_direction(w), as a function of (i, j):
+/// batches store the twelve entries of packs straight from it (as
+/// tangent_cone_entries in shadow.hpp). It refers to h and the plane: use it
+/// while they live.
+template <class S> auto mirror_matrix_entries(const Vec4<S>& h, const Vec4<S>& plane) {
+  return [&h, &plane](int i, int j) { return S((i == j ? S(1) : S(0)) - (h(i) + h(i)) * plane(j)); };
+}
+
 /// M = E - 2 h w^T from h = mirror_half_direction(w), entry by entry.
 template <class S> Mat4<S> mirror_matrix_from(const Vec4<S>& h, const Vec4<S>& plane) {
+  const auto entry = mirror_matrix_entries<S>(h, plane);
   Mat4<S> M = Mat4<S>::Identity();
-  for (int i = 0; i < 3; ++i) {
-    const S u = h(i) + h(i);
-    for (int j = 0; j < 4; ++j) M(i, j) = M(i, j) - u * plane(j);
-  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) M(i, j) = entry(i, j);
   return M;
 }
 
