@@ -154,7 +154,8 @@ json pages_json(const BenchPages& p) {
                    "none (--no-huge-pages; batch/pages.hpp): huge_pages_advised when asked and the system took the "
                    "advice (advised_bytes, the whole huge pages inside the buffers); transparent_huge_pages: the "
                    "system's mode (/sys/kernel/mm/transparent_hugepage/enabled); buffer_huge_page_bytes: the huge "
-                   "pages of the mappings holding those buffers once they were written (/proc/self/smaps)"}};
+                   "pages of the mappings holding those buffers once they were written (/proc/self/smaps; a mapping that also "
+                   "holds other data counts at most its bytes of the buffers: an upper bound there)"}};
 }
 
 }  // namespace

@@ -205,7 +205,8 @@ std::string first_line(const char* path) {
 
 /// The pages the buffers got (BenchPages), taken once they are written: the system's transparent huge page
 /// mode, and the huge pages of the mappings that hold them (/proc/self/smaps: each large buffer is a mapping
-/// of its own, malloc's mmap; a mapping shared with other data counts whole).
+/// of its own, malloc's mmap; a mapping shared with other data counts at most its bytes of the buffers, so
+/// the figure is an upper bound there).
 BenchPages bench_pages(bool asked, const std::vector<const BufferPages*>& buffers) {
   BenchPages p;
   for (const BufferPages* b : buffers) p.advised_bytes += b->advised, p.buffer_bytes += b->bytes();
@@ -214,14 +215,17 @@ BenchPages bench_pages(bool asked, const std::vector<const BufferPages*>& buffer
   const auto open = mode.find('['), close = mode.find(']');
   if (open != std::string::npos && close != std::string::npos && close > open)
     p.transparent_huge_pages = mode.substr(open + 1, close - open - 1);
-  auto holds_a_buffer = [&](std::uintptr_t lo, std::uintptr_t hi) {
+  auto buffer_bytes_in = [&](std::uintptr_t lo, std::uintptr_t hi) {  // of the buffers, inside [lo, hi)
+    std::size_t inside = 0;
     for (const BufferPages* b : buffers)
-      for (const auto& [start, bytes] : b->spans)
-        if (start < hi && lo < start + bytes) return true;
-    return false;
+      for (const auto& [start, bytes] : b->spans) {
+        const std::uintptr_t from = std::max(lo, start), to = std::min(hi, start + bytes);
+        if (from < to) inside += to - from;
+      }
+    return inside;
   };
   std::ifstream in("/proc/self/smaps");
-  bool counting = false;  // the current mapping holds a buffer
+  std::size_t inside = 0;  // the current mapping's bytes of the buffers
   for (std::string line; std::getline(in, line);) {
     std::uintptr_t lo = 0, hi = 0;
     char dash = 0;
@@ -229,9 +233,10 @@ BenchPages bench_pages(bool asked, const std::vector<const BufferPages*>& buffer
     if (line.find("AnonHugePages:") == 0) {
       std::string key;
       std::size_t kib = 0;
-      if (counting && (fields >> key >> kib)) p.buffer_huge_page_bytes += kib * 1024;
+      // a mapping that holds other data too (the heap) counts no more than its bytes of the buffers
+      if (inside > 0 && (fields >> key >> kib)) p.buffer_huge_page_bytes += std::min(kib * 1024, inside);
     } else if (fields >> std::hex >> lo >> dash >> hi && dash == '-') {  // a mapping's first line: "lo-hi perms ..."
-      counting = holds_a_buffer(lo, hi);
+      inside = buffer_bytes_in(lo, hi);
     }
   }
   return p;
@@ -577,10 +582,10 @@ struct FloatBuffers {
   Vec4Batch<I> piI;
   AffineBatch<I> MI;
 
+  BufferPages pages;  ///< where the buffers lie and what was advised
+
   /// Allocates the buffers of n items, each advised huge pages when `huge` (before anything is written to it,
   /// as the batch functions do for the outputs they allocate: batch/pages.hpp), the outputs zeroed.
-  BufferPages pages;
-
   FloatBuffers(Eigen::Index n, bool huge) {
     auto size = [&](auto&... x) { (pages.size(x, n, huge), ...); };
     size(A, L, AI, LI, P, R, B, pi, M, PI, RI, BI, piI, MI);

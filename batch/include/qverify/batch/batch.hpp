@@ -11,7 +11,7 @@
 ///
 /// One implementation of every formula: the items are computed by the *same*
 /// generic functions as a single item (polar_plane, tangent_cone_entries,
-/// terminator_entries, mirror_matrix, mirror_image_entries, the
+/// terminator_entries, mirror_matrix_entries, mirror_image_entries, the
 /// paper's route), instantiated either with the scalar itself, one item at a
 /// time, or with a SIMD pack of W items ("lanes", pack.hpp): the direct route
 /// in double runs W = 2 items per instruction on SSE2 (4 with AVX, 8 with

@@ -30,7 +30,7 @@ template <class S> Vec4<S> mirror_half_direction(const Vec4<S>& plane) {
 /// batches store the twelve entries of packs straight from it (as
 /// tangent_cone_entries in shadow.hpp). It refers to h and the plane: use it
 /// while they live.
-template <class S> auto mirror_matrix_entries(const Vec4<S>& h, const Vec4<S>& plane) {
+template <class S> [[nodiscard]] auto mirror_matrix_entries(const Vec4<S>& h, const Vec4<S>& plane) {
   return [&h, &plane](int i, int j) { return S((i == j ? S(1) : S(0)) - (h(i) + h(i)) * plane(j)); };
 }
 
@@ -96,7 +96,7 @@ template <class S> Mat4<S> mirror_image_paper(const Mat4<S>& A, const Mat4<S>& M
 /// function of (i, j) (batches store the ten entries of packs straight from
 /// it, as tangent_cone_entries in shadow.hpp); it refers to A and the plane:
 /// use it while they live.
-template <class S> auto mirror_image_entries(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
+template <class S> [[nodiscard]] auto mirror_image_entries(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
   const Vec3<S> u(h(0) + h(0), h(1) + h(1), h(2) + h(2));
   Vec4<S> a;
   for (int i = 0; i < 4; ++i) a(i) = ordered_dot<S, 3>(A.row(i).template head<3>().transpose(), u);
@@ -105,6 +105,7 @@ template <class S> auto mirror_image_entries(const Mat4<S>& A, const Vec4<S>& h,
   for (int i = 0; i < 4; ++i) c(i) = a(i) - beta * plane(i);
   return [&A, &plane, c](int i, int j) { return S(A(i, j) - (plane(i) * c(j) + c(i) * plane(j))); };
 }
+/// B = A - w c^T - c w^T, the mirror image from h (the matrix of mirror_image_entries).
 template <class S> Mat4<S> mirror_image_from(const Mat4<S>& A, const Vec4<S>& h, const Vec4<S>& plane) {
   return symmetric_from<S>(mirror_image_entries<S>(A, h, plane));
 }
