@@ -7,6 +7,8 @@
 // preempting the probe does not count against either instruction set). Prints the ns per item;
 // exits non-zero when a result is not finite (a kernel that does not work is not timed).
 //   arch_probe double|interval|exact [items] [runs]   (interval, exact: built with -DQVERIFY_PROBE_INTERVAL=1)
+// and, not measured by the configure but for comparing builds by hand (scripts/alternate),
+//   arch_probe double-reflection|interval-reflection [items] [runs]   (the reflection batch)
 #include <qverify/batch/batch.hpp>
 #if QVERIFY_PROBE_INTERVAL  // where CGAL, GMP and MPFR were found (cmake/ChooseArch.cmake)
 #include <qverify/exact/interval_pack.hpp>
@@ -31,8 +33,9 @@ double thread_seconds() {
 }
 }  // namespace
 
-/// The best time per item of `runs` runs of shadow_batch<S> on n small-rational items.
-template <class S, class Setup> int time_kernel(Eigen::Index n, int runs, Setup setup) {
+/// The best time per item of `runs` runs of shadow_batch<S> (reflection_batch<S> with `reflection`, the
+/// lights read as mirror planes) on n small-rational items.
+template <class S, class Setup> int time_kernel(Eigen::Index n, int runs, Setup setup, bool reflection = false) {
   using namespace qverify;
   SymBatch<S> A(n, 10), P(n, 10), R(n, 10);
   Vec4Batch<S> L(n, 4), pi(n, 4);
@@ -48,16 +51,19 @@ template <class S, class Setup> int time_kernel(Eigen::Index n, int runs, Setup 
     L(i, 2) = S(z == 0 ? 1.0 : z);
     L(i, 3) = S(1);  // point lights
   }
-  P.setConstant(S(0)), R.setConstant(S(0)), pi.setConstant(S(0));  // the output pages are touched before the timing
+  AffineBatch<S> M(reflection ? n : 0, 12);
+  P.setConstant(S(0)), R.setConstant(S(0)), pi.setConstant(S(0)), M.setConstant(S(0));  // the output pages are
+                                                                                        // touched before the timing
   double best = HUGE_VAL;
   for (int r = 0; r < runs; ++r) {
     const double t0 = thread_seconds();
-    shadow_batch<S>(A, L, Method::direct, P, pi, R, 1, setup);
+    if (reflection) reflection_batch<S>(A, L, Method::direct, M, P, 1, false, setup);
+    else shadow_batch<S>(A, L, Method::direct, P, pi, R, 1, setup);
     best = std::min(best, thread_seconds() - t0);
   }
   auto finite = [](const S& x) { return ScalarOps<S>::finite(x); };
   for (Eigen::Index i : {Eigen::Index(0), n / 2, n - 1})
-    if (!finite(P(i, 0)) || !finite(R(i, 9)) || !finite(pi(i, 3))) return 1;
+    if (!finite(P(i, 0)) || !finite(R(i, 9)) || !finite(pi(i, 3)) || (reflection && !finite(M(i, 11)))) return 1;
   std::printf("%.2f\n", 1e9 * best / static_cast<double>(n));
   return 0;
 }
@@ -97,9 +103,12 @@ int main(int argc, char** argv) {
   const int runs = argc > 3 ? std::atoi(argv[3]) : 5;
   if (n < 1 || runs < 1) return 2;
   if (kind == "double") return time_kernel<double>(n, runs, [] { return 0; });
+  if (kind == "double-reflection") return time_kernel<double>(n, runs, [] { return 0; }, true);
 #if QVERIFY_PROBE_INTERVAL
   if (kind == "interval")
     return time_kernel<CGAL::Interval_nt<false>>(n, runs, [] { return CGAL::Protect_FPU_rounding<true>(); });
+  if (kind == "interval-reflection")
+    return time_kernel<CGAL::Interval_nt<false>>(n, runs, [] { return CGAL::Protect_FPU_rounding<true>(); }, true);
   if (kind == "exact") return time_exact(n, runs);
 #endif
   return 2;
