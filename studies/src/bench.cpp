@@ -207,10 +207,10 @@ std::string first_line(const char* path) {
 /// mode, and the huge pages of the mappings that hold them (/proc/self/smaps: each large buffer is a mapping
 /// of its own, malloc's mmap; a mapping shared with other data counts at most its bytes of the buffers, so
 /// the figure is an upper bound there).
-BenchPages bench_pages(bool asked, const std::vector<const BufferPages*>& buffers) {
+BenchPages bench_pages(const std::vector<const BufferPages*>& buffers) {
   BenchPages p;
   for (const BufferPages* b : buffers) p.advised_bytes += b->advised, p.buffer_bytes += b->bytes();
-  p.huge_pages_advised = asked && p.advised_bytes > 0;
+  p.huge_pages_advised = p.advised_bytes > 0;  // bytes are advised only when asked (BufferPages::size)
   const std::string mode = first_line("/sys/kernel/mm/transparent_hugepage/enabled");  // "always [madvise] never"
   const auto open = mode.find('['), close = mode.find(']');
   if (open != std::string::npos && close != std::string::npos && close > open)
@@ -1140,7 +1140,7 @@ class BenchRun {
       }
       timed_copy();
     }
-    pages_ = bench_pages(opt_.huge_pages, {&b.pages, &copy_.pages});
+    pages_ = bench_pages({&b.pages, &copy_.pages});
     for (std::size_t k = 0; k < 3; ++k) {
       rows_.push_back(batch_row(kKinds[k], "shadow", "double", "direct", t[4 * k], kShadowBytes, n_));
       rows_.push_back(batch_row(kKinds[k], "reflection", "double", "direct", t[4 * k + 1], kReflectionBytes, n_));

@@ -295,7 +295,7 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
   CHECK(text.find("<figure id=\"plot\">") != std::string::npos);
 }
 
-TEST_CASE("bench --no-huge-pages leaves the buffers to malloc, and says so", "[cli]") {
+TEST_CASE("bench --no-huge-pages leaves the buffers to malloc and says so", "[cli]") {
   const Run r = run("bench --n 1000 --repeats 1 --no-huge-pages --json");
   REQUIRE(r.code == 0);
   const auto doc = nlohmann::json::parse(r.out);
