@@ -161,7 +161,7 @@ PyShadow shadow_py(py::handle A_in, py::handle L_in, const std::string& method_t
   sc.lights.push_back(l);
   sc.shadows.push_back(Pair{0, 0});
 
-  const json doc = eval_one(sc, prec, method, frame, accuracy);
+  const json doc = eval_one(sc, prec, method, frame ? frame : Frame::world_rounded, accuracy);
   const json& item = doc.at("shadows").at(0);
   const bool exact = prec.kind == Precision::Kind::exact;
   PyShadow r;
@@ -198,7 +198,7 @@ PyReflection reflection_py(py::handle A_in, py::handle plane_in, const std::stri
   sc.mirrors.push_back(mir);
   sc.reflections.push_back(Pair{0, 0});
 
-  const json doc = eval_one(sc, prec, method, frame, accuracy);
+  const json doc = eval_one(sc, prec, method, frame ? frame : Frame::world_rounded, accuracy);
   const json& item = doc.at("reflections").at(0);
   const bool exact = prec.kind == Precision::Kind::exact;
   PyReflection r;
@@ -289,9 +289,10 @@ PYBIND11_MODULE(_qverify, m) {
 
 Matrices are float64 numpy arrays (each entry the nearest double to the
 computed value; an interval enclosure: to its midpoint), or nested lists of
-fractions.Fraction with precision="exact". When `origin` is not None they
-are written in local coordinates x - origin (the robust double path for
-objects far from the world origin; pass frame="world" to avoid it).
+fractions.Fraction with precision="exact", in world coordinates: computed
+in a local frame where that is more accurate (an object far from the world
+origin), moved back exactly and rounded once. Only with frame="local" may
+`origin` be set: they are then written in local coordinates x - origin.
 
 Attributes:
     P: the shadow cone (tangent cone of A with apex L), up to a positive
@@ -339,7 +340,7 @@ Attributes:
   py::class_<PyReflection>(m, "ReflectionResult", R"(The mirror image of a quadric A in a plane (qverify.reflection).
 
 Matrices as in ShadowResult (float64 numpy arrays, or lists of Fraction with
-precision="exact"; in local coordinates x - origin when origin is not None).
+precision="exact"; in world coordinates unless frame="local" set `origin`).
 
 Attributes:
     M: the reflection in the mirror plane (last row 0 0 0 1).
@@ -383,8 +384,10 @@ Args:
     precision: "float", "double", "long-double", "float128", "mpfr:BITS",
         "interval" or "exact".
     accuracy: the accuracy target of error_bound (default 1e-9).
-    frame: None (default: local frames for floating precisions, method
-        direct), "local" or "world".
+    frame: None (default): results in world coordinates, computed in a
+        local frame where that is more accurate and moved back exactly
+        (rounded once); "local": results in that local frame (`origin`);
+        "world": computed in world coordinates throughout.
 
 Returns:
     ShadowResult: P, polar_plane, R, status, flags, error_bound, ...

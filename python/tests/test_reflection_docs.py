@@ -35,6 +35,22 @@ def test_check_reflection_fails_for_wrong_results():
     assert not qverify.check_reflection(A, plane, B=-r.B).passed  # the image's sign matters
 
 
+def test_default_reflection_is_in_world_coordinates():
+    # an image far from the world origin: computed in a local frame, given in world coordinates
+    A = sphere_at([300.1, -2.3, 400.7], Fraction(1, 1))
+    plane = [0.6, 0, 0.8, -900.3]  # the image about 1300 radii away
+    r = qverify.reflection(A, plane)
+    assert r.origin is None and r.frame == "world" and r.flags == []
+    assert qverify.reflection(A, plane, frame="local").origin is not None
+    assert np.array_equal(r.M[3], [0, 0, 0, 1])
+    n, d = np.array(plane[:3]), plane[3]
+    M = np.eye(4)
+    M[:3, :3] -= 2 * np.outer(n, n) / (n @ n)
+    M[:3, 3] = -2 * d * n / (n @ n)
+    assert np.allclose(r.M, M, rtol=0, atol=1e-12)
+    assert qverify.check_reflection(A, plane, M=r.M, B=r.B).passed
+
+
 def test_slanted_mirror_exact_plane():
     A = sphere_at([0, 0, 0], 1)
     plane = [Fraction(1, 3), Fraction(2, 3), Fraction(2, 3), -5]

@@ -161,11 +161,36 @@ def test_every_precision_and_method_passes_its_check(precision, method):
 def test_far_object_local_frame_and_world_frame():
     A = sphere_at([1e7 + 0.5, 0, 0], Fraction(1, 1000))
     L = [1e7, 1, 2, 1]
-    s = qverify.shadow(A, L)
+    s = qverify.shadow(A, L, frame="local")
     assert s.origin is not None and s.frame == "local"
     assert qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R, origin=s.origin).passed
     # the same matrices read in world coordinates are wrong
     assert not qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R).passed
+    # by default the results are in world coordinates, where no double matrix holds this object
+    # (1e10 radii from the origin): rounded once from the local ones, and flagged, as the check agrees
+    w = qverify.shadow(A, L)
+    assert w.origin is None and w.frame == "world" and "inaccurate" in w.flags
+    assert not qverify.check_shadow(A, L, P=w.P, polar_plane=w.polar_plane, R=w.R).passed
+
+
+@pytest.mark.parametrize("centre", [[100.3, -7.1, 0.2], [0.1, 700.7, 3.3]])
+def test_default_results_are_in_world_coordinates(centre):
+    # The contract's flow, shadow() then check_shadow() of its arrays with no origin, on objects far
+    # enough from the world origin (about 130 and 930 radii) for the robust path to use local frames.
+    # (Far beyond, no double matrix in world coordinates holds the object: the test above.)
+    A = sphere_at(centre, Fraction(3, 4))
+    for L in ([centre[0] + 5, centre[1] - 2, centre[2] + 9, 1], [1, 0.5, -2, 0]):
+        s = qverify.shadow(A, L)
+        assert s.origin is None and s.frame == "world" and s.flags == [], s
+        assert qverify.shadow(A, L, frame="local").origin is not None
+        rep = qverify.check_shadow(A, L, P=s.P, polar_plane=s.polar_plane, R=s.R)
+        assert rep.passed and rep.geometric_error <= s.error_bound, rep.summary
+        # P is the textbook cone up to a positive factor: compare up to scale with the same formula in
+        # plain doubles, entry by entry relative to the largest
+        Ad, Ld = np.asarray(A, dtype=float), np.asarray(L, dtype=float)
+        P0 = (Ld @ Ad @ Ld) * Ad - np.outer(Ad @ Ld, Ad @ Ld)
+        k = np.unravel_index(np.argmax(abs(P0)), P0.shape)
+        assert np.allclose(s.P / s.P[k], P0 / P0[k], rtol=0, atol=1e-6)
 
 
 def test_special_statuses(sphere):

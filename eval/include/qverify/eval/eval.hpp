@@ -21,8 +21,16 @@ namespace qverify {
 
 /// Which frame floating results are computed in: `world`, or `local` (the
 /// robust default: per-object origin, exact change of frame, power-of-two
-/// normalisation; see frames.hpp).
-enum class Frame { world, local };
+/// normalisation; see frames.hpp). `world_rounded`: computed as by default
+/// (local frames where the default takes them), then given in world
+/// coordinates, each result moved there exactly from its local frame and
+/// rounded once (move_to_world): for callers that read matrices without an
+/// `origin` (the Python module's qverify.shadow and qverify.reflection). A
+/// world result cannot be better than its rounding: where the local frame is
+/// what made a result accurate (a small object far from the world origin,
+/// R's planes crossing on the terminator at a light height that is no
+/// multiple of a power of two) the world one may be flagged inaccurate.
+enum class Frame { world, local, world_rounded };
 
 /// The default frame: local for floating types with the direct method (the
 /// paper's route is defined in world coordinates: T depends on l_z).
@@ -113,6 +121,7 @@ template <class S> struct PreparedReflection {
   Mat4<S> A;
   bool local = false;
   Mat4<S> G, M;
+  Mat4<S> M_world;  ///< Frame::world_rounded: the exact world M rounded once (move_to_world)
   std::optional<Vec3<Rational>> origin;
   std::optional<std::pair<Mat4<Rational>, Mat4<Rational>>> exact;  ///< A and G, exactly (robust path)
 };
@@ -147,7 +156,7 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
   ev.frame = frame;
   ev.prepared_shadows.clear();
   ev.prepared_reflections.clear();
-  if (frame == Frame::world) {
+  if (frame == Frame::world || (frame == Frame::world_rounded && default_frame<S>(method) == Frame::world)) {
     for (const Pair& p : sc.shadows) {
       PreparedShadow<S> ps{p, ev.scene.A[p.quadric], ev.scene.L[p.other], std::nullopt, std::nullopt};
       normalise_pow2(ps.A);
@@ -222,6 +231,7 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     pr.G = rounded_scaled<S>(G);
     if constexpr (std::is_floating_point_v<S>) pr.exact = std::make_pair(local_A(p.quadric), G);
     pr.M = rounded_scaled<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
+    if (frame == Frame::world_rounded) pr.M_world = rounded_scaled<S>(M);
     pr.origin = oB;
     ev.prepared_reflections.push_back(pr);
   }
@@ -237,6 +247,37 @@ template <class S> ReflectionItem<S> escalated_reflection(const PreparedReflecti
 extern template ReflectionItem<float> escalated_reflection<float>(const PreparedReflection<float>&);
 extern template ReflectionItem<double> escalated_reflection<double>(const PreparedReflection<double>&);
 extern template ReflectionItem<long double> escalated_reflection<long double>(const PreparedReflection<long double>&);
+
+/// Frame::world_rounded: an item computed in a local frame (origin o), moved to world coordinates
+/// exactly, Q = T^-T Q_local T^-1 for P, R and the quadric as used, plane = T^-T plane_local (T the
+/// translation by o, frames.hpp), and rounded once to S with a power-of-two scaling (the results are
+/// projective). An item without an origin is already in world coordinates; a non-finite one stays
+/// non-finite (flagged so in any frame).
+template <class S> void move_to_world(ShadowItem<S>& it) {
+  if constexpr (!ScalarOps<S>::interval) {  // (intervals have no local frames)
+    if (!it.origin) return;
+    const Vec3<Rational> o = *it.origin;
+    it.origin.reset();
+    ShadowResult<S>& r = it.result;
+    if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R) || !all_finite(it.A)) return;
+    r.P = rounded_scaled<S>(quadric_from_local(exact_matrix(r.P), o));
+    r.polar_plane = rounded_scaled<S>(plane_from_local(exact_matrix(r.polar_plane), o));
+    r.R = rounded_scaled<S>(quadric_from_local(exact_matrix(r.R), o));
+    it.A = rounded_scaled<S>(quadric_from_local(exact_matrix(it.A), o));
+  }
+}
+/// The same for a reflection: B moved exactly and rounded once; M, the exact world reflection
+/// rounded once (pr.M_world), rather than the local one moved back.
+template <class S> void move_to_world(ReflectionItem<S>& it, const PreparedReflection<S>& pr) {
+  if constexpr (!ScalarOps<S>::interval) {
+    if (!it.origin) return;
+    const Vec3<Rational> o = *it.origin;
+    it.origin.reset();
+    it.M = pr.M_world;
+    if (!all_finite(it.result.B)) return;
+    it.result.B = rounded_scaled<S>(quadric_from_local(exact_matrix(it.result.B), o));
+  }
+}
 
 /// Computes every prepared item by `method` (the timed part of an audit).
 template <class S> void evaluate_items(const Scene& sc, Method method, Evaluation<S>& ev) {
@@ -280,6 +321,10 @@ template <class S> Evaluation<S> evaluate(const Scene& sc, Method method, std::o
   ev.scene = typed_scene<S>(sc);
   prepare<S>(sc, frame ? *frame : default_frame<S>(method), ev, method);
   evaluate_items<S>(sc, method, ev);
+  if (ev.frame == Frame::world_rounded) {
+    for (ShadowItem<S>& it : ev.shadows) move_to_world(it);
+    for (std::size_t k = 0; k < ev.reflections.size(); ++k) move_to_world(ev.reflections[k], ev.prepared_reflections[k]);
+  }
   return ev;
 }
 
@@ -335,6 +380,7 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
         const PreparedShadow<S>& ps = ev.prepared_shadows[k];
         if (ev.shadow_accuracy[k].inaccurate && ps.exact && method == Method::direct && !ev.shadows[k].escalated) {
           ev.shadows[k] = escalated_shadow<S>(ps);
+          if (ev.frame == Frame::world_rounded) move_to_world(ev.shadows[k]);
           ev.shadow_accuracy[k] = measure(ev.shadows[k]);
         }
       }
@@ -351,6 +397,7 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
         const PreparedReflection<S>& pr = ev.prepared_reflections[k];
         if (ev.reflection_accuracy[k].inaccurate && pr.exact && !ev.reflections[k].escalated) {
           ev.reflections[k] = escalated_reflection<S>(pr);
+          if (ev.frame == Frame::world_rounded) move_to_world(ev.reflections[k], pr);
           ev.reflection_accuracy[k] = measure(ev.reflections[k]);
         }
       }
