@@ -577,8 +577,13 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   CHECK(light_plane_meets_terminator(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1)));
   CHECK_FALSE(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>(0, 0, 10), Q(1)));
   CHECK_FALSE(light_plane_meets_terminator(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1)));
-  for (const Frame frame : {Frame::local, Frame::world}) {
-    INFO((frame == Frame::local ? "default frame" : "world frame"));
+  // world_rounded: the default frame's results moved to world coordinates exactly and rounded once;
+  // R, rounded there, is as far from the crossing points as the world frame's, and flagged the same way
+  const ResultSet local = computed_results(sc, dbl, Method::direct, Frame::local, AccuracyOptions{});
+  REQUIRE(local.shadows.size() == 1);
+  REQUIRE(local.shadows[0].origin);
+  for (const Frame frame : {Frame::local, Frame::world, Frame::world_rounded}) {
+    INFO((frame == Frame::local ? "default frame" : frame == Frame::world ? "world frame" : "world, rounded once"));
     const ResultSet rs = computed_results(sc, dbl, Method::direct, frame, AccuracyOptions{});
     REQUIRE(rs.shadows.size() == 1);
     const ShadowMatrices& s = rs.shadows[0];
@@ -588,6 +593,22 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
     if (frame == Frame::local) {
       REQUIRE(s.origin);
       CHECK((*s.origin)(2) == to_rational(0.3));  // the light's height, rounded to a double
+    } else {
+      CHECK_FALSE(s.origin);
+    }
+    if (frame == Frame::world_rounded) {
+      // the local results moved exactly, within a rounding and up to a positive factor (the item may
+      // have been recomputed in binary128, scaled otherwise, once its world R was found inaccurate)
+      const Vec3<Q>& ol = *local.shadows[0].origin;
+      auto near = [](const auto& got, const auto& want) {
+        const Q f = max_abs(got) / max_abs(want);
+        for (Eigen::Index i = 0; i < want.size(); ++i)
+          if (abs_of<Q>(Q(got(i) - f * want(i))) > max_abs(got) / Q(boost::multiprecision::mpz_int(1) << 50)) return false;
+        return true;
+      };
+      CHECK(near(s.P, quadric_from_local(local.shadows[0].P, ol)));
+      CHECK(near(s.R, quadric_from_local(local.shadows[0].R, ol)));
+      CHECK(near(s.polar, plane_from_local(local.shadows[0].polar, ol)));
     }
     Measure worst = 0;
     for (int sign : {1, -1}) {
