@@ -448,6 +448,34 @@ TEST_CASE("verify: wrong cones, planes and signs fail - also in exact arithmetic
   }
 }
 
+TEST_CASE("verify: R's second plane is checked away from the line where R's planes cross", "[verdicts][verify]") {
+  // A vertical cylinder's polar plane is vertical: the point of h above a terminator chord's midpoint lies on
+  // the line where R's planes cross, where R's gradient vanishes and a first-order distance from a rounded R
+  // measured 0.096: accurate double results failed. The same for a point sphere (one terminator point, size 0).
+  for (const char* quadric : {R"({"id": "q", "cylinder": {"point": [0.1, 0.2, 0.3], "axis": [0, 0, 1], "radius": 0.7}})",
+                              R"({"id": "q", "sphere": {"center": [0.1, 0.2, 0.3], "radius": 0}})"}) {
+    INFO(quadric);
+    const Scene sc = parse_scene(std::string(R"({"format": "qverify-scene/1", "name": "h", "quadrics": [)") + quadric +
+                                     R"(], "lights": [{"id": "lamp", "position": [3.3, 4.1, 7.9]}, {"id": "near",
+                                     "position": [0.8, 0.2, 0.3]}]})",
+                                 "h.json");
+    for (const char* precision : {"double", "long-double"})
+      CHECK(verify_results(sc, computed_results(sc, *parse_precision(precision), Method::direct), {}).failed == 0);
+    // an R through the terminator (the polar plane's pair) whose second plane is h tilted by 1/1000: fails
+    const ResultSet good = exact_results(sc);
+    REQUIRE(failures(sc, good) == 0);
+    ResultSet bad = good;
+    for (std::size_t k = 0; k < bad.shadows.size(); ++k) {
+      auto& s = bad.shadows[k];
+      const Q lz = k == 0 ? Q(79, 10) : Q(3, 10);
+      const Vec4<Q> tilted(Q(1, 1000), 0, 1, -lz);
+      s.R = s.polar * tilted.transpose() + tilted * s.polar.transpose();
+    }
+    CHECK(failures(sc, bad) == 2);
+    CHECK(failures(sc, rounded(bad)) == 2);
+  }
+}
+
 TEST_CASE("verify: a far-away candidate computed naively in world coordinates fails", "[verdicts][verify]") {
   const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [{"id": "ball", "sphere":
       {"center": [37000000.25, 1.5, -2], "radius": 0.001}}], "lights": [{"id": "lamp", "position": [37000000.5, 2, 3]}],
