@@ -47,12 +47,13 @@ bool wants_local_frame(const Vec3<Rational>& center, const Rational& s2);
 /// (light_height_origin): there h = (0, 0, 1, -d) with d tiny or 0, and R's entries are pi's, exact.
 bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
-/// Does a shadow item want the frame at the light's height? Where h meets the terminator near the
-/// object: always for an ellipsoid (its terminator is bounded), else where the light's height is within
-/// 4 sizes (s2 = size_squared; 1 for a cone, 4 units then) of the quadric's centre (none for a
-/// paraboloid: it keeps its frame, bounded looser); an unbounded terminator crossed far away
-/// (a cylinder's, say) is bounded at first order in the item's ball, and a frame there would only put
-/// the object away from its origin.
+/// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
+/// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
+/// terminator; for another quadric with a centre wherever the light's height is within 4 sizes of it
+/// (s2 = size_squared; 1 for a cone, 4 units then), met or not: its terminator may be unbounded, and is
+/// bounded in a ball about the sampled points, which R's crossing line may cross away from the
+/// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
+/// bound in the item's ball holds, and a frame there would only put the object away from its origin.
 bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
                               const std::optional<Vec3<Rational>>& centre, const Rational& s2);
 
