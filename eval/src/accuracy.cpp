@@ -786,12 +786,62 @@ void CoveredBound::check(const std::function<Measure(const std::string&)>& sampl
   }
 }
 
+const std::vector<Vec4<Q>>& sign_probes() {
+  static const std::vector<Vec4<Q>> ys = [] {
+    std::vector<Vec4<Q>> out;
+    for (int i = 0; i < 4; ++i) {
+      out.push_back(Vec4<Q>::Unit(i));
+      for (int j = i + 1; j < 4; ++j) {
+        out.push_back(Vec4<Q>(Vec4<Q>::Unit(i) + Vec4<Q>::Unit(j)));
+        out.push_back(Vec4<Q>(Vec4<Q>::Unit(i) - Vec4<Q>::Unit(j)));
+      }
+    }
+    return out;
+  }();
+  return ys;
+}
+
+bool same_sign_as(const Mat4<Q>& got, const std::function<Q(const Vec4<Q>&)>& ref) {
+  Q best = 0;
+  Vec4<Q> at = Vec4<Q>::Zero();
+  for (const Vec4<Q>& y : sign_probes()) {
+    const Q r = ref(y);
+    if (abs_of<Q>(r) > abs_of<Q>(best)) best = r, at = y;
+  }
+  if (best == 0) return true;
+  return sign_of<Q>(form(got, at)) == sign_of<Q>(best);
+}
+
+std::string shadow_sign_problem(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar) {
+  const Vec4<Q> pi = A * L;
+  const Q s = L.dot(pi);
+  if (P && !same_sign_as(*P, [&](const Vec4<Q>& y) { const Q t = pi.dot(y); return Q(s * form(A, y) - t * t); }))
+    return "P has the wrong sign (the contract fixes (L^T A L) A - (A L)(A L)^T up to a positive factor)";
+  if (polar && !pi.isZero() && !same_orientation(*polar, pi))
+    return "polar_plane has the wrong orientation (must be A L up to a positive factor)";
+  return "";
+}
+
+namespace {
+/// A result of the wrong sign: wrong whatever its geometric error (which cannot see a sign).
+ItemAccuracy wrong_sign(const std::string& problem) {
+  ItemAccuracy acc;
+  acc.reason = problem + ": no error bound is given";
+  acc.inaccurate = true;
+  return acc;
+}
+}  // namespace
+
 ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
     : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))),
       bounds_(A, L, pts_) {}
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
+  const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
+  if (const std::string sign = shadow_sign_problem(quadric_to_local(A_, o), point_to_local(L_, o), &P, &polar);
+      !sign.empty())
+    return wrong_sign(sign);
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
@@ -837,6 +887,9 @@ ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const A
       pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))), bounds_(A, M_, pts_) {}
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
+  const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
+  if (!same_sign_as(B, [&](const Vec4<Q>& y) { return form(B_ref, y); }))
+    return wrong_sign("B has the wrong sign (the contract fixes M^T A M up to a positive factor)");
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },

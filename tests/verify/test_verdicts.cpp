@@ -423,6 +423,41 @@ int failures(const Scene& sc, const ResultSet& rs) { return verify_results(sc, r
 
 }  // namespace
 
+TEST_CASE("eval flags a result of the wrong sign, which no geometric error sees, as verify fails it",
+          "[verdicts][accuracy]") {
+  // A light on a cylinder 1e9 away, by the paper's route in world coordinates: P = -(A L)(A L)^T (s = 0)
+  // came out with the opposite sign, its zero set right (error_bound 1.2e-16), unflagged.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "sign", "quadrics": [{"id": "cy", "cylinder":
+      {"point": [1000000000.1, -999999999.8, 1000000000.3], "axis": [0, 0, 1], "radius": 0.7}}],
+      "lights": [{"id": "on", "position": [1000000000.8, -999999999.8, 1000000000.3]}]})",
+                               "sign.json");
+  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::paper);
+  REQUIRE(rs.shadows.size() == 1);
+  const ShadowMatrices& s = rs.shadows[0];
+  REQUIRE(s.accuracy);
+  INFO(s.accuracy->reason);
+  CHECK(s.accuracy->inaccurate);
+  CHECK_FALSE(s.accuracy->bound);
+  CHECK(s.accuracy->reason.find("wrong sign") != std::string::npos);
+  CHECK(failures(sc, rs) == 1);
+  // the sign judged directly: -P fails where P passes, for every example item
+  for (const char* name : {"ball-lamp-floor.json", "mixed-requests.json"}) {
+    const Scene ex = load_scene(std::string(QVERIFY_SCENES) + "/" + name);
+    const ResultSet good = exact_results(ex);
+    const TypedScene<Q> t = typed_scene<Q>(ex);
+    for (std::size_t k = 0; k < good.shadows.size(); ++k) {
+      if (!good.shadows[k].present) continue;
+      const Pair& p = ex.shadows[k];
+      const ShadowMatrices& g = good.shadows[k];
+      CHECK(shadow_sign_problem(t.A[p.quadric], t.L[p.other], &g.P, &g.polar).empty());
+      const Mat4<Q> minus = -g.P;
+      const Vec4<Q> flipped = -g.polar;
+      CHECK_FALSE(shadow_sign_problem(t.A[p.quadric], t.L[p.other], &minus, nullptr).empty());
+      CHECK_FALSE(shadow_sign_problem(t.A[p.quadric], t.L[p.other], nullptr, &flipped).empty());
+    }
+  }
+}
+
 TEST_CASE("verify: the correctly rounded result passes, one entry off by 1e-7 fails", "[verdicts][verify]") {
   for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {
     INFO(name);

@@ -24,12 +24,6 @@ template <int R, int C> Eigen::Matrix<Q, R, C> abs_matrix(const Eigen::Matrix<Q,
   return m.unaryExpr([](const Q& x) { return x < 0 ? Q(-x) : x; });
 }
 
-/// Sign of the entry of X at the pivot (largest entry) of the reference.
-template <int R, int C> bool same_orientation(const Eigen::Matrix<Q, R, C>& X, const Eigen::Matrix<Q, R, C>& ref) {
-  const Eigen::Index p = pivot_index(ref);
-  return sign_of<Q>(X(p)) == sign_of<Q>(ref(p));
-}
-
 bool symmetric_within(const Mat4<Q>& X, const Measure& tol) {
   const Mat4<Q> d = X - X.transpose();
   const Q big = max_abs(X);
@@ -47,36 +41,6 @@ Measure inf_norm(const Mat4<Q>& m) {
   return best;
 }
 
-/// y^T X y.
-Q form(const Mat4<Q>& X, const Vec4<Q>& y) { return y.dot(X * y); }
-
-/// Test points e_i and e_i +- e_j: for a non-zero symmetric X one of them has
-/// |y^T X y| >= |X|_max, so the sign there is robust to small errors of X.
-std::vector<Vec4<Q>> sign_probes() {
-  std::vector<Vec4<Q>> ys;
-  for (int i = 0; i < 4; ++i) {
-    ys.push_back(Vec4<Q>::Unit(i));
-    for (int j = i + 1; j < 4; ++j) {
-      ys.push_back(Vec4<Q>(Vec4<Q>::Unit(i) + Vec4<Q>::Unit(j)));
-      ys.push_back(Vec4<Q>(Vec4<Q>::Unit(i) - Vec4<Q>::Unit(j)));
-    }
-  }
-  return ys;
-}
-
-/// Does `got` have the sign of the reference quadratic form `ref` (computed
-/// here from A and L or M, not by the functions under test)? Judged at the
-/// probe where |ref| is largest; true when ref vanishes at every probe.
-template <class F> bool same_sign_as(const Mat4<Q>& got, F ref) {
-  Q best = 0;
-  Vec4<Q> at = Vec4<Q>::Zero();
-  for (const Vec4<Q>& y : sign_probes()) {
-    const Q r = ref(y);
-    if (abs_of<Q>(r) > abs_of<Q>(best)) best = r, at = y;
-  }
-  if (best == 0) return true;
-  return sign_of<Q>(form(got, at)) == sign_of<Q>(best);
-}
 
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
 /// for a point light, the plane at infinity for a parallel one), in the
@@ -336,10 +300,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   }
   if (got.P && !symmetric_within(*got.P, T)) problems.push_back("P is not symmetric");
   if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
-  if (got.P && !same_sign_as(*got.P, [&](const Vec4<Q>& y) { const Q t = pi_ref.dot(y); return Q(s * form(Ae, y) - t * t); }))
-    problems.push_back("P has the wrong sign (the contract fixes (L^T A L) A - (A L)(A L)^T up to a positive factor)");
-  if (got.polar_plane && !pi_ref.isZero() && !same_orientation(*got.polar_plane, pi_ref))
-    problems.push_back("polar_plane has the wrong orientation (must be A L up to a positive factor)");
+  if (const std::string sign = shadow_sign_problem(Ae, Le, got.P ? &*got.P : nullptr,
+                                                   got.polar_plane ? &*got.polar_plane : nullptr);
+      !sign.empty())
+    problems.push_back(sign);
   if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
   if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
     problems.push_back("R is zero where it should not be (or the converse)");

@@ -253,6 +253,31 @@ struct ItemAccuracy {
   double attained = 0;
 };
 
+/// Signs (cli.md: P and B up to a *positive* factor, the polar plane A L up to
+/// a positive factor). A geometric error cannot see them: -P has P's zero set.
+/// Judged exactly, against references computed from the exact inputs, the
+/// same way by eval (a result of the wrong sign is flagged) and verify.
+///
+/// Test points e_i and e_i +- e_j: for a non-zero symmetric X one of them has
+/// |y^T X y| >= |X|_max, so the sign there is robust to errors of X below a
+/// quarter of its largest entry.
+const std::vector<Vec4<Rational>>& sign_probes();
+/// y^T X y.
+inline Rational form(const Mat4<Rational>& X, const Vec4<Rational>& y) { return y.dot(X * y); }
+/// Does `got` have the sign of the reference quadratic form `ref` (y -> y^T Ref y)? Judged at the
+/// probe where |ref| is largest; true when ref vanishes at every probe.
+bool same_sign_as(const Mat4<Rational>& got, const std::function<Rational(const Vec4<Rational>&)>& ref);
+/// The sign of a plane's (or a matrix's) entry at the pivot (largest entry) of the reference.
+template <int R, int C>
+bool same_orientation(const Eigen::Matrix<Rational, R, C>& X, const Eigen::Matrix<Rational, R, C>& ref) {
+  const Eigen::Index p = pivot_index(ref);
+  return sign_of<Rational>(X(p)) == sign_of<Rational>(ref(p));
+}
+/// P against (L^T A L) A - (A L)(A L)^T and the polar plane against A L, A and L in the results'
+/// frame: the first that has the wrong sign, or "" (results not given: not judged).
+std::string shadow_sign_problem(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
+                                const Vec4<Rational>* polar);
+
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).
 struct AccuracyOptions {
   double target = kDefaultAccuracy;
