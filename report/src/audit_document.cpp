@@ -29,11 +29,6 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   r["ns_per_item"] = row.ns_per_item;
   error_fields(r, row.stats);
   r["items"] = n_items;
-  if (!f.not_computed.empty()) {  // nothing was computed: no counts to give (null, not 0)
-    r["inaccurate_items"] = r["reps_per_batch"] = r["batches"] = r["inputs_rounded"] = nullptr;
-    r["not_computed"] = f.not_computed;
-    return r;
-  }
   r["inaccurate_items"] = f.inaccurate_items;
   r["reps_per_batch"] = f.reps_per_batch;
   r["batches"] = f.batches;
@@ -157,10 +152,6 @@ std::string audit_text(const AuditReport& a, const std::string& dir) {
   auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : std::string("-"); };
   for (const AuditRow& r : a.rows) {
     const double bits = -std::log2(r.stats.max);
-    if (r.ladder && !r.ladder->not_computed.empty()) {
-      out += fmt::format("{:<12} {:<9} not computed: {}\n", r.precision, r.method, r.ladder->not_computed);
-      continue;
-    }
     out += fmt::format("{:<12} {:<9} {:>12.1f} {:>14} {:>14} {:>8} {:>11}  {}\n", r.precision, r.method, r.ns_per_item,
                        num(r.stats.max), num(r.stats.median), r.stats.max == 0 ? std::string("exact") : num(bits),
                        r.ladder ? fmt::format("{}/{}", r.ladder->inaccurate_items, a.items.size()) : std::string("-"),

@@ -50,12 +50,6 @@ std::string audit_html(const json& doc, const std::string& svg) {
   for (const auto& r : doc["rows"]) {
     const std::string key = r["precision"].get<std::string>() + "/" + r["method"].get<std::string>();
     const bool front = std::find(pareto.begin(), pareto.end(), key) != pareto.end();
-    if (r.contains("not_computed")) {  // a precision that cannot hold the scene's numbers
-      b += "<tr><td class=\"l\">" + sci(r["precision"]) + "</td><td class=\"l\">" + sci(r["method"]) +
-           "</td><td class=\"l\" colspan=\"7\">not computed: " + html_escape(r["not_computed"].get<std::string>()) +
-           "</td></tr>\n";
-      continue;
-    }
     b += std::string("<tr") + (front ? " class=\"pareto\"" : "") + "><td class=\"l\">" + sci(r["precision"]) +
          "</td><td class=\"l\">" + sci(r["method"]) + "</td><td>" + sci(r["ns_per_item"]) + "</td><td>" +
          sci(r["max_rel_error"]) + "</td><td>" + sci(r["median_rel_error"]) + "</td><td>" +

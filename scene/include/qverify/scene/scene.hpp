@@ -80,22 +80,26 @@ Scene parse_scene(const std::string& text, const std::string& file);
 
 /// The scene in scalar type S: matrices of the quadrics, homogeneous lights,
 /// mirror planes. Each input number is rounded once (exactly kept for exact
-/// types); a number outside the range of S is an InputError with its path.
+/// types), to nearest: a number beyond the range of S to an infinity. Such a
+/// scene is legal (numbers have no size limit) and is not refused: its
+/// statuses are predicates of the exact inputs, the robust path computes from
+/// the exact inputs scaled by powers of two (eval.hpp, rounded_scaled), and an
+/// item computed from an infinite input is non-finite, flagged so.
 template <class S> struct TypedScene {
   std::vector<Mat4<S>> A;
   std::vector<Vec4<S>> L;
   std::vector<Vec4<S>> planes;
-  /// Paths of the inputs that S cannot represent exactly (rounded once).
+  /// Paths of the inputs that S cannot represent exactly (rounded once), those beyond its range included.
   std::vector<std::string> rounded_inputs;
+  /// Paths of the inputs beyond the range of S (rounded to an infinity).
+  std::vector<std::string> out_of_range;
 };
 
-template <class S> S typed_number(const Num& n, const std::string& file, TypedScene<S>& ts) {
+template <class S> S typed_number(const Num& n, TypedScene<S>& ts) {
   RoundingReport rep;
   S v = round_rational<S>(n.value, rep);
-  if (rep.overflow)
-    throw InputError(file, n.path, "value " + (n.text.empty() ? n.value.str() : n.text).substr(0, 60) +
-                                       " is out of range for " + scalar_name<S>() + " (use --precision exact or mpfr)");
-  if (rep.inexact) ts.rounded_inputs.push_back(n.path);
+  if (rep.overflow) ts.out_of_range.push_back(n.path);
+  if (rep.inexact || rep.overflow) ts.rounded_inputs.push_back(n.path);
   return v;
 }
 
@@ -134,7 +138,7 @@ template <class S> TypedScene<S> typed_scene(const Scene& sc) {
   auto conv = [&](const std::vector<Num>& ns) {
     std::vector<S> out;
     out.reserve(ns.size());
-    for (const Num& n : ns) out.push_back(typed_number<S>(n, sc.file, ts));
+    for (const Num& n : ns) out.push_back(typed_number<S>(n, ts));
     return out;
   };
   for (const QuadricSpec& q : sc.quadrics) ts.A.push_back(build_quadric<S>(q, conv(q.params)));

@@ -56,9 +56,6 @@ struct LadderFacts {
   int batches = 0;
   std::size_t inputs_rounded = 0;
   std::optional<unsigned> working_bits;  ///< mpfr only: the precision actually used
-  /// Why the row has no results (empty: it has): a number of the scene beyond the precision's range
-  /// (the path and the value). Its errors are then infinite and its time NaN.
-  std::string not_computed;
 };
 
 /// What the candidate's call and the verification of its results found beside its errors.
