@@ -71,6 +71,8 @@ std::optional<Eigen::Matrix<S, R, C>> cast_to(const std::optional<Eigen::Matrix<
 enum class Mode { proof, doubles, mixed };
 
 Mode mode_of(const Kinds& inputs, const Kinds& candidate, const py::object& exact) {
+  if (!exact.is_none() && !py::isinstance<py::bool_>(exact))
+    bad_argument("exact", "expected True, False or None, found " + type_name(exact));
   const bool proof = exact.is_none() ? candidate.any_exact : exact.cast<bool>();
   if (proof) return Mode::proof;
   return inputs.all_floating() && candidate.all_floating() && !candidate.any_f32 ? Mode::doubles : Mode::mixed;
@@ -83,7 +85,8 @@ Measure candidate_epsilon(const Kinds& candidate) {
   return machine_epsilon(p);
 }
 
-CheckOptions options(long samples, long long seed, double accuracy, const std::string& method) {
+CheckOptions options(const py::object& samples, const py::object& seed, const py::object& accuracy,
+                     const py::object& method) {
   CheckOptions opt;
   opt.samples = samples_arg(samples);
   opt.seed = seed_arg(seed);
@@ -200,8 +203,8 @@ const auto plain_name = [](const char* arg) { return std::string(arg); };
 
 CheckReport check_shadow_py(py::handle A_in, py::handle L_in, const py::object& P_in, const py::object& polar_in,
                             const py::object& R_in, const py::object& origin_in, const py::object& status_in,
-                            long samples, long long seed, double accuracy, const std::string& method,
-                            const py::object& exact) {
+                            const py::object& samples, const py::object& seed, const py::object& accuracy,
+                            const py::object& method, const py::object& exact) {
   const CheckOptions opt = options(samples, seed, accuracy, method);
   const ShadowCall call = read_shadow(A_in, L_in, P_in, polar_in, R_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
@@ -209,9 +212,9 @@ CheckReport check_shadow_py(py::handle A_in, py::handle L_in, const py::object& 
 }
 
 CheckReport check_reflection_py(py::handle A_in, py::handle plane_in, const py::object& M_in, const py::object& B_in,
-                                const py::object& origin_in, const py::object& status_in, long samples,
-                                long long seed, double accuracy, const py::object& exact) {
-  const CheckOptions opt = options(samples, seed, accuracy, "direct");
+                                const py::object& origin_in, const py::object& status_in, const py::object& samples,
+                                const py::object& seed, const py::object& accuracy, const py::object& exact) {
+  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"));
   const ReflectionCall call = read_reflection(A_in, plane_in, M_in, B_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
   return run_check(call, opt);
@@ -288,13 +291,12 @@ auto item_names(const std::vector<const BatchArg*>& args, long k) {
   };
 }
 
-BatchCheckOptions batch_options(const CheckOptions& check, int threads, const py::object& progress) {
-  if (threads < 0) bad_argument("threads", "expected 0 (one per logical processor) or a positive count");
+BatchCheckOptions batch_options(const CheckOptions& check, const py::object& threads, const py::object& progress) {
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     bad_argument("progress", "expected a callable progress(done, total), found " + type_name(progress));
   BatchCheckOptions opt;
   opt.check = check;
-  opt.threads = threads;
+  opt.threads = threads_arg(threads);
   if (!progress.is_none())
     opt.progress = [progress](std::size_t done, std::size_t total) {
       py::gil_scoped_acquire gil;  // the checks run with the GIL released
@@ -313,8 +315,9 @@ template <class Call> std::vector<CheckReport> run_batch(const std::vector<Call>
 
 std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::object& L_in, const py::object& P_in,
                                           const py::object& polar_in, const py::object& R_in,
-                                          const py::object& origin_in, long samples, long long seed, double accuracy,
-                                          const std::string& method, const py::object& exact, int threads,
+                                          const py::object& origin_in, const py::object& samples, const py::object& seed,
+                                          const py::object& accuracy, const py::object& method, const py::object& exact,
+                                          const py::object& threads,
                                           const py::object& progress) {
   const CheckOptions opt = options(samples, seed, accuracy, method);
   const BatchCheckOptions bopt = batch_options(opt, threads, progress);
@@ -335,10 +338,10 @@ std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::obje
 }
 
 std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::object& plane_in, const py::object& M_in,
-                                              const py::object& B_in, const py::object& origin_in, long samples,
-                                              long long seed, double accuracy, const py::object& exact, int threads,
-                                              const py::object& progress) {
-  const CheckOptions opt = options(samples, seed, accuracy, "direct");
+                                              const py::object& B_in, const py::object& origin_in, const py::object& samples,
+                                              const py::object& seed, const py::object& accuracy, const py::object& exact,
+                                              const py::object& threads, const py::object& progress) {
+  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"));
   const BatchCheckOptions bopt = batch_options(opt, threads, progress);
   const BatchArg A("A", A_in, 2), plane("plane", plane_in, 1), M("M", M_in, 2), B("B", B_in, 2), origin("origin", origin_in, 1);
   if (!A.given()) bad_argument("A", "the quadrics are needed");

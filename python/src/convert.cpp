@@ -169,19 +169,40 @@ double json_double(const nlohmann::ordered_json& v) {
 
 }  // namespace
 
-py::array_t<double> json_to_array(const nlohmann::ordered_json& m) {
+namespace {
+/// 2^-e, e the binary exponent of the largest |entry| of m, when that lies beyond 2^+-960 (the
+/// entries, up to 2^64 times smaller, then stay normal doubles); else 1.
+Rational range_scale(const nlohmann::ordered_json& m) {
+  Rational big = 0;
+  for (const auto& row : m)
+    for (const auto& x : (row.is_array() ? row : nlohmann::ordered_json::array({row})))
+      if (!x.is_null()) big = std::max(big, Rational(abs(json_exact(x))));
+  if (big == 0) return 1;
+  const auto n = numerator(big), d = denominator(big);
+  const long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));  // within one of the exponent
+  if (e < 960 && e > -960) return 1;
+  const Rational p = Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e < 0 ? -e : e));
+  return e > 0 ? Rational(1 / p) : p;
+}
+}  // namespace
+
+py::array_t<double> json_to_array(const nlohmann::ordered_json& m, bool projective) {
+  const Rational scale = projective ? range_scale(m) : Rational(1);
+  const auto entry = [&](const nlohmann::ordered_json& x) {
+    return scale == 1 || x.is_null() ? json_double(x) : nearest_double(Rational(json_exact(x) * scale));
+  };
   const bool matrix = !m.empty() && m[0].is_array();
   if (!matrix) {
     py::array_t<double> out(static_cast<py::ssize_t>(m.size()));
     auto v = out.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < m.size(); ++i) v(static_cast<py::ssize_t>(i)) = json_double(m[i]);
+    for (std::size_t i = 0; i < m.size(); ++i) v(static_cast<py::ssize_t>(i)) = entry(m[i]);
     return out;
   }
   const auto rows = static_cast<py::ssize_t>(m.size()), cols = static_cast<py::ssize_t>(m[0].size());
   py::array_t<double> out({rows, cols});
   auto v = out.mutable_unchecked<2>();
   for (py::ssize_t i = 0; i < rows; ++i)
-    for (py::ssize_t j = 0; j < cols; ++j) v(i, j) = json_double(m[static_cast<size_t>(i)][static_cast<size_t>(j)]);
+    for (py::ssize_t j = 0; j < cols; ++j) v(i, j) = entry(m[static_cast<size_t>(i)][static_cast<size_t>(j)]);
   return out;
 }
 

@@ -77,7 +77,11 @@ double nearest_double(const Rational& q);
 /// "p/q" strings, {"lo", "hi"} enclosures or null) as a float64 numpy array:
 /// each entry the nearest double to its exact value (an enclosure: to its
 /// midpoint; null: NaN).
-py::array_t<double> json_to_array(const nlohmann::ordered_json& m);
+/// A document's vector or matrix as float64, each entry the nearest double (null: NaN). `projective`
+/// (P, polar_plane, R, B: defined up to a positive factor): entries beyond double's range (a result in
+/// a wider precision, long-double, float128 or mpfr) are first scaled by an exact power of two, so that
+/// they neither overflow to inf nor underflow to 0.
+py::array_t<double> json_to_array(const nlohmann::ordered_json& m, bool projective = false);
 /// The same as nested lists of Fraction (exact results).
 py::object json_to_fractions(const nlohmann::ordered_json& m);
 /// An exact matrix or vector as nested lists of Fraction.

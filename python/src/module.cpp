@@ -22,7 +22,26 @@ using json = nlohmann::ordered_json;
 
 namespace qverify::py_glue {
 
-Precision precision_arg(const std::string& text) {
+std::string text_arg(const py::object& x, const char* name, const char* expected) {
+  if (!py::isinstance<py::str>(x)) bad_argument(name, std::string("expected ") + expected + ", found " + type_name(x));
+  return x.cast<std::string>();
+}
+
+double number_arg(const py::object& x, const char* name) {
+  if (x.is_none() || py::isinstance<py::bool_>(x) || py::isinstance<py::str>(x) || py::isinstance<py::bytes>(x) ||
+      !py::hasattr(x, "__float__"))
+    bad_argument(name, "expected a number, found " + type_name(x));
+  return py::float_(x).cast<double>();
+}
+
+py::int_ integer_arg(const py::object& x, const char* name) {
+  if (x.is_none() || py::isinstance<py::bool_>(x) || !py::hasattr(x, "__index__"))
+    bad_argument(name, "expected an integer, found " + type_name(x));
+  return py::int_(x.attr("__index__")());
+}
+
+Precision precision_arg(const py::object& arg) {
+  const std::string text = text_arg(arg, "precision", "a precision name (str)");
   const auto p = parse_precision(text);
   if (!p)
     bad_argument("precision", "unknown precision \"" + text +
@@ -31,7 +50,8 @@ Precision precision_arg(const std::string& text) {
   return *p;
 }
 
-Method method_arg(const std::string& text) {
+Method method_arg(const py::object& arg) {
+  const std::string text = text_arg(arg, "method", "\"direct\" or \"paper\"");
   if (text == "direct") return Method::direct;
   if (text == "paper") return Method::paper;
   bad_argument("method", "unknown method \"" + text + "\" (expected direct or paper)");
@@ -46,20 +66,33 @@ std::optional<Frame> frame_arg(const py::object& frame) {
   bad_argument("frame", "unknown frame \"" + t + "\" (expected local, world or None for the default)");
 }
 
-double accuracy_arg(double accuracy) {
+double accuracy_arg(const py::object& arg) {
+  const double accuracy = number_arg(arg, "accuracy");
   if (!(std::isfinite(accuracy) && accuracy > 0))
     bad_argument("accuracy", "the accuracy target must be a positive finite number, found " + std::to_string(accuracy));
   return accuracy;
 }
 
-int samples_arg(long samples) {
-  if (samples < 1 || samples > 100000) bad_argument("samples", "expected 1 to 100000 sample points, found " + std::to_string(samples));
-  return static_cast<int>(samples);
+int samples_arg(const py::object& arg) {
+  const py::int_ samples = integer_arg(arg, "samples");
+  if (samples < py::int_(1) || samples > py::int_(100000))
+    bad_argument("samples", "expected 1 to 100000 sample points, found " + py::repr(samples).cast<std::string>());
+  return samples.cast<int>();
 }
 
-std::uint64_t seed_arg(long long seed) {
-  if (seed < 0) bad_argument("seed", "expected a non-negative seed");
-  return static_cast<std::uint64_t>(seed);
+std::uint64_t seed_arg(const py::object& arg) {
+  const py::int_ seed = integer_arg(arg, "seed");
+  if (seed < py::int_(0) || seed > py::int_(std::numeric_limits<std::uint64_t>::max()))
+    bad_argument("seed", "expected a seed from 0 to 2^64 - 1, found " + py::repr(seed).cast<std::string>());
+  return seed.cast<std::uint64_t>();
+}
+
+int threads_arg(const py::object& arg) {
+  const py::int_ threads = integer_arg(arg, "threads");
+  if (threads < py::int_(0) || threads > py::int_(1 << 16))
+    bad_argument("threads", "expected 0 (one per logical processor) or a positive count up to 65536, found " +
+                                py::repr(threads).cast<std::string>());
+  return threads.cast<int>();
 }
 
 std::unique_lock<std::mutex> mpfr_lock(bool needed) {
@@ -113,7 +146,23 @@ json eval_one(const Scene& sc, const Precision& prec, Method method, std::option
   return eval_json(eval_report(sc, prec, method, frame, AccuracyOptions{accuracy}));
 }
 
-py::object matrix_out(const json& m, bool exact) { return exact ? json_to_fractions(m) : py::object(json_to_array(m)); }
+/// A result as returned: Fractions (exact), else float64 (json_to_array; `projective`: P, polar_plane, R, B).
+py::object matrix_out(const json& m, bool exact, bool projective = true) {
+  return exact ? json_to_fractions(m) : py::object(json_to_array(m, projective));
+}
+
+/// A float64 array with an entry that is not finite although the document's is (a wider precision's
+/// M beyond double's range): flagged "non-finite", as eval flags a result that overflowed.
+template <class T> void flag_overflow(T& r, const py::object& array, const json& m) {
+  bool doc_finite = true;
+  for (const auto& row : m)
+    for (const auto& x : row) doc_finite = doc_finite && !x.is_null();
+  const auto a = py::array_t<double>::ensure(array);
+  bool finite = true;
+  for (py::ssize_t i = 0; i < a.size(); ++i) finite = finite && std::isfinite(a.data()[i]);
+  if (doc_finite && !finite && std::find(r.flags.begin(), r.flags.end(), "non-finite") == r.flags.end())
+    r.flags.emplace_back("non-finite");
+}
 
 py::object negated(const py::object& v, bool exact) {
   if (!exact) return v.attr("__neg__")();
@@ -137,15 +186,15 @@ template <class T> void common_fields(T& r, const json& doc, const json& item) {
   r.item = json_to_python(item);
 }
 
-PyShadow shadow_py(py::handle A_in, py::handle L_in, const std::string& method_text, const std::string& precision_text,
-                   double accuracy, const py::object& frame_in) {
+PyShadow shadow_py(py::handle A_in, py::handle L_in, const py::object& method_text, const py::object& precision_text,
+                   const py::object& accuracy_in, const py::object& frame_in) {
   Kinds kinds;
   const Mat4<Rational> A = to_matrix(A_in, "A", kinds);
   const Vec4<Rational> L = to_vector<4>(L_in, "L", kinds);
   const Method method = method_arg(method_text);
   const Precision prec = precision_arg(precision_text);
   const std::optional<Frame> frame = frame_arg(frame_in);
-  accuracy_arg(accuracy);
+  const double accuracy = accuracy_arg(accuracy_in);
   validate_quadric(A, "", "A");
   validate_light(L, "", "L");
 
@@ -176,15 +225,15 @@ PyShadow shadow_py(py::handle A_in, py::handle L_in, const std::string& method_t
   return r;
 }
 
-PyReflection reflection_py(py::handle A_in, py::handle plane_in, const std::string& method_text,
-                           const std::string& precision_text, double accuracy, const py::object& frame_in) {
+PyReflection reflection_py(py::handle A_in, py::handle plane_in, const py::object& method_text,
+                           const py::object& precision_text, const py::object& accuracy_in, const py::object& frame_in) {
   Kinds kinds;
   const Mat4<Rational> A = to_matrix(A_in, "A", kinds);
   const Vec4<Rational> plane = to_vector<4>(plane_in, "plane", kinds);
   const Method method = method_arg(method_text);
   const Precision prec = precision_arg(precision_text);
   const std::optional<Frame> frame = frame_arg(frame_in);
-  accuracy_arg(accuracy);
+  const double accuracy = accuracy_arg(accuracy_in);
   validate_quadric(A, "", "A");
   validate_plane(plane, "", "plane");
 
@@ -203,7 +252,8 @@ PyReflection reflection_py(py::handle A_in, py::handle plane_in, const std::stri
   const bool exact = prec.kind == Precision::Kind::exact;
   PyReflection r;
   common_fields(r, doc, item);
-  r.M = matrix_out(item.at("M"), exact);
+  r.M = matrix_out(item.at("M"), exact, false);  // M itself (last row 0 0 0 1), never scaled
+  if (!exact) flag_overflow(r, r.M, item.at("M"));
   r.B = matrix_out(item.at("B"), exact);
   return r;
 }
@@ -221,15 +271,15 @@ Scene scene_arg(const py::object& path, const py::object& text, const std::strin
 }
 
 py::object eval_scene_py(const py::object& path, const py::object& text, const std::string& name,
-                         const std::string& precision_text, const std::string& method_text, const py::object& frame_in,
-                         double accuracy, const py::object& tolerance_in) {
+                         const py::object& precision_text, const py::object& method_text, const py::object& frame_in,
+                         const py::object& accuracy_in, const py::object& tolerance_in) {
   const Precision prec = precision_arg(precision_text);
   const Method method = method_arg(method_text);
   const std::optional<Frame> frame = frame_arg(frame_in);
-  accuracy_arg(accuracy);
+  const double accuracy = accuracy_arg(accuracy_in);
   std::optional<double> tolerance;
   if (!tolerance_in.is_none()) {
-    const double t = tolerance_in.cast<double>();
+    const double t = number_arg(tolerance_in, "tolerance");
     if (!(t >= std::ldexp(1.0, -53) && t <= 1))
       bad_argument("tolerance", "the adaptive tolerance must lie in [2^-53, 1] (below 2^-53 a double result cannot be "
                                 "certified: use precision=\"exact\")");
@@ -250,12 +300,12 @@ py::object eval_scene_py(const py::object& path, const py::object& text, const s
 
 py::object verify_scene_py(const py::object& path, const py::object& text, const std::string& name,
                            const py::object& cand_path, const py::object& cand_text, const std::string& cand_name,
-                           const std::string& precision_text, const std::string& method_text, const py::object& frame_in,
-                           long samples_in, long long seed_in, double accuracy) {
+                           const py::object& precision_text, const py::object& method_text, const py::object& frame_in,
+                           const py::object& samples_in, const py::object& seed_in, const py::object& accuracy_in) {
   const Precision prec = precision_arg(precision_text);
   const Method method = method_arg(method_text);
   const std::optional<Frame> frame = frame_arg(frame_in);
-  accuracy_arg(accuracy);
+  const double accuracy = accuracy_arg(accuracy_in);
   const int samples = samples_arg(samples_in);
   const std::uint64_t seed = seed_arg(seed_in);
   const Scene sc = scene_arg(path, text, name);
@@ -306,7 +356,9 @@ Attributes:
         exceeds the accuracy target, and "non-finite" (with "inaccurate")
         when the result overflowed the precision (its entries are NaN).
     error_bound: an upper bound of the geometric error (distance of exact
-        terminator points from the results, relative to the object size):
+        terminator points from the results, relative to the object size) of
+        the result in its precision (a wider precision's float64 arrays
+        round it once more: the full digits are in `item`):
         certified over every point for the results item["certified_for"]
         names, the others measured exactly on 64 seeded points, times 2;
         0 for precision "exact"; None with `reason` where none can be given.
@@ -368,7 +420,7 @@ Attributes:
                ",\n  M=" + repr_value(r.M) + ",\n  B=" + repr_value(r.B) + ")";
       });
 
-  m.def("shadow", &shadow_py, py::arg("A"), py::arg("L"), py::kw_only(), py::arg("method") = "direct",
+  m.def("shadow", &shadow_py, py::arg("A"), py::arg("L"), py::arg("method") = "direct",
         py::arg("precision") = "double", py::arg("accuracy") = kDefaultAccuracy, py::arg("frame") = py::none(),
         R"(Shadow volume of the quadric x^T A x = 0 lit by L (equations (2)-(6)).
 
@@ -403,7 +455,7 @@ Example:
     ('ok', array([ 3.,  4.,  8., -1.]))
 )");
 
-  m.def("reflection", &reflection_py, py::arg("A"), py::arg("plane"), py::kw_only(), py::arg("method") = "direct",
+  m.def("reflection", &reflection_py, py::arg("A"), py::arg("plane"), py::arg("method") = "direct",
         py::arg("precision") = "double", py::arg("accuracy") = kDefaultAccuracy, py::arg("frame") = py::none(),
         R"(Mirror image of the quadric x^T A x = 0 in a plane mirror (equations (7)-(11)).
 

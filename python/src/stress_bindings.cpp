@@ -194,8 +194,8 @@ py::object stress_py(const py::object& shadow_in, const py::object& reflection_i
     bad_argument("fn", "no function to audit: give fn, shadow= or reflection=");
   StressOptions opt;
   opt.out_dir = out_dir;
-  if (!samples_in.is_none()) opt.samples = samples_arg(samples_in.cast<long>());
-  if (!accuracy_in.is_none()) opt.accuracy = accuracy_arg(accuracy_in.cast<double>());
+  if (!samples_in.is_none()) opt.samples = samples_arg(samples_in);
+  if (!accuracy_in.is_none()) opt.accuracy = accuracy_arg(accuracy_in);
   if (families_in.is_none()) {
     for (const StressFamily& f : stress_families())
       if (f.reflection ? !reflection_in.is_none() : !shadow_in.is_none()) opt.families.push_back(f.name);

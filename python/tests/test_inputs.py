@@ -108,12 +108,57 @@ def test_bad_mirror(plane, path):
         ({"accuracy": -1e-9}, "accuracy"),
         ({"accuracy": float("nan")}, "accuracy"),
         ({"frame": "camera"}, "frame"),
+        # a value of the wrong type is an InputError too (a ValueError), never pybind's TypeError
+        ({"accuracy": "1e-9"}, "accuracy"),
+        ({"accuracy": True}, "accuracy"),
+        ({"accuracy": None}, "accuracy"),
+        ({"precision": None}, "precision"),
+        ({"precision": 64}, "precision"),
+        ({"method": 1}, "method"),
+        ({"frame": 3}, "frame"),
     ],
 )
 def test_bad_options(kwargs, path):
     assert path_of(lambda: qverify.shadow(UNIT, LIGHT, **kwargs)) == path
     assert path_of(lambda: qverify.reflection(UNIT, [0, 0, 1, 0], **kwargs)) == path
     assert path_of(lambda: qverify.eval_scene({"format": "qverify-scene/1"}, **kwargs)) == path
+
+
+@pytest.mark.parametrize(
+    "kwargs, path",
+    [
+        ({"samples": 64.0}, "samples"),
+        ({"samples": "64"}, "samples"),
+        ({"samples": True}, "samples"),
+        ({"seed": 1.5}, "seed"),
+        ({"seed": -1}, "seed"),
+        ({"seed": 2**64}, "seed"),
+        ({"accuracy": "x"}, "accuracy"),
+        ({"method": None}, "method"),
+        ({"exact": "yes"}, "exact"),
+    ],
+)
+def test_wrongly_typed_check_options(kwargs, path):
+    s = qverify.shadow(UNIT, LIGHT)
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=s.P, **kwargs)) == path
+    assert path_of(lambda: qverify.check_shadows([UNIT], [LIGHT], P=[s.P], **kwargs)) == path
+    if "method" not in kwargs:
+        assert path_of(lambda: qverify.check_reflection(UNIT, [0, 0, 1, 0], B=UNIT, **kwargs)) == path
+
+
+def test_numbers_of_any_numeric_type_are_options():
+    s = qverify.shadow(UNIT, LIGHT, accuracy=np.float32(1e-6))
+    rep = qverify.check_shadow(UNIT, LIGHT, P=s.P, samples=np.int64(8), seed=2**64 - 1, accuracy=Fraction(1, 10**9))
+    assert rep.passed and rep.points == 8
+    assert path_of(lambda: qverify.check_shadows([UNIT], [LIGHT], P=[s.P], threads="2")) == "threads"
+    assert path_of(lambda: qverify.check_shadows([UNIT], [LIGHT], P=[s.P], threads=-1)) == "threads"
+    assert path_of(lambda: qverify.eval_scene({"format": "qverify-scene/1", "quadrics": []}, tolerance="x")) == "tolerance"
+
+
+def test_method_precision_and_accuracy_may_be_positional():
+    assert qverify.shadow(UNIT, LIGHT, "paper").method == "paper"
+    assert qverify.shadow(UNIT, LIGHT, "direct", "exact", 1e-9).precision == "exact"
+    assert qverify.reflection(UNIT, [0, 0, 1, 0], "direct", "float").precision == "float"
 
 
 def test_bad_check_arguments():

@@ -173,6 +173,22 @@ def test_far_object_local_frame_and_world_frame():
     assert not qverify.check_shadow(A, L, P=w.P, polar_plane=w.polar_plane, R=w.R).passed
 
 
+def test_wider_precisions_do_not_overflow_float64():
+    # a result that float128 holds but float64 does not (entries 1e400): the projective results are
+    # returned scaled by a power of two, finite, and still pass their check
+    A = np.diag([1.0, 1, 1, -1]) * 1e200
+    for precision in ("float128", "mpfr:128"):
+        s = qverify.shadow(A, LIGHT4, precision=precision)
+        assert s.flags == [] and np.all(np.isfinite(s.P)) and np.all(np.isfinite(s.R)), (precision, s)
+        assert qverify.check_shadow(A, LIGHT4, P=s.P, polar_plane=s.polar_plane, R=s.R).passed
+    # M is M itself (never scaled): beyond float64's range it is flagged
+    r = qverify.reflection(np.diag([1.0, 1, 1, -1]), [0, 0, 1, "-1e400"], precision="float128")
+    assert "non-finite" in r.flags and np.all(np.isfinite(r.B))
+
+
+LIGHT4 = [3.0, 4.0, 8.0, 1.0]
+
+
 @pytest.mark.parametrize("centre", [[100.3, -7.1, 0.2], [0.1, 700.7, 3.3]])
 def test_default_results_are_in_world_coordinates(centre):
     # The contract's flow, shadow() then check_shadow() of its arrays with no origin, on objects far
