@@ -812,14 +812,21 @@ bool same_sign_as(const Mat4<Q>& got, const std::function<Q(const Vec4<Q>&)>& re
   return sign_of<Q>(form(got, at)) == sign_of<Q>(best);
 }
 
-std::string shadow_sign_problem(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar) {
+std::vector<std::string> shadow_sign_problems(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar) {
+  std::vector<std::string> out;
   const Vec4<Q> pi = A * L;
   const Q s = L.dot(pi);
   if (P && !same_sign_as(*P, [&](const Vec4<Q>& y) { const Q t = pi.dot(y); return Q(s * form(A, y) - t * t); }))
-    return "P has the wrong sign (the contract fixes (L^T A L) A - (A L)(A L)^T up to a positive factor)";
+    out.emplace_back("P has the wrong sign or vanishes where (L^T A L) A - (A L)(A L)^T does not (the contract fixes "
+                     "that matrix up to a positive factor)");
   if (polar && !pi.isZero() && !same_orientation(*polar, pi))
-    return "polar_plane has the wrong orientation (must be A L up to a positive factor)";
-  return "";
+    out.emplace_back("polar_plane has the wrong orientation (must be A L up to a positive factor)");
+  return out;
+}
+
+std::string reflection_sign_problem(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
+  if (same_sign_as(B, [&](const Vec4<Q>& y) { return form(B_ref, y); })) return "";
+  return "B has the wrong sign or vanishes where M^T A M does not (must be M^T A M up to a positive factor)";
 }
 
 namespace {
@@ -839,9 +846,8 @@ ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptio
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
   const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
-  if (const std::string sign = shadow_sign_problem(quadric_to_local(A_, o), point_to_local(L_, o), &P, &polar);
-      !sign.empty())
-    return wrong_sign(sign);
+  if (const auto sign = shadow_sign_problems(quadric_to_local(A_, o), point_to_local(L_, o), &P, &polar); !sign.empty())
+    return wrong_sign(sign.front());
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
@@ -888,8 +894,7 @@ ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const A
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
-  if (!same_sign_as(B, [&](const Vec4<Q>& y) { return form(B_ref, y); }))
-    return wrong_sign("B has the wrong sign (the contract fixes M^T A M up to a positive factor)");
+  if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_sign(sign);
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },

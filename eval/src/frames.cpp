@@ -1,6 +1,8 @@
 #include <qverify/exact/rounding.hpp>
 #include <qverify/eval/frames.hpp>
 
+#include <limits>
+
 namespace qverify {
 
 using Q = Rational;
@@ -38,9 +40,18 @@ Vec3<Q> rounded_to_double(const Vec3<Q>& v) {
   return out;
 }
 
+namespace {
+/// Does a double hold x's magnitude (|x| at most the largest finite double)? An origin rounded to
+/// double beyond it would be an infinity, and to_rational of that 0: no frame is placed there.
+bool double_holds(const Q& x) {
+  static const Q largest = to_rational(std::numeric_limits<double>::max());
+  return abs(x) <= largest;
+}
+}  // namespace
+
 bool wants_local_frame(const Vec3<Q>& center, const Q& s2) {
   const Q c = max_abs(center);
-  return c * c > Q(64 * 64) * s2;
+  return c * c > Q(64 * 64) * s2 && double_holds(c);
 }
 
 bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
@@ -71,6 +82,7 @@ bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
 
 bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& centre, const Q& s2) {
   if (L(3) == 0) return false;  // a parallel light: h is the plane at infinity
+  if (!double_holds(Q(L(2) / L(3)))) return false;  // (a height no double holds: no frame there)
   const bool meets = light_plane_meets_terminator(A, L);
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
   const auto definite = [](const Mat3<Q>& M) {

@@ -71,7 +71,8 @@ std::optional<Eigen::Matrix<S, R, C>> cast_to(const std::optional<Eigen::Matrix<
 enum class Mode { proof, doubles, mixed };
 
 Mode mode_of(const Kinds& inputs, const Kinds& candidate, const py::object& exact) {
-  if (!exact.is_none() && !py::isinstance<py::bool_>(exact))
+  if (!exact.is_none() && !py::isinstance<py::bool_>(exact) &&
+      !py::isinstance(exact, py::module_::import("numpy").attr("bool_")))
     bad_argument("exact", "expected True, False or None, found " + type_name(exact));
   const bool proof = exact.is_none() ? candidate.any_exact : exact.cast<bool>();
   if (proof) return Mode::proof;

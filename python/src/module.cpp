@@ -29,15 +29,23 @@ std::string text_arg(const py::object& x, const char* name, const char* expected
 
 double number_arg(const py::object& x, const char* name) {
   if (x.is_none() || py::isinstance<py::bool_>(x) || py::isinstance<py::str>(x) || py::isinstance<py::bytes>(x) ||
-      !py::hasattr(x, "__float__"))
+      py::isinstance<py::type>(x) || !py::hasattr(x, "__float__"))
     bad_argument(name, "expected a number, found " + type_name(x));
-  return py::float_(x).cast<double>();
+  try {
+    return py::float_(x).cast<double>();
+  } catch (const py::error_already_set& e) {  // float() refused it: 10**400, a Fraction beyond double
+    bad_argument(name, "expected a number a double holds, found " + py::repr(x).cast<std::string>().substr(0, 60));
+  }
 }
 
 py::int_ integer_arg(const py::object& x, const char* name) {
-  if (x.is_none() || py::isinstance<py::bool_>(x) || !py::hasattr(x, "__index__"))
+  if (x.is_none() || py::isinstance<py::bool_>(x) || py::isinstance<py::type>(x) || !py::hasattr(x, "__index__"))
     bad_argument(name, "expected an integer, found " + type_name(x));
-  return py::int_(x.attr("__index__")());
+  try {
+    return py::int_(x.attr("__index__")());
+  } catch (const py::error_already_set&) {
+    bad_argument(name, "expected an integer, found " + type_name(x));
+  }
 }
 
 Precision precision_arg(const py::object& arg) {
@@ -160,8 +168,9 @@ template <class T> void flag_overflow(T& r, const py::object& array, const json&
   const auto a = py::array_t<double>::ensure(array);
   bool finite = true;
   for (py::ssize_t i = 0; i < a.size(); ++i) finite = finite && std::isfinite(a.data()[i]);
-  if (doc_finite && !finite && std::find(r.flags.begin(), r.flags.end(), "non-finite") == r.flags.end())
-    r.flags.emplace_back("non-finite");
+  if (doc_finite && !finite)
+    for (const char* flag : {"non-finite", "inaccurate"})  // (as eval flags a result that overflowed)
+      if (std::find(r.flags.begin(), r.flags.end(), flag) == r.flags.end()) r.flags.emplace_back(flag);
 }
 
 py::object negated(const py::object& v, bool exact) {

@@ -51,6 +51,19 @@ def test_default_reflection_is_in_world_coordinates():
     assert qverify.check_reflection(A, plane, M=r.M, B=r.B).passed
 
 
+def test_a_far_mirror_gives_the_reflection_itself():
+    # M is never scaled like a projective result: a mirror 1e20 away keeps the last row 0 0 0 1
+    A, plane = np.diag([1.0, 1, 1, -1]), [0, 0, 1, -1e20]
+    r = qverify.reflection(A, plane)
+    assert np.array_equal(r.M[3], [0, 0, 0, 1]) and r.M[2, 3] == 2e20
+    assert qverify.check_reflection(A, plane, M=r.M).passed
+    local = qverify.reflection(A, plane, frame="local")  # M in the image's frame (its centre, 2e20 up)
+    assert np.array_equal(local.M[3], [0, 0, 0, 1]) and local.origin is not None
+    assert qverify.check_reflection(A, plane, M=local.M, origin=local.origin).passed
+    # (the image, 2e20 radii away, no world double matrix holds: flagged)
+    assert "inaccurate" in qverify.reflection(A, plane).flags
+
+
 def test_slanted_mirror_exact_plane():
     A = sphere_at([0, 0, 0], 1)
     plane = [Fraction(1, 3), Fraction(2, 3), Fraction(2, 3), -5]

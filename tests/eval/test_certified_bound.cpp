@@ -625,7 +625,8 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
       CHECK_FALSE(s.accuracy->inaccurate);
     } else {
       CHECK(worst > 1e-12);  // rounding products of a plane pair: sqrt(eps), not eps
-      CHECK(s.accuracy->inaccurate == (*s.accuracy->bound > 1e-9));
+      CHECK(s.accuracy->inaccurate);  // in world coordinates R cannot be accurate here, and says so
+      CHECK(*s.accuracy->bound > 1e-9);
     }
   }
 }

@@ -449,11 +449,12 @@ TEST_CASE("eval flags a result of the wrong sign, which no geometric error sees,
       if (!good.shadows[k].present) continue;
       const Pair& p = ex.shadows[k];
       const ShadowMatrices& g = good.shadows[k];
-      CHECK(shadow_sign_problem(t.A[p.quadric], t.L[p.other], &g.P, &g.polar).empty());
+      CHECK(shadow_sign_problems(t.A[p.quadric], t.L[p.other], &g.P, &g.polar).empty());
       const Mat4<Q> minus = -g.P;
       const Vec4<Q> flipped = -g.polar;
-      CHECK_FALSE(shadow_sign_problem(t.A[p.quadric], t.L[p.other], &minus, nullptr).empty());
-      CHECK_FALSE(shadow_sign_problem(t.A[p.quadric], t.L[p.other], nullptr, &flipped).empty());
+      CHECK(shadow_sign_problems(t.A[p.quadric], t.L[p.other], &minus, nullptr).size() == 1);
+      CHECK(shadow_sign_problems(t.A[p.quadric], t.L[p.other], nullptr, &flipped).size() == 1);
+      CHECK(shadow_sign_problems(t.A[p.quadric], t.L[p.other], &minus, &flipped).size() == 2);  // both named
     }
   }
 }

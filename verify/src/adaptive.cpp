@@ -161,6 +161,13 @@ void accuracy_of(EvalItem& item, const ItemAccuracy& acc) {
 
 Mat4<Q> exact4(const Eigen::MatrixXd& m) { return exact_matrix(Mat4<double>(m)); }
 
+/// Are the chosen values finite (a value beyond double's range is an infinity: nothing to measure)?
+bool finite_values(const std::vector<Eigen::MatrixXd>& v) {
+  for (const Eigen::MatrixXd& m : v)
+    if (!m.allFinite()) return false;
+  return true;
+}
+
 }  // namespace
 
 EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, const AccuracyOptions& accuracy) {
@@ -206,7 +213,8 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
     ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy, k);
-    accuracy_of(item, meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2])));
+    accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2]))
+                                       : non_finite_accuracy());
     rep.shadows.push_back(std::move(item));
   }
   for (std::size_t k = 0; k < sc.reflections.size(); ++k) {
@@ -223,7 +231,7 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
     ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy, k);
-    accuracy_of(item, meter(std::nullopt, exact4(v[1])));
+    accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[1])) : non_finite_accuracy());
     rep.reflections.push_back(std::move(item));
   }
   rep.skipped = skipped_pairs(sc);

@@ -300,10 +300,8 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   }
   if (got.P && !symmetric_within(*got.P, T)) problems.push_back("P is not symmetric");
   if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
-  if (const std::string sign = shadow_sign_problem(Ae, Le, got.P ? &*got.P : nullptr,
-                                                   got.polar_plane ? &*got.polar_plane : nullptr);
-      !sign.empty())
-    problems.push_back(sign);
+  for (std::string& sign : shadow_sign_problems(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr))
+    problems.push_back(std::move(sign));
   if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
   if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
     problems.push_back("R is zero where it should not be (or the converse)");
@@ -416,8 +414,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   }
   if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
   if (got.B && got.B->isZero() != Aw.isZero()) problems.push_back("B is zero where it should not be (or the converse)");
-  if (got.B && !same_sign_as(*got.B, [&](const Vec4<Q>& y) { return form(B_ref, y); }))
-    problems.push_back("B has the wrong sign (must be M^T A M up to a positive factor)");
+  if (got.B)
+    if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
   if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
     problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
 

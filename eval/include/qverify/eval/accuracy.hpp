@@ -274,9 +274,12 @@ bool same_orientation(const Eigen::Matrix<Rational, R, C>& X, const Eigen::Matri
   return sign_of<Rational>(X(p)) == sign_of<Rational>(ref(p));
 }
 /// P against (L^T A L) A - (A L)(A L)^T and the polar plane against A L, A and L in the results'
-/// frame: the first that has the wrong sign, or "" (results not given: not judged).
-std::string shadow_sign_problem(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
-                                const Vec4<Rational>* polar);
+/// frame: a problem for each that has the wrong sign (or vanishes where the reference does not);
+/// none when right (a result not given is not judged).
+std::vector<std::string> shadow_sign_problems(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
+                                              const Vec4<Rational>* polar);
+/// B against M^T A M (B_ref, in B's frame): the problem, or "".
+std::string reflection_sign_problem(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
 
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).
 struct AccuracyOptions {

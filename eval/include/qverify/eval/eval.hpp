@@ -51,6 +51,15 @@ template <class S, int R, int C> void normalise_pow2(Eigen::Matrix<S, R, C>& m) 
   }
 }
 
+/// Rounds an exact matrix to S entry by entry, to nearest (an entry beyond S's range to an
+/// infinity): for M, which is the reflection itself, not a result up to a factor.
+template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded(const Eigen::Matrix<Rational, R, C>& m) {
+  Eigen::Matrix<S, R, C> out;
+  RoundingReport rep;
+  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = round_rational<S>(m(i), rep);
+  return out;
+}
+
 /// Rounds an exact matrix to S, after an exact power-of-two scaling that keeps
 /// its largest entry near 1 (builtin floating types only).
 template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Matrix<Rational, R, C> m) {
@@ -230,8 +239,9 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     const Mat4<Q> G = translation<Q>(Vec3<Q>(-oA)) * M * translation<Q>(ob);
     pr.G = rounded_scaled<S>(G);
     if constexpr (std::is_floating_point_v<S>) pr.exact = std::make_pair(local_A(p.quadric), G);
-    pr.M = rounded_scaled<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
-    if (frame == Frame::world_rounded) pr.M_world = rounded_scaled<S>(M);
+    // M is the reflection itself (last row 0 0 0 1): rounded entry by entry, never scaled
+    pr.M = rounded<S>(Mat4<Q>(translation<Q>(Vec3<Q>(-ob)) * M * translation<Q>(ob)));
+    if (frame == Frame::world_rounded) pr.M_world = rounded<S>(M);
     pr.origin = oB;
     ev.prepared_reflections.push_back(pr);
   }
@@ -251,15 +261,14 @@ extern template ReflectionItem<long double> escalated_reflection<long double>(co
 /// Frame::world_rounded: an item computed in a local frame (origin o), moved to world coordinates
 /// exactly, Q = T^-T Q_local T^-1 for P, R and the quadric as used, plane = T^-T plane_local (T the
 /// translation by o, frames.hpp), and rounded once to S with a power-of-two scaling (the results are
-/// projective). An item without an origin is already in world coordinates; a non-finite one stays
-/// non-finite (flagged so in any frame).
+/// projective). An item without an origin is already in world coordinates; a non-finite one keeps
+/// its local frame and origin, whole (flagged non-finite: nothing to move).
 template <class S> void move_to_world(ShadowItem<S>& it) {
   if constexpr (!ScalarOps<S>::interval) {  // (intervals have no local frames)
-    if (!it.origin) return;
+    ShadowResult<S>& r = it.result;
+    if (!it.origin || !all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R) || !all_finite(it.A)) return;
     const Vec3<Rational> o = *it.origin;
     it.origin.reset();
-    ShadowResult<S>& r = it.result;
-    if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R) || !all_finite(it.A)) return;
     r.P = rounded_scaled<S>(quadric_from_local(exact_matrix(r.P), o));
     r.polar_plane = rounded_scaled<S>(plane_from_local(exact_matrix(r.polar_plane), o));
     r.R = rounded_scaled<S>(quadric_from_local(exact_matrix(r.R), o));
@@ -270,11 +279,10 @@ template <class S> void move_to_world(ShadowItem<S>& it) {
 /// rounded once (pr.M_world), rather than the local one moved back.
 template <class S> void move_to_world(ReflectionItem<S>& it, const PreparedReflection<S>& pr) {
   if constexpr (!ScalarOps<S>::interval) {
-    if (!it.origin) return;
+    if (!it.origin || !all_finite(it.result.B)) return;
     const Vec3<Rational> o = *it.origin;
     it.origin.reset();
     it.M = pr.M_world;
-    if (!all_finite(it.result.B)) return;
     it.result.B = rounded_scaled<S>(quadric_from_local(exact_matrix(it.result.B), o));
   }
 }

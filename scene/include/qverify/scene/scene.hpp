@@ -91,14 +91,11 @@ template <class S> struct TypedScene {
   std::vector<Vec4<S>> planes;
   /// Paths of the inputs that S cannot represent exactly (rounded once), those beyond its range included.
   std::vector<std::string> rounded_inputs;
-  /// Paths of the inputs beyond the range of S (rounded to an infinity).
-  std::vector<std::string> out_of_range;
 };
 
 template <class S> S typed_number(const Num& n, TypedScene<S>& ts) {
   RoundingReport rep;
   S v = round_rational<S>(n.value, rep);
-  if (rep.overflow) ts.out_of_range.push_back(n.path);
   if (rep.inexact || rep.overflow) ts.rounded_inputs.push_back(n.path);
   return v;
 }
