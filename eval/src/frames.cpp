@@ -107,12 +107,16 @@ Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
   return out;
 }
 
+Q exact_pow2(long e) {
+  const Q p(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e < 0 ? -e : e));
+  return e >= 0 ? p : Q(1 / p);
+}
+
 long floor_log2(const Q& x) {
   // 2^e <= x < 2^(e+1): compare bit lengths of numerator and denominator, then adjust.
   const auto n = numerator(x), d = denominator(x);
   long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));
-  Q p = e >= 0 ? Q(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e))
-               : Q(1) / Q(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(-e));
+  Q p = exact_pow2(e);
   while (p > x) {
     p /= 2;
     --e;

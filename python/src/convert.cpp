@@ -2,6 +2,7 @@
 
 #include <qverify/exact/number_text.hpp>
 #include <qverify/exact/rounding.hpp>
+#include <qverify/eval/frames.hpp>  // floor_log2, exact_pow2
 
 #include <cmath>
 
@@ -178,11 +179,8 @@ Rational range_scale(const nlohmann::ordered_json& m) {
     for (const auto& x : (row.is_array() ? row : nlohmann::ordered_json::array({row})))
       if (!x.is_null()) big = std::max(big, Rational(abs(json_exact(x))));
   if (big == 0) return 1;
-  const auto n = numerator(big), d = denominator(big);
-  const long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));  // within one of the exponent
-  if (e < 960 && e > -960) return 1;
-  const Rational p = Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e < 0 ? -e : e));
-  return e > 0 ? Rational(1 / p) : p;
+  const long e = floor_log2(big);
+  return e < 960 && e > -960 ? Rational(1) : exact_pow2(-e);
 }
 }  // namespace
 

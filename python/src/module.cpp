@@ -33,7 +33,7 @@ double number_arg(const py::object& x, const char* name) {
     bad_argument(name, "expected a number, found " + type_name(x));
   try {
     return py::float_(x).cast<double>();
-  } catch (const py::error_already_set& e) {  // float() refused it: 10**400, a Fraction beyond double
+  } catch (const py::error_already_set&) {  // float() refused it: 10**400, a Fraction beyond double
     bad_argument(name, "expected a number a double holds, found " + py::repr(x).cast<std::string>().substr(0, 60));
   }
 }

@@ -41,7 +41,6 @@ Measure inf_norm(const Mat4<Q>& m) {
   return best;
 }
 
-
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
 /// for a point light, the plane at infinity for a parallel one), in the
 /// result's frame: R must vanish on it. Point light: rational points of h

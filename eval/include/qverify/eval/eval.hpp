@@ -67,17 +67,10 @@ template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Ma
     const Rational big = max_abs(m);
     if (big != 0) {
       const long e = floor_log2(big);
-      if (e > 64 || e < -64) {
-        const Rational f = e > 0 ? Rational(1) / Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e))
-                                 : Rational(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(-e));
-        m *= f;
-      }
+      if (e > 64 || e < -64) m *= exact_pow2(-e);
     }
   }
-  Eigen::Matrix<S, R, C> out;
-  RoundingReport rep;
-  for (Eigen::Index i = 0; i < m.size(); ++i) out(i) = round_rational<S>(m(i), rep);
-  return out;
+  return rounded<S>(m);
 }
 
 /// Inputs of one shadow item, in its frame (and, in the robust path, their

@@ -77,5 +77,7 @@ inline Vec4<Rational> point_to_local(const Vec4<Rational>& L, const Vec3<Rationa
 
 /// Exact power-of-two exponent e with 2^e <= x < 2^(e+1) (x > 0).
 long floor_log2(const Rational& x);
+/// 2^e, exactly.
+Rational exact_pow2(long e);
 
 }  // namespace qverify
