@@ -57,7 +57,10 @@ check_cxx_source_runs([=[
 
 # The variants measured: g3 and g4, the build's compiler with -march=x86-64-v3 / x86-64-v4 (g4 where
 # the machine runs AVX-512 and QVERIFY_AVX512 is on); with GCC as the build's compiler and clang++
-# installed, also c3 and c4, the double kernel compiled by clang (double only: see above). The
+# installed, also c3 and c4, the double kernel compiled by clang (double only: see above), and c4n,
+# clang's x86-64-v4 kernel with 256-bit packs (QVERIFY_PACK_BITS, pack.hpp): AVX-512's 32 vector
+# registers hold the 4x4 matrices of packs that spill with 16 (on AMD Zen 5, in the caches, 4.4
+# against c3's 5.0 ns per item for shadows, 6.7 against 7.6 for reflections, 2026-12-02). The
 # clang probe and the clang kernel (exact/CMakeLists.txt) take the same flags and include paths
 # (QVERIFY_KERNEL_CLANG_FLAGS, qverify_kernel_clang_includes), so that what is measured is what is
 # built: -O3 whatever the build type, and the build's -ffp-contract=off.
@@ -84,6 +87,7 @@ endfunction()
 set(QVERIFY_MARCH "")
 set(QVERIFY_DOUBLE_MARCH "")
 set(QVERIFY_DOUBLE_COMPILER "")  # empty: the build's compiler
+set(QVERIFY_DOUBLE_PACK_BITS "")  # empty: the -march's native pack width (pack.hpp)
 set(QVERIFY_INTERVAL_MARCH "")
 set(QVERIFY_DIGIT_MARCH "")
 set(QVERIFY_ARCH_NOTE "")
@@ -96,7 +100,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
   if(QVERIFY_KERNEL_CLANG_VERSION)
     list(APPEND _qv_variants c3)
     if("g4" IN_LIST _qv_variants)
-      list(APPEND _qv_variants c4)
+      list(APPEND _qv_variants c4 c4n)
     endif()
   endif()
   # Measure (or take the cached measurement of the same compilers, variants and kernels).
@@ -115,7 +119,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
   if(DEFINED QVERIFY_ARCH_MEASURED)
     list(GET QVERIFY_ARCH_MEASURED 0 _qv_cached_key)
     list(LENGTH QVERIFY_ARCH_MEASURED _qv_cached_fields)
-    if(_qv_cached_key STREQUAL _qv_key AND _qv_cached_fields EQUAL 12)
+    if(_qv_cached_key STREQUAL _qv_key AND _qv_cached_fields EQUAL 13)
       set(_qv_measured ${QVERIFY_ARCH_MEASURED})
       set(_qv_how "measured at an earlier configure")
     endif()
@@ -166,19 +170,25 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
       endif()
       set(_qv_exe_g3 ${_qv_probe_dir}/arch_probe_v3)
       set(_qv_exe_g4 ${_qv_probe_dir}/arch_probe_v4)
-      # The clang probes: the double kernel alone (no CGAL, GMP, MPFR), 3 s each to compile.
-      foreach(_qv_level 3 4)
-        if("c${_qv_level}" IN_LIST _qv_variants AND _qv_ok)
-          set(_qv_exe_c${_qv_level} ${_qv_probe_dir}/arch_probe_clang_v${_qv_level})
+      # The clang probes: the double kernel alone (no CGAL, GMP, MPFR), 3 s each to compile; c4n
+      # with 256-bit packs (pack.hpp, QVERIFY_PACK_BITS).
+      foreach(_qv_variant c3 c4 c4n)
+        if(_qv_variant IN_LIST _qv_variants AND _qv_ok)
+          string(SUBSTRING ${_qv_variant} 1 1 _qv_level)
+          set(_qv_pack_flags "")
+          if(_qv_variant STREQUAL "c4n")
+            set(_qv_pack_flags -DQVERIFY_PACK_BITS=256)
+          endif()
+          set(_qv_exe_${_qv_variant} ${_qv_probe_dir}/arch_probe_clang_${_qv_variant})
           qverify_kernel_clang_includes(_qv_clang_includes "${_qv_eigen_include}")
           execute_process(COMMAND ${QVERIFY_KERNEL_CLANG} ${QVERIFY_KERNEL_CLANG_FLAGS} -march=x86-64-v${_qv_level}
-                                  ${_qv_clang_includes} ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
-                                  -o ${_qv_exe_c${_qv_level}}
+                                  ${_qv_pack_flags} ${_qv_clang_includes} ${CMAKE_CURRENT_LIST_DIR}/arch_probe.cpp
+                                  -o ${_qv_exe_${_qv_variant}}
                           RESULT_VARIABLE _qv_rc OUTPUT_VARIABLE _qv_log ERROR_VARIABLE _qv_log TIMEOUT 120)
           if(NOT _qv_rc STREQUAL "0")
-            file(WRITE ${_qv_probe_dir}/clang_v${_qv_level}.log "${_qv_log}")
-            message(STATUS "qverify: the clang arch probe did not build (CMakeFiles/qverify_arch_probe/clang_v${_qv_level}.log)")
-            list(REMOVE_ITEM _qv_variants c${_qv_level})
+            file(WRITE ${_qv_probe_dir}/clang_${_qv_variant}.log "${_qv_log}")
+            message(STATUS "qverify: the clang arch probe did not build (CMakeFiles/qverify_arch_probe/clang_${_qv_variant}.log)")
+            list(REMOVE_ITEM _qv_variants ${_qv_variant})
           endif()
         endif()
       endforeach()
@@ -188,7 +198,7 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
       # its memory the first time (2^20 items took 1.2 s a run, of which 0.08 s in the kernel):
       # half the items, still five times the largest cache, halved the configure's 29 s of probing.
       foreach(_qv_kernel double interval exact)
-        foreach(_qv_variant g3 g4 c3 c4)
+        foreach(_qv_variant g3 g4 c3 c4 c4n)
           set(_qv_best_${_qv_kernel}_${_qv_variant} "")
           set(_qv_text_${_qv_kernel}_${_qv_variant} -)  # not measured
         endforeach()
@@ -274,14 +284,14 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
             endif()
           endif()
         endforeach()
-        set(_qv_measured "${_qv_key};${_qv_second_double};${_qv_text_double_g3};${_qv_text_double_g4};${_qv_second_interval};${_qv_text_interval_g3};${_qv_text_interval_g4};${_qv_second_exact};${_qv_text_exact_g3};${_qv_text_exact_g4};${_qv_text_double_c3};${_qv_text_double_c4}")
+        set(_qv_measured "${_qv_key};${_qv_second_double};${_qv_text_double_g3};${_qv_text_double_g4};${_qv_second_interval};${_qv_text_interval_g3};${_qv_text_interval_g4};${_qv_second_exact};${_qv_text_exact_g3};${_qv_text_exact_g4};${_qv_text_double_c3};${_qv_text_double_c4};${_qv_text_double_c4n}")
         set(_qv_how "measured now")
       else()
         # remembered too, so that every reconfigure does not try again (-U QVERIFY_ARCH_MEASURED does)
-        set(_qv_measured "${_qv_key};none;failed;failed;none;failed;failed;none;failed;failed;failed;failed")
+        set(_qv_measured "${_qv_key};none;failed;failed;none;failed;failed;none;failed;failed;failed;failed;failed")
       endif()
       set(QVERIFY_ARCH_MEASURED "${_qv_measured}" CACHE INTERNAL
-          "QVERIFY_ARCH=auto: key (compilers, variants, kernel sources); the variant of a second double kernel (none, g4, c3, c4); ns/item of the double kernel g3, g4; the same for the interval kernel and the exact digit kernel; ns/item of the double kernel c3, c4 (-: not measured)")
+          "QVERIFY_ARCH=auto: key (compilers, variants, kernel sources); the variant of a second double kernel (none, g4, c3, c4, c4n); ns/item of the double kernel g3, g4; the same for the interval kernel and the exact digit kernel; ns/item of the double kernel c3, c4, c4n (-: not measured)")
     endif()
   endif()
   if(_qv_measured)
@@ -296,11 +306,12 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
     list(GET _qv_measured 9 _qv_exact_g4_ns)
     list(GET _qv_measured 10 _qv_c3_ns)
     list(GET _qv_measured 11 _qv_c4_ns)
+    list(GET _qv_measured 12 _qv_c4n_ns)
   endif()
   if(_qv_measured AND NOT _qv_g3_ns STREQUAL "failed")
     set(QVERIFY_ARCH_NOTE "measured: double v3 ${_qv_g3_ns} ns/item, v4 ${_qv_g4_ns}")
     if(QVERIFY_KERNEL_CLANG_VERSION)
-      string(APPEND QVERIFY_ARCH_NOTE ", clang ${QVERIFY_KERNEL_CLANG_VERSION} v3 ${_qv_c3_ns}, v4 ${_qv_c4_ns}")
+      string(APPEND QVERIFY_ARCH_NOTE ", clang ${QVERIFY_KERNEL_CLANG_VERSION} v3 ${_qv_c3_ns}, v4 ${_qv_c4_ns}, v4 with 256-bit packs ${_qv_c4n_ns}")
     endif()
     string(APPEND QVERIFY_ARCH_NOTE "; interval v3 ${_qv_interval_g3_ns}, v4 ${_qv_interval_g4_ns}; exact v3 ${_qv_exact_g3_ns}, v4 ${_qv_exact_g4_ns}; one thread; ${_qv_how}")
     foreach(_qv_pair "DOUBLE;_qv_second_double;double batches" "INTERVAL;_qv_second_interval;interval batches" "DIGIT;_qv_second_exact;exact digit blocks")
@@ -308,11 +319,16 @@ if(QVERIFY_HOST_HAS_X86_64_V3)
       list(GET _qv_pair 1 _qv_var)
       list(GET _qv_pair 2 _qv_what)
       set(_qv_variant ${${_qv_var}})
-      if(_qv_variant MATCHES "^([gc])([34])$")
+      if(_qv_variant MATCHES "^([gc])([34])(n?)$")
         set(QVERIFY_${_qv_name}_MARCH x86-64-v${CMAKE_MATCH_2})
+        set(_qv_packs "")
+        if(CMAKE_MATCH_3 STREQUAL "n")  # (c4n: the double kernel only)
+          set(QVERIFY_${_qv_name}_PACK_BITS 256)
+          set(_qv_packs " with 256-bit packs")
+        endif()
         if(CMAKE_MATCH_1 STREQUAL "c")
           set(QVERIFY_${_qv_name}_COMPILER ${QVERIFY_KERNEL_CLANG})
-          string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel compiled by clang ${QVERIFY_KERNEL_CLANG_VERSION} for x86-64-v${CMAKE_MATCH_2}, run where the processor has it")
+          string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel compiled by clang ${QVERIFY_KERNEL_CLANG_VERSION} for x86-64-v${CMAKE_MATCH_2}${_qv_packs}, run where the processor has it")
         else()
           string(APPEND QVERIFY_ARCH_NOTE "; ${_qv_what}: a second kernel for x86-64-v${CMAKE_MATCH_2}, run where the processor has it")
         endif()

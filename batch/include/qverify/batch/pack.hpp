@@ -28,8 +28,34 @@ namespace qverify {
 
 namespace stdx = std::experimental;
 
-/// W doubles in one register: the native SIMD width of the build.
+/// QVERIFY_PACK_BITS (256 or 512) overrides the pack's width for one translation unit: the
+/// measured second double kernel for x86-64-v4 compiled by clang++ with 256-bit packs
+/// (cmake/ChooseArch.cmake, variant c4n) keeps AVX-512's 32 vector registers and instructions but
+/// computes 4 items at once. Without it the pack is the build's native width.
+#if defined(QVERIFY_PACK_BITS) && QVERIFY_PACK_BITS != 256 && QVERIFY_PACK_BITS != 512
+#error "QVERIFY_PACK_BITS is 256 or 512"
+#endif
+#if defined(QVERIFY_PACK_BITS) && QVERIFY_PACK_BITS == 512 && !defined(__AVX512F__)
+#error "512-bit packs need AVX-512"
+#endif
+#if defined(QVERIFY_PACK_BITS) && QVERIFY_PACK_BITS == 256 && !defined(__AVX__)
+#error "256-bit packs need AVX"
+#endif
+/// QVERIFY_PACK_512: whether the pack is one 512-bit register (the branches below that use
+/// AVX-512 instructions on whole packs).
+#if defined(__AVX512F__) && !(defined(QVERIFY_PACK_BITS) && QVERIFY_PACK_BITS == 256)
+#define QVERIFY_PACK_512 1
+#else
+#define QVERIFY_PACK_512 0
+#endif
+
+/// W doubles in one register: the native SIMD width of the build, or QVERIFY_PACK_BITS.
+#if defined(QVERIFY_PACK_BITS)
+using DoublePack = stdx::simd<double, stdx::simd_abi::deduce_t<double, QVERIFY_PACK_BITS / 64>>;
+#else
 using DoublePack = stdx::native_simd<double>;
+#endif
+static_assert(sizeof(DoublePack) == DoublePack::size() * sizeof(double), "a pack is one register of doubles");
 
 /// Thrown by a decision whose lanes disagree (see the file comment).
 struct MixedLanes {};
@@ -58,7 +84,7 @@ inline DoublePack opaque(DoublePack x) {
 /// function-specific optimisation attribute, stops GCC from inlining its
 /// callers.)
 inline DoublePack pack_max(const DoublePack& a, const DoublePack& b) {
-#if defined(__AVX512F__)
+#if QVERIFY_PACK_512
   // The all-lanes mask form: GCC 12.2's _mm512_max_pd trips -Wuninitialized (GCC PR 105593).
   return DoublePack(_mm512_mask_max_pd(static_cast<__m512d>(b), static_cast<__mmask8>(0xff), static_cast<__m512d>(a),
                                        static_cast<__m512d>(b)));
@@ -78,7 +104,7 @@ inline DoublePack pack_max(const DoublePack& a, const DoublePack& b) {
 /// holding two consecutive entries, or one CGAL interval {-lo, hi}):
 /// out[j] = (a_j, b_j) for every lane j.
 inline void to_lane_pairs(const DoublePack& a, const DoublePack& b, __m128d (&out)[DoublePack::size()]) {
-#if defined(__AVX512F__)
+#if QVERIFY_PACK_512
   // Vector shuffles rather than the AVX-512 unpack/extract intrinsics, which GCC 12.2 flags
   // with -Wuninitialized (GCC PR 105593); the same instructions come out.
   typedef double V8 __attribute__((vector_size(64)));
@@ -110,7 +136,7 @@ inline void to_lane_pairs(const DoublePack& a, const DoublePack& b, __m128d (&ou
 
 /// The inverse of to_lane_pairs: a_j, b_j from in[j] = (a_j, b_j).
 inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack& a, DoublePack& b) {
-#if defined(__AVX512F__)
+#if QVERIFY_PACK_512
   typedef double V8 __attribute__((vector_size(64)));
   typedef double V4 __attribute__((vector_size(32)));
   const V4 x0 = _mm256_set_m128d(in[2], in[0]), x1 = _mm256_set_m128d(in[6], in[4]);  // (a0 b0 a2 b2), (a4 b4 a6 b6)
@@ -144,7 +170,7 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
   constexpr int per = static_cast<int>(DoublePack::size()) / 2;
   static_assert(Count % per == 0, "a whole number of vectors");
   for (int q = 0; q < Count; q += per) {
-#if defined(__AVX512F__)
+#if QVERIFY_PACK_512
     static_assert(per == 4, "a 512-bit pack");
     typedef double V8 __attribute__((vector_size(64)));
     typedef double V4 __attribute__((vector_size(32)));
