@@ -412,6 +412,9 @@ int run_verify(const Options& o) {
   const ResultSet rs = o.candidate.empty() ? computed_results(sc, prec, method, frame_of(o.frame_text), aopt)
                                            : candidate_results(sc, o.candidate, prec);
   VerifyOptions vopt{o.samples, o.seed, o.accuracy};
+  // --precision exact with a candidate: its numbers are read in the document's precision, and
+  // judged in proof mode
+  vopt.prove = !o.candidate.empty() && prec.kind == Precision::Kind::exact;
   vopt.progress = progress_bar("verify");
   const VerifyReport v = verify_results(sc, rs, vopt);
   if (o.as_json) std::cout << verify_document(sc, v).dump(2) << "\n";
@@ -474,8 +477,8 @@ int run_stress_command(const Options& o, bool with_candidate) {
   if (o.as_json) std::cout << stress_json(report).dump(2) << "\n";
   else std::cout << stress_text(report, o.out_dir);
   // exit 1: an error beyond tolerance found, in the audited program (a failed call, an item beyond its
-  // target) or in eval's own flag (a run beyond 1e-9 that eval did not flag inaccurate)
-  const bool candidate_bad = report.candidate && (report.candidate->failed_calls > 0 || report.candidate->beyond_accuracy > 0);
+  // target, a failed check) or in eval's own flag (a run beyond 1e-9 that eval did not flag inaccurate)
+  const bool candidate_bad = report.candidate && !report.candidate->reproducers.empty();
   const bool flag_missed = std::any_of(report.families.begin(), report.families.end(),
                                        [](const StressFamilyResult& f) { return !f.flag_check.ok(); });
   return candidate_bad || flag_missed ? kFound : kOk;

@@ -829,12 +829,38 @@ std::string reflection_sign_problem(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
   return "B has the wrong sign or vanishes where M^T A M does not (must be M^T A M up to a positive factor)";
 }
 
+bool single_point(const std::vector<RootPoint>& terminator) {
+  if (terminator.empty()) return false;
+  for (const RootPoint& x : terminator)
+    if ((x.delta() != 0 && !x.q().isZero()) || cross_residual(x.p(), terminator.front().p()) != 0) return false;
+  return true;
+}
+
+Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R) {
+  Measure e = 0;
+  if (P) e = mmax(e, to_measure(cross_residual(*P, reference_cone(A, L))));
+  if (polar) e = mmax(e, to_measure(cross_residual(*polar, Vec4<Q>(A * L))));
+  if (R) e = mmax(e, to_measure(cross_residual(*R, reference_plane_pair(A, L))));
+  return e;
+}
+
 namespace {
 /// A result of the wrong sign: wrong whatever its geometric error (which cannot see a sign).
 ItemAccuracy wrong_sign(const std::string& problem) {
   ItemAccuracy acc;
   acc.reason = problem + ": no error bound is given";
   acc.inaccurate = true;
+  return acc;
+}
+
+/// An error measured exactly (shadow_matrix_error) as the item's bound, rounded up to a double.
+ItemAccuracy measured_exactly(const Measure& e, std::vector<std::string> certified, double target) {
+  ItemAccuracy acc;
+  acc.certified = std::move(certified);
+  acc.attained = e.convert_to<double>();
+  acc.bound = acc.attained;
+  if (Measure(*acc.bound) < e) acc.bound = std::nextafter(*acc.bound, std::numeric_limits<double>::infinity());
+  acc.inaccurate = *acc.bound > target;
   return acc;
 }
 }  // namespace
@@ -846,8 +872,11 @@ ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptio
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
                                      const Mat4<Q>& R) {
   const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
-  if (const auto sign = shadow_sign_problems(quadric_to_local(A_, o), point_to_local(L_, o), &P, &polar); !sign.empty())
-    return wrong_sign(sign.front());
+  const Mat4<Q> Ae = quadric_to_local(A_, o);
+  const Vec4<Q> Le = point_to_local(L_, o);
+  if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_sign(sign.front());
+  if (single_point(pts_.points))
+    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)

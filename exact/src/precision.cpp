@@ -4,6 +4,19 @@
 
 namespace qverify {
 
+std::optional<unsigned> Precision::significand_bits() const {
+  switch (kind) {
+    case Kind::f32: return 24;
+    case Kind::f64:
+    case Kind::interval: return 53;
+    case Kind::f80: return 64;
+    case Kind::f128: return 113;
+    case Kind::mpfr: return digits_for_bits(bits).bits;
+    case Kind::exact: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 std::string Precision::name() const {
   switch (kind) {
     case Kind::f32: return "float";

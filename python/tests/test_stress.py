@@ -74,7 +74,11 @@ def test_the_report_on_disk_and_the_candidate_runs(tmp_path):
     assert all(r["status"] == "unstated" and r["frame"] == "world" and r["precision"] == "double" for r in runs)
     assert [r["beyond_accuracy"] for r in runs] == [k >= 5 for k in range(13)]
     assert doc["candidate"]["calls"] == 13 and doc["candidate"]["beyond_accuracy"] == 8
-    assert len(doc["candidate"]["reproducers"]) == 8
+    # point 4 is within the target on the sweep's points, but verify's certified bound finds points of
+    # the terminator between them beyond it: a failed check, a reproducer too
+    assert [r["problems"] != [] for r in runs] == [k >= 4 for k in range(13)]
+    assert doc["candidate"]["failed_checks"] == 1
+    assert [r["status"] for r in doc["candidate"]["reproducers"]] == ["failed-checks"] + ["beyond-accuracy"] * 8
 
 
 def test_far_from_the_origin_the_world_frame_itself_breaks():

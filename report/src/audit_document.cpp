@@ -12,11 +12,12 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-/// max_rel_error, median_rel_error, correct_bits (= -log2(error); null for an exact zero) and exact_match.
-void error_fields(json& r, const ErrorStats& stats) {
+/// max_rel_error, median_rel_error, correct_bits (= -log2(error); for an exact zero, all the significand's
+/// bits of a floating precision, `bits`, and null for exact arithmetic or no precision) and exact_match.
+void error_fields(json& r, const ErrorStats& stats, std::optional<unsigned> bits = std::nullopt) {
   r["max_rel_error"] = number_or_null(stats.max);
   r["median_rel_error"] = number_or_null(stats.median);
-  r["correct_bits"] = stats.max > 0 ? number_or_null(-std::log2(stats.max)) : json(nullptr);
+  r["correct_bits"] = stats.max > 0 ? number_or_null(-std::log2(stats.max)) : bits ? json(*bits) : json(nullptr);
   if (stats.max == 0) r["exact_match"] = true;
 }
 
@@ -27,7 +28,8 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   r["precision"] = row.precision;
   r["method"] = row.method;
   r["ns_per_item"] = row.ns_per_item;
-  error_fields(r, row.stats);
+  const std::optional<Precision> p = parse_precision(row.precision);
+  error_fields(r, row.stats, p ? p->significand_bits() : std::nullopt);
   r["items"] = n_items;
   r["inaccurate_items"] = f.inaccurate_items;
   r["reps_per_batch"] = f.reps_per_batch;
@@ -37,9 +39,15 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   return r;
 }
 
+/// Why the candidate's reproducer was written: its call failed, an item beyond the accuracy target, or
+/// (within it) a failed check (a status word, sign, M or symmetry).
+const char* reproducer_status(const CandidateFacts& c, double accuracy) {
+  return !c.ok ? "candidate-failed" : !(c.max_geometric_error <= accuracy) ? "beyond-accuracy" : "failed-checks";
+}
+
 /// The candidate's row: who it is and its status, its time per call and errors, then the ladder's fields
 /// it has no value for (null or 1), whether it missed the target and its reproducer's scene.
-json candidate_row_json(const AuditRow& row, std::size_t n_items) {
+json candidate_row_json(const AuditRow& row, std::size_t n_items, double a_accuracy) {
   const CandidateFacts& c = *row.candidate;
   json r;
   r["precision"] = row.precision;
@@ -52,19 +60,21 @@ json candidate_row_json(const AuditRow& row, std::size_t n_items) {
     r["claimed_method"] = c.claimed_method;
     r["checks_passed"] = c.checks_passed;
     r["checks_failed"] = c.checks_failed;
+    r["problems"] = c.problems;
   } else {
     r["error"] = c.error;
   }
   r["ns_per_item"] = row.ns_per_item;
   r["seconds_per_call"] = c.seconds;
-  error_fields(r, row.stats);
+  const std::optional<Precision> claimed = c.ok ? parse_precision(c.claimed_precision) : std::nullopt;
+  error_fields(r, row.stats, claimed ? claimed->significand_bits() : std::nullopt);
   r["max_geometric_error"] = number_or_null(c.max_geometric_error);
   r["items"] = n_items;
   r["inaccurate_items"] = nullptr;
   r["reps_per_batch"] = 1;
   r["batches"] = 1;
   r["inputs_rounded"] = nullptr;
-  r["beyond_accuracy"] = c.ok && c.bad;
+  r["beyond_accuracy"] = c.ok && !(c.max_geometric_error <= a_accuracy);
   if (c.reproducer) r["reproducer"] = c.reproducer->scene;
   return r;
 }
@@ -108,7 +118,7 @@ json candidate_json(const AuditReport& a) {
   if (row && row->candidate->reproducer) {
     json rep = reproducer_json(*row->candidate->reproducer);
     rep.erase("param");  // one call on the scene: no parameter
-    rep["status"] = row->candidate->ok ? "beyond-accuracy" : "candidate-failed";
+    rep["status"] = reproducer_status(*row->candidate, o.accuracy);
     reproducers.push_back(rep);
   }
   c["failures_dir"] = reproducers.empty() ? json(nullptr) : json("failures");
@@ -121,7 +131,7 @@ json candidate_json(const AuditReport& a) {
 json audit_json(const AuditReport& a) {
   const std::size_t n_items = a.items.size();
   json rows = json::array();
-  for (const AuditRow& r : a.rows) rows.push_back(r.candidate ? candidate_row_json(r, n_items) : ladder_json(r, n_items));
+  for (const AuditRow& r : a.rows) rows.push_back(r.candidate ? candidate_row_json(r, n_items, a.options.accuracy) : ladder_json(r, n_items));
   json doc;
   doc["format"] = "qverify-audit/1";
   doc["scene"] = a.scene;

@@ -53,7 +53,8 @@ std::string audit_html(const json& doc, const std::string& svg) {
     b += std::string("<tr") + (front ? " class=\"pareto\"" : "") + "><td class=\"l\">" + sci(r["precision"]) +
          "</td><td class=\"l\">" + sci(r["method"]) + "</td><td>" + sci(r["ns_per_item"]) + "</td><td>" +
          sci(r["max_rel_error"]) + "</td><td>" + sci(r["median_rel_error"]) + "</td><td>" +
-         (r["correct_bits"].is_null() ? std::string("exact") : sci(r["correct_bits"])) + "</td><td>" +
+         (r["correct_bits"].is_null() && r["max_rel_error"] == 0 ? std::string("exact") : sci(r["correct_bits"])) +
+         "</td><td>" +
          sci(r["inputs_rounded"]) + "</td><td>" + sci(r["inaccurate_items"]) + " of " + sci(r["items"]) +
          "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
   }
@@ -141,16 +142,18 @@ std::string candidate_html(const json& doc) {
                   html_escape(c["command"].get<std::string>()) + "</code>" +
                   (c["timeout_seconds"].is_null() ? std::string() : ", at most " + sci(c["timeout_seconds"]) + " s per call") +
                   ". Accuracy target " + sci(c["accuracy"]) + ". " + sci(c["calls"]) + " calls, " + sci(c["failed_calls"]) +
-                  " failed, " + sci(c["beyond_accuracy"]) + " beyond the target; median " +
+                   " failed, " + sci(c["beyond_accuracy"]) + " beyond the target, " + sci(c["failed_checks"]) +
+                  " with a failed check; median " +
                   sci(c["median_seconds_per_call"]) + " s per call.</p>\n<p class=\"note\">" + html_escape(c["rule"].get<std::string>()) +
                   ".</p>\n<table id=\"candidate-breakdown\"><tr><th class=\"l\">family</th><th>first breaking parameter</th>"
-                  "<th>failed calls</th><th>beyond target</th><th class=\"l\">first reason</th></tr>\n";
+                  "<th>failed calls</th><th>beyond target</th><th>failed checks</th><th class=\"l\">first reason</th></tr>\n";
   for (const auto& f : doc["families"]) {
     if (!f.contains("candidate")) continue;
     const json& fc = f["candidate"];
     b += "<tr><td class=\"l\"><a href=\"#" + html_escape(f["name"].get<std::string>()) + "\">" + sci(f["name"]) +
          "</a></td><td>" + (fc["breakdown"].is_null() ? std::string("never") : sci(f["parameter"]) + " = " + sci(fc["breakdown"])) +
-         "</td><td>" + sci(fc["failed_calls"]) + "</td><td>" + sci(fc["beyond_accuracy"]) + "</td><td class=\"l\">" +
+         "</td><td>" + sci(fc["failed_calls"]) + "</td><td>" + sci(fc["beyond_accuracy"]) + "</td><td>" +
+         sci(fc["failed_checks"]) + "</td><td class=\"l\">" +
          (fc["breakdown_reason"].is_null() ? std::string() : sci(fc["breakdown_reason"])) + "</td></tr>\n";
   }
   b += "</table>\n<h3>Reproducers</h3>\n";

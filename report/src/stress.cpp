@@ -33,7 +33,7 @@ json run_json(const StressRun& r) {
   j["geometric_error"] = measured(r.geometric_error);
   j["item_geometric_error"] = measured(r.item_geometric_error);
   j["flags"] = r.inaccurate ? json::array({"inaccurate"}) : json::array();
-  if (r.candidate) j["beyond_accuracy"] = r.beyond_accuracy;
+  if (r.candidate) j["beyond_accuracy"] = r.beyond_accuracy, j["problems"] = r.problems;
   if (r.reproducer) j["reproducer"] = *r.reproducer;
   return j;
 }
@@ -96,7 +96,8 @@ json family_json(const StressFamilyResult& f) {
                       {"breakdown_reason", c.breakdown_reason ? json(*c.breakdown_reason) : json(nullptr)},
                       {"failed_calls", c.failed_calls},
                       {"beyond_accuracy", c.beyond_accuracy},
-                      {"reproducers", c.failed_calls + c.beyond_accuracy}};
+                      {"failed_checks", c.failed_checks},
+                      {"reproducers", c.failed_calls + c.beyond_accuracy + c.failed_checks}};
   }
   return j;
 }
@@ -114,17 +115,20 @@ json candidate_json(const StressCandidateSummary& c) {
   j["rule"] = "the candidate is given each point's scene (the file of its reproducer) and must return a qverify-eval/1 "
               "document with the family's item; its results are measured like every run (matrix and geometric error "
               "against exact on the same points); a point is a reproducer when the call failed (status "
-              "candidate-failed, with error) or the item's geometric error over all its results (P, polar plane and R, "
-              "or B) exceeds accuracy; breakdown is the first such parameter value";
+              "candidate-failed, with error), the item's geometric error over all its results (P, polar plane and R, "
+              "or B) exceeds accuracy (beyond-accuracy), or another of verify --candidate's checks of the item fails "
+              "(failed-checks: a status word that is not the exact inputs', a wrong sign, an M that is not the "
+              "mirror's, an asymmetric matrix; problems lists them); breakdown is the first such parameter value";
   j["calls"] = c.call_seconds.size();
   j["failed_calls"] = c.failed_calls;
   j["beyond_accuracy"] = c.beyond_accuracy;
+  j["failed_checks"] = c.failed_checks;
   j["median_seconds_per_call"] = optional_number(median_seconds(c.call_seconds));
   j["failures_dir"] = c.reproducers.empty() ? json(nullptr) : json("failures");
   json reproducers = json::array();
   for (const StressReproducer& r : c.reproducers) {
     json e = reproducer_json(r.written);
-    e["status"] = r.failed_call ? "candidate-failed" : "beyond-accuracy";
+    e["status"] = r.status;
     e["item_geometric_error"] = measured(r.item_geometric_error);
     reproducers.push_back(e);
   }
@@ -179,8 +183,8 @@ std::string stress_text(const StressReport& report, const std::string& dir) {
   }
   if (report.candidate) {
     const StressCandidateSummary& c = *report.candidate;
-    fmt::format_to(put, "\ncandidate {}: {} calls, {} failed, {} beyond the target {:.3g}; {} reproducer(s){}\n",
-                   c.candidate.name, c.call_seconds.size(), c.failed_calls, c.beyond_accuracy, c.accuracy,
+    fmt::format_to(put, "\ncandidate {}: {} calls, {} failed, {} beyond the target {:.3g}, {} with a failed check; {} reproducer(s){}\n",
+                   c.candidate.name, c.call_seconds.size(), c.failed_calls, c.beyond_accuracy, c.accuracy, c.failed_checks,
                    c.reproducers.size(), c.reproducers.empty() ? std::string() : " in " + dir + "/failures/");
   }
   fmt::format_to(put, "\nwrote {0}/report.json, {0}/report.html and one SVG per family\n", dir);

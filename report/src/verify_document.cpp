@@ -16,7 +16,10 @@ double to_d(const Measure& m) { return m.convert_to<double>(); }
 
 json metric_json(const QuadricCheck& c) {
   const Metric& m = c.metric;
+  if (c.name == "as_matrices")  // (check.cpp: P, the polar plane and R against the exact ones, a single-point terminator)
+    return {{"max_cross_residual", to_d(m.residual)}, {"geometric_error", number_or_null(c.geometric_error)}};
   json j{{"max_residual", to_d(m.residual)}, {"max_distance", m.singular ? json(nullptr) : json(to_d(m.distance))}};
+  if (!c.judged) j["judged"] = false;
   j["geometric_error"] = number_or_null(c.geometric_error);
   if (m.singular) j["note"] = "a point lies off the result where its gradient vanishes: no first-order distance";
   return j;
@@ -64,7 +67,7 @@ json check_json(const VerifyCheck& v, bool exact) {
     return c;
   }
   if (shadow) {
-    measures_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane"});
+    measures_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane", "as_matrices"});
     c["R_on_second_plane"] = number_or_null(r.second_plane_error.value_or(0));
     if (exact) c["proved_exactly"] = r.proved_exactly;
     c["consistent_with_precision"] = r.consistent_with_precision;
@@ -97,7 +100,7 @@ json check_json(const VerifyCheck& v, bool exact) {
 }  // namespace
 
 json verify_document(const Scene& sc, const VerifyReport& report) {
-  const bool exact = report.precision.kind == Precision::Kind::exact;
+  const bool exact = report.proof();
   json doc;
   doc["format"] = "qverify-verify/1";
   doc["scene"] = sc.name;
@@ -130,7 +133,7 @@ json verify_document(const Scene& sc, const VerifyReport& report) {
 }
 
 std::string verify_text(const Scene& sc, const VerifyReport& report) {
-  const bool exact = report.precision.kind == Precision::Kind::exact;
+  const bool exact = report.proof();
   const double target = exact ? 0.0 : report.options.accuracy;
   std::string out = fmt::format(
       "scene      {}\nprecision  {}   method {}   source {}\nsamples    {} per item, seed {}   accuracy target {}\n\n",

@@ -171,6 +171,12 @@ class SceneAudit {
       c.checks_failed = v.failed;
       for (std::size_t i = 0; i < n_items_ && i < v.checks.size(); ++i) {
         const VerifyCheck& g = v.checks[i];
+        if (!g.passed() && !g.skipped()) {
+          const std::string item = g.kind + " " + g.quadric + "/" + g.other + ": ";
+          if (!g.report) c.problems.push_back(item + (g.missing.empty() ? std::string("no result") : g.missing));
+          else
+            for (const std::string& p : g.report->problems) c.problems.push_back(item + p);
+        }
         if (g.report && !g.report->skipped && std::isfinite(g.report->geometric_error))
           candidate_geo_[i] = g.report->geometric_error;
         else if (g.skipped())
@@ -199,7 +205,8 @@ class SceneAudit {
     char buf[160];
     std::snprintf(buf, sizeof buf, "largest item geometric error %.3g of the object size (accuracy target %.3g); %d of %zu checks failed",
                   c.max_geometric_error, opt_.accuracy, c.checks_failed, n_items_);
-    const std::string reason = call.ok ? std::string(buf) : "candidate-failed: " + call.error;
+    std::string reason = call.ok ? std::string(buf) : "candidate-failed: " + call.error;
+    for (const std::string& p : c.problems) reason += "; " + p;
     c.reproducer = qverify::write_reproducer(failures_dir, c.name, "audit", 0, 0, text, call, reason);
   }
 

@@ -4,6 +4,7 @@
 #include <qverify/studies/audit.hpp>
 #include <qverify/scene/files.hpp>
 #include <qverify/studies/stress.hpp>
+#include <qverify/verify/verifier.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -333,6 +334,7 @@ class FamilySweep {
       result_.runs.push_back({cand_->name, slope(params_, mat_[c]), slope(params_, geo_[c]), fc.breakdown});
       totals_->failed_calls += fc.failed_calls;
       totals_->beyond_accuracy += fc.beyond_accuracy;
+      totals_->failed_checks += fc.failed_checks;
     }
   }
 
@@ -462,33 +464,50 @@ class FamilySweep {
     run.geometric_error = m.geometric;
     run.item_geometric_error = m.item_geometric;
     run.beyond_accuracy = call.ok && !(m.item_geometric <= opt_.accuracy);
+    if (call.ok) run.problems = check_problems(sc, call.results);  // as audit and verify --candidate judge it
     totals_->call_seconds.push_back(call.seconds);
-    if (!call.ok || run.beyond_accuracy) {
+    const bool bad = !call.ok || run.beyond_accuracy || !run.problems.empty();
+    if (bad) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.3g", m.item_geometric);
       char tbuf[32];
       std::snprintf(tbuf, sizeof tbuf, "%.3g", opt_.accuracy);
-      const std::string reason =
-          !call.ok ? "candidate-failed: " + call.error
-                   : std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
-                         " of the object size exceeds the accuracy target " + tbuf;
-      StressReproducer rep{write_reproducer(failures_dir_, cand_->name, fam_.name, K, v, text, call, reason), !call.ok,
+      std::string reason = !call.ok ? "candidate-failed: " + call.error
+                           : run.beyond_accuracy
+                               ? std::string("item geometric error ") + (std::isfinite(m.item_geometric) ? buf : "infinite") +
+                                     " of the object size exceeds the accuracy target " + tbuf
+                               : std::string("a check failed");
+      for (const std::string& p : run.problems) reason += "; " + p;
+      const char* status = !call.ok ? "candidate-failed" : run.beyond_accuracy ? "beyond-accuracy" : "failed-checks";
+      StressReproducer rep{write_reproducer(failures_dir_, cand_->name, fam_.name, K, v, text, call, reason), status,
                            m.item_geometric};
       run.reproducer = rep.written.scene;
       totals_->reproducers.push_back(std::move(rep));
       StressCandidateFamily& fc = *result_.candidate;
       if (!fc.breakdown_reason) fc.breakdown_reason = reason;
-      (call.ok ? fc.beyond_accuracy : fc.failed_calls) += 1;
+      (!call.ok ? fc.failed_calls : run.beyond_accuracy ? fc.beyond_accuracy : fc.failed_checks) += 1;
     }
     cand_failed_.push_back(!call.ok);
-    cand_bad_.push_back(!call.ok || run.beyond_accuracy);
+    cand_bad_.push_back(bad);
     geo_[specs_.size()].push_back(m.geometric);
     mat_[specs_.size()].push_back(m.matrix);
     return run;
   }
 
-  /// The floor: the exact result in the default run's frame, correctly rounded to double (with the same exact
-  /// power-of-two scaling). "What a correctly rounded matrix in the object's own frame can reach".
+  /// What verify --candidate finds wrong in the candidate's item (its own samples, seed 1, the accuracy
+  /// target): every problem of a failed check; none when it passes or has nothing to sample.
+  std::vector<std::string> check_problems(const Scene& sc, const ResultSet& results) const {
+    VerifyOptions vo{opt_.samples, 1, opt_.accuracy};
+    vo.threads = 1;
+    std::vector<std::string> out;
+    for (const VerifyCheck& c : verify_results(sc, results, vo).checks) {
+      if (c.passed() || c.skipped()) continue;
+      if (!c.report) out.push_back(c.missing.empty() ? std::string("no result") : c.missing);
+      else out.insert(out.end(), c.report->problems.begin(), c.report->problems.end());
+    }
+    return out;
+  }
+
   /// The floor: the exact results correctly rounded to double in the default run's frame, measured as the
   /// runs are: P's (B's) error on these points, and the item's error as eval measures it (what it proves
   /// the rounding alone reaches, certified over the whole terminator or quadric where it certifies); the

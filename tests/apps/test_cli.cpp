@@ -236,6 +236,22 @@ TEST_CASE("verify with a candidate catches wrong matrices and passes right ones"
     c["reflections"].erase(0);
     fails_with(c, "missing", "missing");
   }
+  {  // --precision exact judges a double document in proof mode (it was ignored: 1e-9 of the object size
+     // passed), and reports the points proved; the exact document passes it
+    const std::string f = temp_file("good-double.json", doc.dump());
+    const Run proof = run("verify " + scene("mixed-requests.json") + " --json --precision exact --candidate " + f);
+    CHECK(proof.code == 1);
+    const auto out = nlohmann::json::parse(proof.out);
+    CHECK(out["accuracy"] == 0);
+    CHECK(out["checks"][0].contains("proved_exactly"));
+    const std::string e = temp_file("exact-doc.json", exact.out);
+    CHECK(run("verify " + scene("mixed-requests.json") + " --json --precision exact --candidate " + e).code == 0);
+  }
+  {  // a status the exact inputs do not give
+    auto c = doc;
+    c["shadows"][0]["status"] = "light-on-surface";
+    fails_with(c, "status", "status");
+  }
   {  // malformed: exit 2, nothing on stdout
     auto c = doc;
     c["shadows"][0]["P"][0][1] = "abc";
@@ -280,6 +296,13 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
     CHECK(row["exact/" + M]["ns_per_item"].get<double>() > 0);
     CHECK(row["double/" + M]["ns_per_item"].get<double>() > 0);
     CHECK(row["double/" + M]["correct_bits"].get<double>() > 48);
+  }
+  // correct_bits is a number for every floating row, its significand's bits where the error is exactly 0;
+  // null only for exact arithmetic
+  for (const auto& [key, x] : row) {
+    INFO(key);
+    if (key.rfind("exact/", 0) == 0) CHECK(x["correct_bits"].is_null());
+    else CHECK(x["correct_bits"].is_number());
   }
   CHECK(doc["items"].size() == 6);  // only the requested pairs
   CHECK(doc["skipped"].size() == 14);

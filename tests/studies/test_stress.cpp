@@ -111,6 +111,27 @@ Candidate eval_candidate(const std::string& name, std::optional<Frame> frame) {
   return c;
 }
 
+/// qverify's default path with its document changed by `mutate` before it is returned: a candidate whose
+/// geometry is right but whose status, sign or M is not.
+template <class F> Candidate mutated_candidate(const std::string& name, F mutate) {
+  Candidate c;
+  c.name = name;
+  c.call = [mutate](const CandidateInput& in) {
+    auto doc = eval_json(eval_report(in.scene, *parse_precision("double"), Method::direct, std::nullopt));
+    mutate(doc);
+    CandidateOutput o;
+    o.document = doc.dump();
+    return o;
+  };
+  return c;
+}
+
+/// Negates every entry of a matrix of the document.
+template <class J> void negate(J& m) {
+  for (auto& row : m)
+    for (auto& x : row) x = -x.template get<double>();
+}
+
 const StressRun& candidate_run(const StressPoint& point) {
   REQUIRE(point.runs.back().candidate);
   return point.runs.back();
@@ -161,7 +182,7 @@ TEST_CASE("a C++ callable candidate is measured like qverify's own runs", "[stre
     REQUIRE(report.candidate->reproducers.size() == 1);
     const StressReproducer& rep = report.candidate->reproducers[0];
     CHECK(rep.written.scene == "failures/world-far-from-origin-12.json");
-    CHECK_FALSE(rep.failed_call);
+    CHECK(rep.status == "beyond-accuracy");
     const auto doc = stress_json(report);
     CHECK(doc["families"][0]["breakdown"]["world"] == doc["families"][0]["points"][0]["param"]);
     CHECK(doc["candidate"]["reproducers"][0]["scene"] == "failures/world-far-from-origin-12.json");
@@ -296,6 +317,24 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
     CHECK(doc["candidate"]["reproducers"][0]["scene"] == "failures/world-audit-0.json");
     CHECK(std::filesystem::exists(dir / "failures/world-audit-0.json"));
   }
+  SECTION("right geometry, wrong sign or status: failed checks, named, and a reproducer") {
+    opt.candidate = mutated_candidate("signs", [](auto& doc) {
+      negate(doc["shadows"][0]["P"]);
+      doc["reflections"][0]["status"] = "degenerate-quadric";
+    });
+    const auto doc = audit_json(run_audit(sc, opt));
+    const auto& row = doc["rows"].back();
+    CHECK(row["status"] == "fail");
+    CHECK(row["max_geometric_error"].get<double>() < 1e-9);
+    CHECK(row["beyond_accuracy"] == false);  // (it said true: the geometry is right)
+    REQUIRE(row["problems"].size() == 2);
+    CHECK(row["problems"][0].get<std::string>().find("shadow ball/lamp: P has the wrong sign") == 0);
+    CHECK(row["problems"][1].get<std::string>().find("reflection ball/m: status \"degenerate-quadric\"") == 0);
+    REQUIRE(doc["candidate"]["reproducers"].size() == 1);
+    const auto& rep = doc["candidate"]["reproducers"][0];
+    CHECK(rep["status"] == "failed-checks");
+    CHECK(rep["reason"].get<std::string>().find("wrong sign") != std::string::npos);
+  }
   SECTION("failed") {
     Candidate c;
     c.name = "broken";
@@ -339,4 +378,44 @@ TEST_CASE("the inaccurate flag sees errors between the samples: mixed magnitudes
         }
   CHECK(seen);
   std::filesystem::remove_all(opt.out_dir);
+}
+
+TEST_CASE("stress judges a candidate's status, sign and M as verify and audit do", "[stress][candidate]") {
+  // A negated P (or B), a wrong status word or a transposed M has the right zero set: stress passed them,
+  // "within the target at every point", where audit failed the same output.
+  const auto dir = fresh_dir("cand-checks");
+  StressOptions opt;
+  opt.out_dir = dir.string();
+  opt.worst_only = true;
+  struct Bug {
+    const char* family;
+    std::function<void(nlohmann::ordered_json&)> mutate;
+    const char* problem;
+  };
+  const std::vector<Bug> bugs{
+      {"far-from-origin", [](nlohmann::ordered_json& d) { negate(d["shadows"][0]["P"]); }, "P has the wrong sign"},
+      {"far-from-origin", [](nlohmann::ordered_json& d) { d["shadows"][0]["status"] = "light-on-surface"; }, "status"},
+      {"mirror-far", [](nlohmann::ordered_json& d) { negate(d["reflections"][0]["B"]); }, "B has the wrong sign"},
+      {"mirror-far",
+       [](nlohmann::ordered_json& d) {
+         auto& M = d["reflections"][0]["M"];
+         std::swap(M[0][3], M[3][0]);
+       },
+       "M is not the reflection"}};
+  for (const Bug& b : bugs) {
+    INFO(b.problem);
+    opt.families = {b.family};
+    opt.candidate = mutated_candidate("bug", b.mutate);
+    const StressReport report = run_stress(opt);
+    const StressRun& c = candidate_run(report.families[0].points[0]);
+    CHECK_FALSE(c.beyond_accuracy);
+    REQUIRE_FALSE(c.problems.empty());
+    CHECK(c.problems[0].find(b.problem) != std::string::npos);
+    CHECK(report.families[0].candidate->failed_checks == 1);
+    CHECK(report.families[0].candidate->breakdown == report.families[0].points[0].param);
+    REQUIRE(report.candidate->reproducers.size() == 1);
+    CHECK(report.candidate->reproducers[0].status == "failed-checks");
+    CHECK(stress_json(report)["candidate"]["failed_checks"] == 1);
+  }
+  std::filesystem::remove_all(dir);
 }

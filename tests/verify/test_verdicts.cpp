@@ -576,3 +576,88 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
     for (const auto& c : v_doc["checks"]) CHECK(c["geometric_error"].get<double>() < 1e-12);
   }
 }
+
+TEST_CASE("a terminator of one point: the results are judged as matrices, by verify and eval alike",
+          "[verdicts][verify][accuracy]") {
+  // A cone lit along its axis (the terminator is the apex) and a light on a sphere at a point no double
+  // holds: P and R are singular at the one point, which says nothing of their shapes. A P that is not the
+  // cone (P_zz = 1/2 for 0: a real cone where the line through the apex is right) passed; the correctly
+  // rounded double plane pair of the light on the sphere failed with a "geometric error" of 0.65 (a second
+  // order measure at a vanishing gradient), and passed once the scene was scaled by 5.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "one", "quadrics": [
+      {"id": "funnel", "cone": {"apex": [2, 2, 0], "axis": [0, 0, 1], "tan_half_angle": "1/3"}},
+      {"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}},
+      {"id": "ball5", "sphere": {"center": [0, 0, 0], "radius": 5}}],
+      "lights": [{"id": "sun", "direction": [0, 0, -1]}, {"id": "on", "position": ["3/5", "4/5", 0]},
+                 {"id": "on5", "position": [3, 4, 0]}],
+      "requests": {"shadows": [{"quadric": "funnel", "light": "sun"}, {"quadric": "ball", "light": "on"},
+                               {"quadric": "ball5", "light": "on5"}]}})",
+                               "one.json");
+  const ResultSet good = exact_results(sc);
+  REQUIRE(failures(sc, good) == 0);
+  CHECK(failures(sc, rounded(good)) == 0);
+  for (const char* precision : {"double", "long-double", "float128"}) {
+    INFO(precision);
+    const ResultSet rs = computed_results(sc, *parse_precision(precision), Method::direct);
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    CHECK(v.failed == 0);
+    for (const ShadowMatrices& s : rs.shadows) {
+      REQUIRE(s.accuracy);
+      CHECK_FALSE(s.accuracy->inaccurate);
+    }
+    for (const VerifyCheck& c : v.checks) {
+      REQUIRE(c.report);
+      CHECK(c.report->find("as_matrices"));
+    }
+  }
+  // float: beyond 1e-9 as matrices, flagged by eval exactly where verify fails it
+  const ResultSet f = computed_results(sc, *parse_precision("float"), Method::direct);
+  const VerifyReport vf = verify_results(sc, f, VerifyOptions{});
+  for (std::size_t k = 0; k < f.shadows.size(); ++k) {
+    INFO("float, shadow " << k);
+    REQUIRE(f.shadows[k].accuracy);
+    CHECK(f.shadows[k].accuracy->inaccurate == !vf.checks[k].passed());
+  }
+  for (int bug = 0; bug < 3; ++bug) {
+    ResultSet bad = good;
+    if (bug == 0) bad.shadows[0].P(2, 2) += Q(1, 2);  // a real cone with the right apex
+    if (bug == 1) bad.shadows[1].P = typed_scene<Q>(sc).A[1];  // the sphere itself: through L
+    if (bug == 2) bad.shadows[1].R(0, 3) += Q(1, 1000), bad.shadows[1].R(3, 0) += Q(1, 1000);
+    INFO("bug " << bug);
+    CHECK(failures(sc, bad) == 1);
+    CHECK(failures(sc, rounded(bad)) == 1);
+    // eval's meter, given the same results, flags them
+    const TypedScene<Q> t = typed_scene<Q>(sc);
+    const std::size_t k = bug == 0 ? 0 : 1;
+    ShadowMeter meter(t.A[sc.shadows[k].quadric], t.L[sc.shadows[k].other], AccuracyOptions{}, k);
+    CHECK(meter(std::nullopt, bad.shadows[k].P, bad.shadows[k].polar, bad.shadows[k].R).inaccurate);
+  }
+}
+
+TEST_CASE("a wrong status, sign or M fails also where there is no point to sample", "[verdicts][verify]") {
+  // A light inside a sphere (no real terminator) and an imaginary sphere reflected (no real point): the
+  // checks were skipped whole, so a candidate's status "ok" for "no-real-silhouette" passed.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "none", "quadrics": [
+      {"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}},
+      {"id": "ghost", "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}],
+      "lights": [{"id": "inside", "position": ["1/10", "1/5", "3/10"]}],
+      "mirrors": [{"id": "m", "plane": [0, 0, 1, -1]}],
+      "requests": {"shadows": [{"quadric": "ball", "light": "inside"}],
+                   "reflections": [{"quadric": "ghost", "mirror": "m"}]}})",
+                               "none.json");
+  const ResultSet good = exact_results(sc);
+  const VerifyReport v = verify_results(sc, good, VerifyOptions{});
+  CHECK(v.failed == 0);
+  CHECK(v.skipped == 2);
+  for (int bug = 0; bug < 4; ++bug) {
+    ResultSet bad = good;
+    if (bug == 0) bad.shadows[0].status = "ok";
+    if (bug == 1) bad.shadows[0].P = -bad.shadows[0].P;
+    if (bug == 2) bad.reflections[0].M(2, 3) += 1;
+    if (bug == 3) bad.reflections[0].B = -bad.reflections[0].B;
+    INFO("bug " << bug);
+    const VerifyReport b = verify_results(sc, bad, VerifyOptions{});
+    CHECK(b.failed == 1);
+    CHECK(b.skipped == 1);
+  }
+}

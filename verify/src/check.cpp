@@ -220,16 +220,8 @@ std::string exact_shadow_word(const Mat4<Q>& A, const Vec4<Q>& L, Method method)
 std::string exact_reflection_word(const Mat4<Q>& A) { return exact_degenerate(A) ? "degenerate-quadric" : "ok"; }
 
 Measure machine_epsilon(const Precision& p) {
-  switch (p.kind) {
-    case Precision::Kind::f32: return ldexp(Measure(1), -23);
-    case Precision::Kind::f64:
-    case Precision::Kind::interval: return ldexp(Measure(1), -52);
-    case Precision::Kind::f80: return ldexp(Measure(1), -63);
-    case Precision::Kind::f128: return ldexp(Measure(1), -112);
-    case Precision::Kind::mpfr: return ldexp(Measure(1), 1 - static_cast<int>(digits_for_bits(p.bits).bits));
-    case Precision::Kind::exact: return Measure(0);
-  }
-  return Measure(0);
+  const std::optional<unsigned> bits = p.significand_bits();
+  return bits ? ldexp(Measure(1), 1 - static_cast<int>(*bits)) : Measure(0);
 }
 
 CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const ExactShadowCandidate& got,
@@ -248,10 +240,27 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   const Mat4<Q> P_ref = s * Ae - pi_ref * pi_ref.transpose();
   rep.reference = P_ref;
   // The same world points for every frame: sampled on the world terminator, then moved exactly.
+  // What is judged without points: also where the terminator has none to sample.
+  const auto point_free_checks = [&] {
+    std::vector<std::string>& problems = rep.problems;
+    if (got.P && !symmetric_within(*got.P, T)) problems.push_back("P is not symmetric");
+    if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
+    for (std::string& sign : shadow_sign_problems(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr))
+      problems.push_back(std::move(sign));
+    if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
+    if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
+      problems.push_back("R is zero where it should not be (or the converse)");
+    if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
+    if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
+      problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+  };
   const ItemPoints pts = terminator_points(Aw, Lw, opt.samples, item_seed(opt.seed, 1, item));
   if (pts.points.empty()) {
-    rep.skipped = true;
-    rep.problems.push_back(std::string("the terminator has no real point to sample (exact status: ") + rep.exact_status + ")");
+    point_free_checks();  // a wrong status, sign or zero fails; else nothing to judge: skipped
+    if (rep.problems.empty()) {
+      rep.skipped = true;
+      rep.problems.push_back(std::string("the terminator has no real point to sample (exact status: ") + rep.exact_status + ")");
+    }
     return rep;
   }
   rep.points = pts.points.size();
@@ -265,26 +274,47 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
                                                     : ": geometric error beyond the accuracy target"));
   };
   if (got.A) rep.checks.push_back(judged("on_A", measure_quadric(local, *got.A), local, pts.size, exact, T, false));
-  std::optional<QuadricCheck> onP, onR, onPolar, onGen, onPlane;
-  if (got.P) onP = judged("on_P", measure_quadric(local, *got.P), local, pts.size, exact, T);
-  if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T);
-  if (got.polar_plane) onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T);
-  if (got.P) {  // P is *the* cone with apex L: exact points of its generator lines
+  std::optional<QuadricCheck> onP, onR, onPolar, onGen, onPlane, asMatrices;
+  // A terminator of one point says nothing of the results' shapes (single_point): they are judged
+  // as matrices against the exact ones, up to a factor, instead of on points.
+  const bool one_point = single_point(pts.points);
+  if (one_point) {
+    const Measure e = shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
+                                          got.polar_plane ? &*got.polar_plane : nullptr, got.R ? &*got.R : nullptr);
+    QuadricCheck c;
+    c.name = "as_matrices";
+    c.metric.residual = c.metric.distance = e;
+    c.metric.all_zero = e == 0;
+    c.geometric_error = to_d(e);
+    c.passed = exact ? e == 0 : !(e > T);
+    if (!c.passed)
+      problems.push_back(std::string("the terminator is a single point, where the results are judged as matrices: P, "
+                                     "the polar plane or R ") +
+                         (exact ? "is not proportional to the exact one" : "differs from the exact one, up to a factor, "
+                                                                          "by more than the accuracy target"));
+    asMatrices = c;
+  }
+  // (at a single point they are measured as information only)
+  if (got.P) onP = judged("on_P", measure_quadric(local, *got.P), local, pts.size, exact, T, !one_point);
+  if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T, !one_point);
+  if (got.polar_plane)
+    onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T, !one_point);
+  if (got.P && !one_point) {  // P is *the* cone with apex L: exact points of its generator lines
     const auto gen = in_frame(pts.generators, got.origin);
     onGen = judged("on_generators", measure_quadric(gen, *got.P), gen, pts.size, exact, T);
   }
-  if (got.R) {  // R contains the polar plane (the plane S carried back, read as a quadric): points of the plane off A
+  if (got.R && !one_point) {  // R contains the polar plane (the plane S carried back, read as a quadric): points of the plane off A
     const auto pl = in_frame(pts.plane, got.origin);
     onPlane = judged("R_on_polar_plane", measure_quadric(pl, *got.R), pl, pts.size, exact, T);
   }
-  for (auto* c : {&onP, &onR, &onPolar, &onGen, &onPlane})
+  for (auto* c : {&onP, &onR, &onPolar, &onGen, &onPlane, &asMatrices})
     if (*c) rep.checks.push_back(**c);
-  if (onP) judge(*onP, "on_P");
-  if (onR) judge(*onR, "on_R");
-  if (onPolar) judge(*onPolar, "on_polar_plane");
+  if (onP && onP->judged) judge(*onP, "on_P");
+  if (onR && onR->judged) judge(*onR, "on_R");
+  if (onPolar && onPolar->judged) judge(*onPolar, "on_polar_plane");
   if (onGen) judge(*onGen, "on_generators (P is not the cone from L through the terminator)");
   if (onPlane) judge(*onPlane, "R on the polar plane");
-  if (got.R) {
+  if (got.R && !one_point) {
     bool h_zero = true;
     Measure h_err = 0;
     for (const RootPoint& x : local)  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
@@ -297,16 +327,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
       problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane "
                          "pair polar plane + h)");
   }
-  if (got.P && !symmetric_within(*got.P, T)) problems.push_back("P is not symmetric");
-  if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
-  for (std::string& sign : shadow_sign_problems(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr))
-    problems.push_back(std::move(sign));
-  if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
-  if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
-    problems.push_back("R is zero where it should not be (or the converse)");
-  if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
-  if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
-    problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+  point_free_checks();
 
   // The rounding verdict of earlier versions, kept as information.
   Measure kappa = 1;
@@ -341,13 +362,15 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   rep.kappa = to_d(kappa);
   Measure geo = 0;
   for (const auto* c : {&onP, &onPolar, &onR, &onGen, &onPlane})
-    if (*c) geo = mmax(geo, relative((*c)->metric, pts.size));
+    if (*c && (*c)->judged) geo = mmax(geo, relative((*c)->metric, pts.size));
+  if (asMatrices) geo = mmax(geo, asMatrices->metric.distance);
   rep.geometric_error = geo < kInf ? to_d(geo) : std::numeric_limits<double>::infinity();
   if (pts.exhausted) rep.notes.push_back("only " + std::to_string(pts.points.size()) + " real point(s) found on this terminator");
-  if (!(pts.size > 0))
-    rep.notes.push_back("the terminator is a single real point: no object size to measure distances against; judged by "
-                        "the relative residual |x^T Q x| / (|Q|_F |x|^2) <= accuracy");
-  if (!exact && (got.P || got.polar_plane || got.R)) {
+  if (one_point)
+    rep.notes.push_back("the terminator is a single real point, which says nothing of the results' shapes: P, the polar "
+                        "plane and R are judged as matrices, by their largest relative cross residual against the exact "
+                        "ones (zero exactly when proportional), which must be within the accuracy target");
+  if (!exact && !one_point && (got.P || got.polar_plane || got.R)) {
     // the certified bound over every point of what it covers (ShadowBounds), never below the errors
     // measured on the same parts' sample points
     const ShadowBounds bounds(Aw, Lw, pts);
@@ -389,10 +412,29 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   const Mat4<Q> M_ref = translation<Q>(Vec3<Q>(-o)) * Mw * translation<Q>(o);
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(Mw.transpose() * Aw * Mw), o);
   rep.reference = B_ref;
+  // What is judged without points: also where the quadric has none to sample.
+  Measure m_err = 0;
+  const auto point_free_checks = [&] {
+    std::vector<std::string>& problems = rep.problems;
+    if (got.M) {  // M must be the reflection (exactly, or within the accuracy target relative to its largest entry)
+      m_err = to_measure(max_abs(Mat4<Q>(*got.M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
+      rep.M_error = to_d(m_err);
+      if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
+    }
+    if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
+    if (got.B && got.B->isZero() != Aw.isZero()) problems.push_back("B is zero where it should not be (or the converse)");
+    if (got.B)
+      if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
+    if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
+      problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+  };
   const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, item));
   if (pts.points.empty()) {
-    rep.skipped = true;
-    rep.problems.push_back("the quadric has no real point to sample");
+    point_free_checks();  // a wrong status, sign, zero or M fails; else nothing to judge: skipped
+    if (rep.problems.empty()) {
+      rep.skipped = true;
+      rep.problems.push_back("the quadric has no real point to sample");
+    }
     return rep;
   }
   rep.points = pts.points.size();
@@ -400,23 +442,12 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   rep.object_size = to_d(pts.size);
   const std::vector<RootPoint> local = in_frame(pts.points, got.origin);
   std::vector<std::string>& problems = rep.problems;
-  Measure m_err = 0;
   if (got.B) {
     rep.checks.push_back(judged("on_B", measure_quadric(local, *got.B), local, pts.size, exact, T));
     if (!rep.checks.back().passed)
       problems.push_back(exact ? "on_B: a reflected point is not exactly on B" : "on_B: geometric error beyond the accuracy target");
   }
-  if (got.M) {  // M must be the reflection (exactly, or within the accuracy target relative to its largest entry)
-    m_err = to_measure(max_abs(Mat4<Q>(*got.M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
-    rep.M_error = to_d(m_err);
-    if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
-  }
-  if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
-  if (got.B && got.B->isZero() != Aw.isZero()) problems.push_back("B is zero where it should not be (or the converse)");
-  if (got.B)
-    if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
-  if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
-    problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+  point_free_checks();
 
   Measure kappa = 1;
   if (!exact) {

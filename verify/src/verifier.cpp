@@ -20,7 +20,7 @@ using Q = Rational;
 }  // namespace
 
 VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOptions& opt) {
-  const Measure eps = machine_epsilon(rs.precision);
+  const Measure eps = opt.prove ? Measure(0) : machine_epsilon(rs.precision);  // 0: proof mode
   // The exact scene: every reference is computed by the checks, in the result's own frame.
   const TypedScene<Q> exact_scene = typed_scene<Q>(sc);
   CheckOptions copt;
@@ -52,8 +52,8 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     }
     ExactShadowCandidate cand;
     cand.P = got.P;
-    cand.polar_plane = got.polar;
-    cand.R = got.R;
+    if (got.polar_given) cand.polar_plane = got.polar;
+    if (got.R_given) cand.R = got.R;
     cand.origin = got.origin;
     cand.status = got.status;
     cand.A = got.A ? *got.A : quadric_to_local(rs.A[pr.quadric], got.origin ? *got.origin : Vec3<Q>::Zero());
@@ -77,7 +77,7 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
       return;
     }
     ExactReflectionCandidate cand;
-    cand.M = got.M;
+    if (got.M_given) cand.M = got.M;
     cand.B = got.B;
     cand.origin = got.origin;
     cand.status = got.status;

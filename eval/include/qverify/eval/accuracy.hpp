@@ -281,6 +281,20 @@ std::vector<std::string> shadow_sign_problems(const Mat4<Rational>& A, const Vec
 /// B against M^T A M (B_ref, in B's frame): the problem, or "".
 std::string reflection_sign_problem(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
 
+/// Is the sampled terminator one real point (a cone lit along its axis or from inside, a point
+/// sphere, a light on a sphere)? Exactly: every point rational (no sqrt part) and proportional to
+/// the first. There the terminator says nothing of the shape of P, of the polar plane's
+/// orientation or of R (P and R are singular at that point, so a first-order distance there
+/// means nothing, and a second-order one about the square root of the rounding), and the results
+/// are judged as matrices instead (shadow_matrix_error).
+bool single_point(const std::vector<RootPoint>& terminator);
+/// The largest relative cross residual (core/projective.hpp, cross_residual: zero exactly when
+/// proportional) of P, the polar plane and R, each when given, against (L^T A L) A - (A L)(A L)^T,
+/// A L and the plane pair R of (A, L), A and L in the results' frame: the error of a shadow item
+/// whose terminator is a single point, measured exactly (signs are judged by shadow_sign_problems).
+Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
+                            const Vec4<Rational>* polar, const Mat4<Rational>* R);
+
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).
 struct AccuracyOptions {
   double target = kDefaultAccuracy;

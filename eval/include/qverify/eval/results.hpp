@@ -19,6 +19,9 @@ struct ShadowMatrices {
   std::string status, problem;  ///< problem: why the item cannot be checked (missing, non-finite ...)
   Mat4<Rational> P, R;          ///< in the item's frame (local coordinates x - origin when origin is set)
   Vec4<Rational> polar;
+  /// Whether the item gave its polar plane and R (a candidate function may return P alone: the
+  /// parts it left out are zero here, and neither checked nor measured).
+  bool polar_given = true, R_given = true;
   std::optional<Mat4<Rational>> A;  ///< the quadric as this item used it (same frame), when known
   std::optional<Vec3<Rational>> origin;
   std::optional<ItemAccuracy> accuracy;  ///< eval's error_bound and flag (computed results)
@@ -28,6 +31,7 @@ struct ReflectionMatrices {
   bool present = false;
   std::string status, problem;
   Mat4<Rational> M, B;  ///< in the item's frame
+  bool M_given = true;  ///< whether the item gave M (a candidate function may return B alone; M is zero then)
   std::optional<Vec3<Rational>> origin;
   std::optional<ItemAccuracy> accuracy;
 };

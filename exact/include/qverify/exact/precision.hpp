@@ -17,6 +17,10 @@ struct Precision {
   unsigned bits = 0;  ///< requested bits for mpfr
   /// The contract's spelling: float, double, long-double, float128, mpfr:BITS, interval, exact.
   std::string name() const;
+  /// The bits of a value's significand: 24, 53, 64, 113, MPFR's working precision (at least
+  /// `bits`), 53 for an interval (its bounds, and the midpoint a result is read at); nullopt for
+  /// exact. Machine epsilon is 2^(1 - bits).
+  std::optional<unsigned> significand_bits() const;
 };
 
 /// Parses a `--precision` value; nullopt when it is not one of the ladder's.

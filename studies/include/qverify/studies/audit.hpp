@@ -70,6 +70,9 @@ struct CandidateFacts {
   double seconds = 0;                        ///< wall time of the call
   double max_geometric_error = 0;            ///< over the items with something to measure
   bool bad = false;  ///< failed, a failed check or a geometric error beyond the accuracy target
+  /// Every problem of its failed checks, each after its item ("shadow ball/lamp: ..."): a status word,
+  /// sign, M or symmetry that no geometric error sees, or the geometric error itself.
+  std::vector<std::string> problems;
   std::optional<Reproducer> reproducer;  ///< written when bad
 };
 

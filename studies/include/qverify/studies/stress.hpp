@@ -81,6 +81,9 @@ struct StressRun {
   double item_geometric_error = std::numeric_limits<double>::infinity();
   bool inaccurate = false;       ///< qverify's runs: eval flagged the item inaccurate
   bool beyond_accuracy = false;  ///< the candidate's call returned an item beyond the accuracy target
+  /// The candidate: what verify's checks of its item found wrong (a status, sign, M or symmetry that
+  /// no geometric error sees, or the geometric error itself); empty when they pass.
+  std::vector<std::string> problems;
   std::optional<std::string> reproducer;  ///< the candidate: its reproducer's scene ("failures/...") when one was written
 };
 
@@ -136,7 +139,9 @@ struct StressCandidateFamily {
   std::string name;
   std::optional<double> breakdown;              ///< first parameter value with a failed call or beyond the target
   std::optional<std::string> breakdown_reason;  ///< the reason of that point's reproducer
-  int failed_calls = 0, beyond_accuracy = 0;    ///< the family's reproducers, by kind
+  /// The family's reproducers, by kind: the call failed; the item beyond the accuracy target; else
+  /// a check failed (status, sign, M, symmetry).
+  int failed_calls = 0, beyond_accuracy = 0, failed_checks = 0;
 };
 
 /// One family swept: its points, the summaries of its runs and the flag's self-check.
@@ -155,7 +160,9 @@ struct StressFamilyResult {
 /// A reproducer of the candidate, as listed in the report.
 struct StressReproducer {
   Reproducer written;        ///< the case and its files
-  bool failed_call = false;  ///< the call failed (else its item was beyond the accuracy target)
+  /// "candidate-failed" (the call failed), "beyond-accuracy" (its item beyond the accuracy target) or
+  /// "failed-checks" (within the target, but a check failed: status, sign, M, symmetry)
+  std::string status;
   double item_geometric_error = std::numeric_limits<double>::infinity();
 };
 
@@ -164,7 +171,7 @@ struct StressCandidateSummary {
   Candidate candidate;  ///< who it was: name, command (description), time-out; its function is not kept
   double accuracy = kDefaultAccuracy;  ///< its accuracy target T
   std::vector<double> call_seconds;    ///< every call's wall time, in the order of the calls
-  int failed_calls = 0, beyond_accuracy = 0;
+  int failed_calls = 0, beyond_accuracy = 0, failed_checks = 0;
   std::vector<StressReproducer> reproducers;
 };
 

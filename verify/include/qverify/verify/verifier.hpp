@@ -35,6 +35,9 @@ struct VerifyOptions {
   int samples = kDefaultSamples;
   std::uint64_t seed = 1;
   double accuracy = kDefaultAccuracy;  ///< the accuracy target T (relative to the object size)
+  /// Proof mode whatever the results' precision (verify --precision exact --candidate FILE): every
+  /// residual must be exactly zero. Results of precision exact are always judged so.
+  bool prove = false;
   /// Threads over the items (0: one per logical processor); the report does not depend on it.
   int threads = 0;
   /// Called after each item is checked with (items done, items in all), from
@@ -71,6 +74,9 @@ struct VerifyReport {
   std::vector<VerifyCheck> checks;
   int passed = 0, failed = 0, skipped = 0;
   std::vector<std::string> notes;  ///< the results' notes (e.g. from a candidate's reader)
+
+  /// Were the results judged in proof mode (every residual exactly zero)?
+  bool proof() const { return options.prove || precision.kind == Precision::Kind::exact; }
 };
 
 /// Checks every requested item's results on exact sample points against
