@@ -85,6 +85,44 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
 
 Vec3<Measure> to_measure3(const Vec3<Q>& v) { return Vec3<Measure>(to_measure(v(0)), to_measure(v(1)), to_measure(v(2))); }
 
+/// The certified bounds' unit of length (ShadowBounds, ReflectionBounds, the whole terminator's
+/// size): the power of two 2^e <= size < 2^(e + 1) (1 for no size). Their intervals are doubles,
+/// and an object 10^-200 (10^200) across squares to 10^-400 (10^400) in world units: its
+/// gradients' squares underflowed to 0 (the conic's entries overflowed), and a sphere's accurate
+/// results had no bound. In units of 2^e, x = 2^e x', the object is 1 to 2 across, and the
+/// relative first-order distance is the same (a distance scales as the coordinates); at ordinary
+/// scales every double is the same one times a power of two.
+Q length_unit(const Measure& size) { return size > 0 ? exact_pow2(floor_log2(exact_measure(size))) : Q(1); }
+
+/// A quadric in units of u: D X D, D = diag(u, u, u, 1).
+Mat4<Q> quadric_in_units(const Mat4<Q>& X, const Q& u) {
+  Mat4<Q> D = Mat4<Q>::Identity();
+  D.topLeftCorner<3, 3>() *= u;
+  return D * X * D;
+}
+/// The object's quadric in units of u, times the power of two that brings its largest entry near 1
+/// (a positive factor: the same quadric; its floors start from a double eigen-decomposition).
+Mat4<Q> object_in_units(const Mat4<Q>& A, const Q& u) {
+  const Mat4<Q> Au = quadric_in_units(A, u);
+  const Q big = max_abs(Au);
+  return big == 0 ? Au : Mat4<Q>(Au * exact_pow2(-floor_log2(big)));
+}
+Vec4<Q> plane_in_units(const Vec4<Q>& p, const Q& u) { return Vec4<Q>(p(0) * u, p(1) * u, p(2) * u, p(3)); }
+Vec4<Q> point_in_units(const Vec4<Q>& x, const Q& u) { return Vec4<Q>(x(0) / u, x(1) / u, x(2) / u, x(3)); }
+/// A map of points (the mirror) in units of u: D^-1 M D.
+Mat4<Q> map_in_units(const Mat4<Q>& M, const Q& u) {
+  Mat4<Q> D = Mat4<Q>::Identity(), Dinv = Mat4<Q>::Identity();
+  D.topLeftCorner<3, 3>() *= u;
+  Dinv.topLeftCorner<3, 3>() /= u;
+  return Dinv * M * D;
+}
+Ball ball_in_units(const Ball& b, const Q& u) { return {Vec3<Q>(b.centre / u), Q(b.reach / u)}; }
+std::optional<Vec3<Q>> origin_in_units(const std::optional<Vec3<Q>>& o, const Q& u) {
+  return o ? std::optional<Vec3<Q>>(Vec3<Q>(*o / u)) : std::nullopt;
+}
+/// A size (what a bound divides by) in units of u, rounded down.
+double size_in_units(double size, const Q& u) { return size_down(Measure(Measure(size) / to_measure(u))); }
+
 /// The ball of the points counted (certified_bound.hpp, Ball): about the centre, with a reach of
 /// (at least) the size and a margin (2^-64 of it) for the last of its 80 digits.
 Ball counted_ball(const Vec3<Q>& centre, const Measure& reach) {
@@ -182,8 +220,11 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(out.points, A);
-  if (!out.points.empty())
-    if (const auto whole = terminator_size(A, L)) out.size = std::max(out.size, Measure(*whole));
+  if (!out.points.empty()) {
+    const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
+    if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u)))
+      out.size = std::max(out.size, Measure(Measure(*whole) * to_measure(u)));
+  }
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, A, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
@@ -201,8 +242,10 @@ ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(s.points, A);
-  if (!s.points.empty())
-    if (const auto whole = ellipsoid_size(A)) out.size = std::max(out.size, Measure(*whole));
+  if (!s.points.empty()) {
+    const Q u = length_unit(out.size);
+    if (const auto whole = ellipsoid_size(object_in_units(A, u))) out.size = std::max(out.size, Measure(Measure(*whole) * to_measure(u)));
+  }
   out.ball = counted_ball(centre, out.size);  // of A's points, not yet reflected
   out.points = RootPoint::mapped(s.points, M);
   return out;
@@ -672,8 +715,13 @@ bool crosses(const Vec4<Q>& h, const Ball& b) {
 }
 }  // namespace
 
-ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints& pts) {
+ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const ItemPoints& pts)
+    : unit_(length_unit(pts.size)) {
   if (pts.points.empty() || pts.exhausted) return;
+  // in units of the object's size (length_unit), as the results are bounded (operator()); the
+  // generator offsets rho are the same there (x + rho (L_xyz - L_w x) scales as x)
+  const Mat4<Q> A = object_in_units(A_world, unit_);
+  const Vec4<Q> L = point_in_units(L_world, unit_);
   pi_ref_ = A * L;
   h_ = reference_second_plane(L);
   R_ref_ = reference_plane_pair(A, L);
@@ -687,7 +735,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
               geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
     return;
   }
-  ball_ = pts.ball;
+  ball_ = ball_in_units(pts.ball, unit_);
   const Measure reach = to_measure(ball_.reach);
   const Q s = L.dot(pi_ref_);
   P_ref_ = reference_cone(A, L);
@@ -710,8 +758,19 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A, const Vec4<Q>& L, const ItemPoints&
             !crosses(h_, ball_) || R_crossing};
 }
 
-CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>* P, const Vec4<Q>* polar,
-                                      const Mat4<Q>* R, double size, double target) const {
+CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world, const Mat4<Q>* P_world,
+                                      const Vec4<Q>* polar_world, const Mat4<Q>* R_world, double size_world,
+                                      double target) const {
+  // the results, their frame and the size in the constructor's units (length_unit)
+  const std::optional<Vec3<Q>> origin = origin_in_units(origin_world, unit_);
+  const auto in_units = [&](const Mat4<Q>* X) { return X ? std::optional<Mat4<Q>>(quadric_in_units(*X, unit_)) : std::nullopt; };
+  const std::optional<Mat4<Q>> P_units = in_units(P_world), R_units = in_units(R_world);
+  const std::optional<Vec4<Q>> polar_units =
+      polar_world ? std::optional<Vec4<Q>>(plane_in_units(*polar_world, unit_)) : std::nullopt;
+  const Mat4<Q>* P = P_units ? &*P_units : nullptr;
+  const Mat4<Q>* R = R_units ? &*R_units : nullptr;
+  const Vec4<Q>* polar = polar_units ? &*polar_units : nullptr;
+  const double size = size_in_units(size_world, unit_);
   CoveredBound out;
   const auto add = [&](const CertifiedBound& b, const char* name) {
     out.bound = combined(out.bound, b);
@@ -752,23 +811,30 @@ CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<
   return ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
 }
 
-ReflectionBounds::ReflectionBounds(const Mat4<Q>& A, const Mat4<Q>& M, const ItemPoints& pts) {
+ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_world, const ItemPoints& pts)
+    : unit_(length_unit(pts.size)) {
   if (pts.points.empty() || pts.exhausted) return;
+  // in units of the object's size (length_unit), as B is bounded (operator())
+  const Mat4<Q> A = object_in_units(A_world, unit_), M = map_in_units(M_world, unit_);
+  const Ball ball = ball_in_units(pts.ball, unit_);
   geo_ = reflection_geometry(A, M);
   if (geo_) return;
   B_ref_ = M.transpose() * A * M;
   // (B_ref M x)_xyz = H^T (A x)_xyz with H, M's linear part, orthogonal: A's floor in its ball holds
   // for B in the reflected ball
-  floor_ = GradientFloor(A, pts.ball);
-  floored_ = floor_(0, to_measure(pts.ball.reach)) > 0 || saddle_directions(B_ref_).has_value();
-  ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(pts.ball.centre(0), pts.ball.centre(1), pts.ball.centre(2), Q(1))).head<3>()),
-           pts.ball.reach};
+  floor_ = GradientFloor(A, ball);
+  floored_ = floor_(0, to_measure(ball.reach)) > 0 || saddle_directions(B_ref_).has_value();
+  ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(ball.centre(0), ball.centre(1), ball.centre(2), Q(1))).head<3>()), ball.reach};
 }
 
-CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B, double size,
-                                          double target) const {
+CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin_world, const Mat4<Q>& B_world,
+                                          double size_world, double target) const {
   CoveredBound out;
   if (!covers()) return out;
+  // B, its frame and the size in the constructor's units (length_unit)
+  const std::optional<Vec3<Q>> origin = origin_in_units(origin_world, unit_);
+  const Mat4<Q> B = quadric_in_units(B_world, unit_);
+  const double size = size_in_units(size_world, unit_);
   out.bound = geo_ ? reflection_bound(*geo_, origin, B, size, target) : ball_quadric_bound(B, B_ref_, ball_, origin, floor_, size);
   out.certified = {"B"};
   out.parts = {{{"B"}, out.bound}};

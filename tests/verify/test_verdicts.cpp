@@ -661,3 +661,57 @@ TEST_CASE("a wrong status, sign or M fails also where there is no point to sampl
     CHECK(b.skipped == 1);
   }
 }
+
+TEST_CASE("an mpfr document read back is the values eval held: a far cone's mirror image passes", "[verdicts][verify]") {
+  // mpfr entries are written with just enough digits to round-trip at the working precision; read as the
+  // decimals they spell, B of a cone 2^100 from the origin (paper route, world frame) was 3e18 object sizes
+  // off, where eval had certified 4e-27 for the value it held.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "conefar", "quadrics": [{"id": "c", "cone":
+      {"apex": ["2535301200456458802993406410752", "2535301200456458802993406410752", 0], "axis": [0, 0, 1],
+       "tan_half_angle": "1/3"}}], "mirrors": [{"id": "floor", "plane": [0, 0, 1, "3802951800684688204490109616128"]}]})",
+                               "conefar.json");
+  for (const char* precision : {"mpfr:128", "mpfr:256"}) {
+    INFO(precision);
+    const auto doc = eval_json(eval_report(sc, *parse_precision(precision), Method::paper, std::nullopt, AccuracyOptions{}));
+    const ResultSet rs = candidate_results_text(sc, doc.dump(), "eval.json", *parse_precision("double"));
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    INFO(verify_document(sc, v).dump(1));
+    CHECK(v.failed == 0);
+    // and the value read is the one computed, entry for entry
+    const ResultSet computed = computed_results(sc, *parse_precision(precision), Method::paper);
+    CHECK(rs.reflections[0].B == computed.reflections[0].B);
+  }
+}
+
+TEST_CASE("certified bounds hold for objects 1e-200 and 1e200 across: no flag on accurate results",
+          "[verdicts][accuracy]") {
+  // The bounds' intervals are doubles: in world units an object 1e-200 across squared to 1e-400, the
+  // gradients' floors underflowed to 0 and accurate long double, float128 and mpfr results had no bound.
+  for (const char* scale : {"e-200", "e200"}) {
+    INFO(scale);
+    const std::string n = std::string("1") + scale, c2 = std::string("2") + scale, three = std::string("3") + scale,
+                      four = std::string("4") + scale, eight = std::string("8") + scale;
+    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "tiny", "quadrics": [{"id": "ball", "sphere":
+        {"center": [0, 0, ")" + c2 + R"("], "radius": ")" + n + R"("}}], "lights": [{"id": "lamp", "position": [")" +
+                                     three + R"(", ")" + four + R"(", ")" + eight + R"("]}], "mirrors": [{"id": "m",
+        "plane": [0, 0, 1, ")" + n + R"("]}]})",
+                                 "tiny.json");
+    for (const char* precision : {"long-double", "float128", "mpfr:128"}) {
+      INFO(precision);
+      const ResultSet rs = computed_results(sc, *parse_precision(precision), Method::direct);
+      for (const ShadowMatrices& s : rs.shadows) {
+        REQUIRE(s.accuracy);
+        INFO(s.accuracy->reason);
+        CHECK(s.accuracy->bound);
+        CHECK_FALSE(s.accuracy->inaccurate);
+      }
+      for (const ReflectionMatrices& r : rs.reflections) {
+        REQUIRE(r.accuracy);
+        INFO(r.accuracy->reason);
+        CHECK(r.accuracy->bound);
+        CHECK_FALSE(r.accuracy->inaccurate);
+      }
+      CHECK(verify_results(sc, rs, VerifyOptions{}).failed == 0);
+    }
+  }
+}

@@ -110,11 +110,17 @@ class CandidateReader {
 
   /// The document's precision: its numbers are the values of that format the
   /// writer held (the contract: float and double entries are JSON numbers that
-  /// round-trip, long double and float128 entries decimal strings that
+  /// round-trip, long double, float128 and mpfr entries decimal strings that
   /// round-trip), so each is read as the nearest value of the format, not as
   /// the decimal it spells (0.1 in a double document is the double 0.1). "p/q"
-  /// strings, exact documents and mpfr documents are read exactly.
-  void number_format(Precision::Kind k) { format_ = k; }
+  /// strings and exact documents are read exactly. (An mpfr:128 entry is 40
+  /// digits, off its binary value by up to 10^-40 of it, as much as the
+  /// rounding: read as the decimal, B of a cone 2^100 from the origin was 10^18
+  /// object sizes off where eval had certified 4e-27 for the value it held.)
+  void number_format(const Precision& p) {
+    format_ = p.kind;
+    if (p.kind == Precision::Kind::mpfr) mpfr_bits_ = digits_for_bits(p.bits).bits;
+  }
 
   /// One entry: number, "p/q"/decimal string, {"lo","hi"} (midpoint); null -> nullopt.
   /// (`as_double`: a JSON number is read as its nearest double whatever the document's format, as
@@ -144,13 +150,14 @@ class CandidateReader {
     }
     const bool binary_number = n.kind == JsonNode::Kind::number && (format_ == K::f32 || format_ == K::f64 || format_ == K::interval);
     const bool binary_text = n.kind == JsonNode::Kind::string && n.text.find('/') == std::string::npos &&
-                             (format_ == K::f80 || format_ == K::f128);
+                             (format_ == K::f80 || format_ == K::f128 || format_ == K::mpfr);
     if (binary_number || binary_text) {
       RoundingReport rep;
       switch (format_) {
         case K::f32: v = exact_value(round_rational<float>(*v, rep)); break;
         case K::f80: v = exact_value(round_rational<long double>(*v, rep)); break;
         case K::f128: v = exact_value(round_rational<Float128>(*v, rep)); break;
+        case K::mpfr: v = rounded_to_bits(*v, mpfr_bits_); break;
         default: v = exact_value(round_rational<double>(*v, rep)); break;
       }
       if (rep.overflow) fail(path, "beyond the range of the document's precision (" + n.text.substr(0, 40) + ")");
@@ -201,6 +208,16 @@ class CandidateReader {
  private:
   std::string file_;
   Precision::Kind format_ = Precision::Kind::exact;
+  unsigned mpfr_bits_ = 0;  ///< an mpfr document's working precision (as eval sets it: set_mpfr_bits)
+
+  /// q rounded to nearest with `bits` bits of significand (MPFR's exponent range holds any
+  /// document's number), exactly.
+  static Q rounded_to_bits(const Q& q, unsigned bits) {
+    Mpfr x;
+    mpfr_set_prec(x.backend().data(), static_cast<mpfr_prec_t>(bits));
+    mpfr_set_q(x.backend().data(), q.backend().data(), MPFR_RNDN);
+    return exact_value(x);
+  }
 };
 
 }  // namespace
@@ -225,7 +242,7 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
     if (auto parsed = parse_precision(p->text)) rs.precision = *parsed;
     else r.fail("precision", "unknown precision \"" + p->text + "\"");
   }
-  r.number_format(rs.precision.kind);
+  r.number_format(rs.precision);
   if (const JsonNode* m = root.find("method")) {
     if (m->kind != JsonNode::Kind::string || (m->text != "direct" && m->text != "paper"))
       r.fail("method", "expected \"direct\" or \"paper\"");

@@ -196,6 +196,9 @@ class ShadowBounds {
     Ball ball;
     GradientFloor floor;
   };
+  /// The unit of length of everything below and of the bounds (accuracy.cpp, length_unit): a power
+  /// of two near the object's size, so that the bounds' doubles neither overflow nor underflow.
+  Rational unit_{1};
   ShadowCover cover_;
   std::optional<ShadowGeometry> geo_;
   std::vector<ShadowGeometry> generators_;
@@ -221,6 +224,7 @@ class ReflectionBounds {
                           double target) const;
 
  private:
+  Rational unit_{1};  ///< as ShadowBounds::unit_
   std::optional<ReflectionGeometry> geo_;
   Mat4<Rational> B_ref_;
   Ball ball_{Vec3<Rational>::Zero(), Rational(0)};  ///< reflected

@@ -21,9 +21,9 @@ namespace qverify {
 /// Reads a `qverify-eval/1` document made by any program. Entries are JSON
 /// numbers, "p/q" or decimal strings, or {"lo", "hi"} intervals (checked at
 /// their midpoint). A number of a float, double or interval document (a decimal
-/// string of a long-double or float128 one) is the value of that format its
-/// text round-trips to, the value the writer held; "p/q" strings and exact and
-/// mpfr documents are read exactly. Malformed documents are
+/// string of a long-double, float128 or mpfr one, at the working precision of
+/// its BITS) is the value of that format its text round-trips to, the value the
+/// writer held; "p/q" strings and exact documents are read exactly. Malformed documents are
 /// InputErrors (file, JSON path); requested items it lacks are reported by the
 /// verifier as failures.
 ResultSet candidate_results(const Scene& sc, const std::string& file, const Precision& fallback);
