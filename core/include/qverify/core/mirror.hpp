@@ -74,14 +74,13 @@ template <class S> Mat4<S> scaled_mirror_matrix(const Vec4<S>& plane) {
 /// Eq. (11), direct: B = M^T A M (using M = M^{-1}). A point x lies on A
 /// exactly when its mirror image M x lies on B.
 template <class S> Mat4<S> mirror_image(const Mat4<S>& A, const Mat4<S>& M) {
-  return M.transpose() * A * M;
+  return congruence<S>(A, M);
 }
 
 /// Eq. (11), the paper's first form: B = (M^{-1})^T A M^{-1} with M^{-1}
 /// computed as an inverse (not assumed equal to M).
 template <class S> Mat4<S> mirror_image_paper(const Mat4<S>& A, const Mat4<S>& M) {
-  const Mat4<S> Minv = M.inverse();
-  return Minv.transpose() * A * Minv;
+  return congruence<S>(A, Mat4<S>(M.inverse()));
 }
 
 /// Eq. (11) without forming M^T A M. The mirror matrix is a rank-one update

@@ -107,6 +107,18 @@ template <class S, class F> inline Mat4<S> symmetric_from(F&& f) {
   return m;
 }
 
+/// N^T A N for a symmetric A (a change of frame of a quadric): symmetric in exact arithmetic, and
+/// made so in every scalar type as the symmetric part of the dense product, (X + X^T) / 2. The
+/// product rounds entries (i, j) and (j, i) apart: the paper route's P and R in float came out 2e-8
+/// and 6e-8 of their largest entry from symmetric, which verify fails. The symmetric part is what
+/// x^T X x reads, so the geometry is the product's: keeping one triangle instead (or computing it
+/// alone) lost the two roundings' averaging and measured up to twice the geometric error on far
+/// mirrors and in the float paper route (tests/golden, stress-mirror-far).
+template <class S> inline Mat4<S> congruence(const Mat4<S>& A, const Mat4<S>& N) {
+  const Mat4<S> X = N.transpose() * A * N;
+  return symmetric_from<S>([&](int i, int j) { return i == j ? X(i, i) : S((X(i, j) + X(j, i)) / S(2)); });
+}
+
 /// u v^T + v u^T: the quadric of the plane pair {u = 0} ∪ {v = 0}.
 /// (Twice the symmetrised outer product; results here are defined up to a
 /// non-zero factor, so the 1/2 is left out and no division is needed.)

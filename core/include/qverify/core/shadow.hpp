@@ -151,8 +151,7 @@ template <class S> PaperFrame<S> paper_frame(const Vec4<S>& L) {
 /// Eq. (2): C = (T^{-1})^T (M^{-1})^T A M^{-1} T^{-1}, the quadric in the frame
 /// where the light sits at infinity on the z axis.
 template <class S> Mat4<S> paper_C(const Mat4<S>& A, const PaperFrame<S>& f) {
-  const Mat4<S> Ninv = f.Minv * f.Tinv;
-  return Ninv.transpose() * A * Ninv;
+  return congruence<S>(A, Mat4<S>(f.Minv * f.Tinv));
 }
 
 /// Eq. (4): the elliptic cylinder D along Z through the outline of C (the curve
@@ -175,8 +174,7 @@ template <class S> Mat4<S> paper_D(const Mat4<S>& C) {
 
 /// Eq. (3): P = M^T T^T D T M, the cylinder D carried back to a cone with apex L.
 template <class S> Mat4<S> paper_P(const Mat4<S>& D, const PaperFrame<S>& f) {
-  const Mat4<S> N = f.T * f.M;
-  return N.transpose() * D * N;
+  return congruence<S>(D, Mat4<S>(f.T * f.M));
 }
 
 /// Eq. (5): the plane S: b2 x + b3 y + a3 z + c3 = 0 (that is dC/dz = 0, the
@@ -199,7 +197,7 @@ template <class S> Vec4<S> paper_polar_plane(const Vec4<S>& Splane, const PaperF
 template <class S> Mat4<S> paper_R(const Vec4<S>& Splane, const PaperFrame<S>& f) {
   const Mat4<S> N = f.T * f.M;
   const Vec4<S> e4(S(0), S(0), S(0), S(1));
-  return N.transpose() * plane_pair<S>(Splane, e4) * N;
+  return congruence<S>(plane_pair<S>(Splane, e4), N);
 }
 
 // --------------------------------------------------------------------- results
