@@ -890,6 +890,10 @@ std::vector<std::string> shadow_sign_problems(const Mat4<Q>& A, const Vec4<Q>& L
   return out;
 }
 
+Measure mirror_error(const Mat4<Q>& M, const Mat4<Q>& M_ref) {
+  return to_measure(max_abs(Mat4<Q>(M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
+}
+
 std::string reflection_sign_problem(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
   if (same_sign_as(B, [&](const Vec4<Q>& y) { return form(B_ref, y); })) return "";
   return "B has the wrong sign or vanishes where M^T A M does not (must be M^T A M up to a positive factor)";
@@ -987,7 +991,22 @@ ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const A
     : A_(A), M_(reference_mirror(plane)), opt_(opt), k_(k),
       pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))), bounds_(A, M_, pts_) {}
 
-ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
+ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B, const Mat4<Q>* M) {
+  ItemAccuracy acc = B_accuracy(origin, B);
+  if (!M) return acc;
+  // M against the exact reflection in the item's frame (M_local = T^-1 M T), as verify judges it
+  const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
+  const Measure e = mirror_error(*M, Mat4<Q>(translation<Q>(Vec3<Q>(-o)) * M_ * translation<Q>(o)));
+  double up = e.convert_to<double>();
+  if (Measure(up) < e) up = std::nextafter(up, std::numeric_limits<double>::infinity());
+  acc.certified.emplace_back("M");
+  acc.attained = std::max(acc.attained, e.convert_to<double>());
+  if (acc.bound) acc.bound = std::max(*acc.bound, up);
+  acc.inaccurate = acc.inaccurate || up > opt_.target;
+  return acc;
+}
+
+ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
   if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_sign(sign);
   if (!bounds_.covers())

@@ -739,3 +739,31 @@ TEST_CASE("the paper route's P and R and every B are exactly symmetric in every 
           for (const std::string& p : c.report->problems) CHECK(p.find("symmetric") == std::string::npos);
     }
 }
+
+TEST_CASE("eval counts M's error, which verify judges: a float M no float can hold is flagged", "[verdicts][accuracy]") {
+  // eval's bound covered B alone: a float M of the plane x + y + z = 0 (entries 1/3, 2/3) is 2e-8 off,
+  // unflagged, and verify failed it ("M is not the reflection in the mirror plane").
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "mirrors", "quadrics": [{"id": "s", "sphere":
+      {"center": [0, 0, 0], "radius": 1}}], "mirrors": [{"id": "diag", "plane": [1, 1, 1, 0]},
+      {"id": "far", "plane": [0, 0, 1, -1e20]}, {"id": "wall", "plane": [1, 0, 0, 0]}]})",
+                               "mirrors.json");
+  for (const char* precision : {"float", "double", "long-double"}) {
+    INFO(precision);
+    const ResultSet rs = computed_results(sc, *parse_precision(precision), Method::direct);
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    for (std::size_t k = 0; k < rs.reflections.size(); ++k) {
+      INFO("mirror " << k);
+      const ReflectionMatrices& r = rs.reflections[k];
+      REQUIRE(r.accuracy);
+      REQUIRE(v.checks[k].report);
+      CHECK(r.accuracy->inaccurate == !v.checks[k].passed());
+      CHECK(std::find(r.accuracy->certified.begin(), r.accuracy->certified.end(), "M") != r.accuracy->certified.end());
+      if (r.accuracy->bound) CHECK(*r.accuracy->bound >= v.checks[k].report->M_error.value_or(0));
+    }
+    if (std::string(precision) == "float") {  // the diagonal mirror's M cannot be held: flagged
+      CHECK(rs.reflections[0].accuracy->inaccurate);
+      CHECK_FALSE(rs.reflections[2].accuracy->inaccurate);  // x = 0: M and B exact in float
+    }
+    if (std::string(precision) != "float") CHECK(v.failed == 0);
+  }
+}

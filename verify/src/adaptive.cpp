@@ -231,7 +231,8 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
     ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy, k);
-    accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[1])) : non_finite_accuracy());
+    const Mat4<Rational> M = finite_values(v) ? exact4(v[0]) : Mat4<Rational>(Mat4<Rational>::Zero());
+    accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[1]), &M) : non_finite_accuracy());
     rep.reflections.push_back(std::move(item));
   }
   rep.skipped = skipped_pairs(sc);

@@ -417,7 +417,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   const auto point_free_checks = [&] {
     std::vector<std::string>& problems = rep.problems;
     if (got.M) {  // M must be the reflection (exactly, or within the accuracy target relative to its largest entry)
-      m_err = to_measure(max_abs(Mat4<Q>(*got.M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
+      m_err = mirror_error(*got.M, M_ref);  // (accuracy.hpp: eval's bound counts the same)
       rep.M_error = to_d(m_err);
       if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
     }

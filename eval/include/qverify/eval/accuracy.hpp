@@ -284,6 +284,10 @@ std::vector<std::string> shadow_sign_problems(const Mat4<Rational>& A, const Vec
                                               const Vec4<Rational>* polar);
 /// B against M^T A M (B_ref, in B's frame): the problem, or "".
 std::string reflection_sign_problem(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
+/// M's error against the exact reflection M_ref (in M's frame), as verify judges it (M_error) and eval
+/// counts it (error_bound): the largest entry of M - M_ref over the larger of 1 and M_ref's largest
+/// entry. Exact: M is not sampled, so this part of the bound is certified.
+Measure mirror_error(const Mat4<Rational>& M, const Mat4<Rational>& M_ref);
 
 /// Is the sampled terminator one real point (a cone lit along its axis or from inside, a point
 /// sphere, a light on a sphere)? Exactly: every point rational (no sqrt part) and proportional to
@@ -356,13 +360,17 @@ class ShadowMeter {
 
 /// The same for one reflection item: B bounded over A reflected by the exact mirror of `plane`
 /// where ReflectionBounds covers it (the whole of an ellipsoid; other quadrics within the object
-/// size of their centre, not a cone), else measured on its sampled points (reflection_error).
+/// size of their centre, not a cone), else measured on its sampled points (reflection_error); and,
+/// when the item's M is given, M's error (mirror_error, exact: "M" in `certified`), which verify
+/// judges against the same target (a float M of the plane x + y + z = 0 is 2e-8 off: flagged).
 class ReflectionMeter {
  public:
   ReflectionMeter(const Mat4<Rational>& A, const Vec4<Rational>& plane, const AccuracyOptions& opt, std::size_t k);
-  ItemAccuracy operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& B);
+  ItemAccuracy operator()(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& B,
+                          const Mat4<Rational>* M = nullptr);
 
  private:
+  ItemAccuracy B_accuracy(const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& B);
   Mat4<Rational> A_, M_;
   AccuracyOptions opt_;
   std::size_t k_;

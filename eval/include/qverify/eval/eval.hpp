@@ -391,7 +391,8 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
       ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt, k);
       auto measure = [&](const ReflectionItem<S>& it) {
         if (!all_finite(it.M) || !all_finite(it.result.B)) return non_finite_accuracy();
-        return meter(it.origin, exact_matrix(it.result.B));
+        const Mat4<Rational> M = exact_matrix(it.M);  // judged by verify too: counted (exactly)
+        return meter(it.origin, exact_matrix(it.result.B), &M);
       };
       ev.reflection_accuracy[k] = measure(ev.reflections[k]);
       if constexpr (std::is_floating_point_v<S>) {
