@@ -894,6 +894,62 @@ Measure mirror_error(const Mat4<Q>& M, const Mat4<Q>& M_ref) {
   return to_measure(max_abs(Mat4<Q>(M - M_ref))) / mmax(Measure(1), to_measure(max_abs(M_ref)));
 }
 
+Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& size, const Mat4<Q>& A, const Vec4<Q>& L,
+                           const Mat4<Q>& R, bool& all_zero) {
+  all_zero = true;
+  const auto in = std::find_if(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; });
+  if (in == local.end()) return 0;
+  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
+  const Vec4<Q> inside = in->p(), pi = A * L;
+  const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
+  Q step = to_rational(size.convert_to<double>());
+  if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own
+  const Measure inf = std::numeric_limits<Measure>::infinity();
+  Measure worst = 0;
+  std::vector<Vec4<Q>> ys;
+  if (L(3) == 0) {
+    for (const Vec4<Q>& d : {Vec4<Q>(1, 0, 0, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(0, 0, 1, 0), Vec4<Q>(1, 2, 3, 0)}) ys.push_back(d);
+  } else {
+    const Vec4<Q> base(at_inside(0), at_inside(1), L(2) / L(3), 1);
+    // Each distance is divided by the point's distance from `inside` (an angle), so the step, which
+    // keeps the points off the line where R's planes cross and spreads them over h, must grow with
+    // it: never below the height of h over `inside`, nor below the distance of `base` from that line
+    // (|pi . base| / |n|_max). With the object size alone, a light 4e29 away put the points 5 units
+    // from the line, 1e-29 of their distance: a correctly rounded double R measured 0.77 there.
+    step = std::max(step, abs_of<Q>(Q(base(2) - at_inside(2))));
+    const Q nx = pi(0), ny = pi(1), nn = nx * nx + ny * ny;
+    if (nn == 0) {
+      ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
+    } else {
+      // With step >= |pi . base| / nmax the points lie at least step / sqrt(2) from the line and at most
+      // about 4.5 steps from `inside`: a fixed fraction of their distance, whatever the light's.
+      const Q nmax = std::max(abs_of<Q>(nx), abs_of<Q>(ny)), at = pi.dot(base);
+      step = std::max(step, Q(abs_of<Q>(at) / nmax));
+      for (const Q& target : {Q(step * nmax), Q(-step * nmax)}) {
+        const Q t = (target - at) / nn;  // pi . (base + t (n, 0)) = target
+        ys.push_back(Vec4<Q>(base + t * Vec4<Q>(nx, ny, 0, 0)));
+      }
+      ys.push_back(Vec4<Q>(ys[0] + (step / nmax) * Vec4<Q>(-ny, nx, 0, 0)));  // along the line: pi . y unchanged
+    }
+  }
+  const Measure rn = frobenius(R);
+  for (const Vec4<Q>& y : ys) {
+    const Q f = form(R, y);
+    if (f == 0) continue;
+    all_zero = false;
+    const Measure fm = abs(to_measure(f));
+    if (L(3) == 0) {
+      worst = mmax(worst, rn > 0 ? Measure(fm / (rn * to_measure(Q(y.squaredNorm())))) : inf);
+      continue;
+    }
+    const Vec4<Q> g = R * y;
+    const Measure gn = sqrt(to_measure(Q(g.head<3>().squaredNorm())));
+    const Measure dist = sqrt(to_measure(Q((Vec3<Q>(y.head<3>()) - at_inside).squaredNorm())));
+    worst = mmax(worst, gn > 0 ? Measure(fm / (2 * gn) / mmax(size, dist)) : inf);
+  }
+  return worst;
+}
+
 std::string reflection_sign_problem(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
   if (same_sign_as(B, [&](const Vec4<Q>& y) { return form(B_ref, y); })) return "";
   return "B has the wrong sign or vanishes where M^T A M does not (must be M^T A M up to a positive factor)";
@@ -945,13 +1001,23 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const Mat4<Q> Ae = quadric_to_local(A_, o);
   const Vec4<Q> Le = point_to_local(L_, o);
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_sign(sign.front());
+  // R on its second plane h, which verify judges (R_on_second_plane) and no bound covers: measured at
+  // the points of h verify takes above these terminator points, counted as a sampled error
+  const auto on_h = [&](const ItemPoints& p) {
+    bool zero = true;
+    return second_plane_error(in_frame(p.points, origin), p.size, Ae, Le, R, zero);
+  };
+  // (a cone lit from 1e12 along its axis: R's h is 2e-8 of its height off in float, which the matrices'
+  // cross residual, relative to their largest entry, does not see)
   if (single_point(pts_.points))
-    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
+    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h(pts_)), {"P", "polar_plane", "R"},
+                            opt_.target);
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
     return refined_accuracy(
-        pts_, dense_, opt_, [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
+        pts_, dense_, opt_,
+        [&](const ItemPoints& p) { return std::max(shadow_error(p, origin, P, polar, R).geometric, on_h(p)); }, dense);
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   const auto sampled = [](const ShadowError& err, const Measure& size) {
     return [p = &err, size](const std::string& name) {  // (err: the caller's, alive while this is used)
@@ -978,11 +1044,11 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   };
   Measure covered = 0;
   for (const std::string& n : b.certified) covered = std::max(covered, sampled(e, pts_.size)(n));
-  Measure other = uncovered(e, pts_.size, true);
+  Measure other = std::max(uncovered(e, pts_.size, true), on_h(pts_));
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
     const ShadowError d = shadow_error(*dense_, origin, P, polar, R);
-    other = std::max(other, uncovered(d, dense_->size, false));
+    other = std::max({other, uncovered(d, dense_->size, false), on_h(*dense_)});
   }
   return combined_accuracy(b.bound, covered, other, b.certified, opt_.target);
 }

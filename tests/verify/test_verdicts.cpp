@@ -767,3 +767,44 @@ TEST_CASE("eval counts M's error, which verify judges: a float M no float can ho
     if (std::string(precision) != "float") CHECK(v.failed == 0);
   }
 }
+TEST_CASE("R's second plane far away: accurate results pass, a tilted h fails, eval flags what verify fails",
+          "[verdicts][verify][accuracy]") {
+  // a light 4e29 away, rotated off the vertical: the points of h were taken 5 units from R's crossing
+  // line (1e-29 of their distance): the correctly rounded R measured 0.77, and a tilt of 1e-6 measured 1e-35
+  const Scene far = parse_scene(R"({"format": "qverify-scene/1", "name": "farrot", "quadrics": [{"id": "s", "sphere":
+      {"center": ["-2/3", "5", "1"], "radius": "5"}}], "lights": [{"id": "far", "position": ["-2/3",
+      "-11999999999999999999999999999899/13", "4999999999999999999999999999998/13"]}]})", "farrot.json");
+  const Scene funnel = parse_scene(R"({"format": "qverify-scene/1", "name": "funnel", "quadrics": [{"id": "c", "cone":
+      {"apex": [2000000000000, 2000000000000, 0], "axis": [0, 0, 1], "tan_half_angle": "1/3"}}],
+      "lights": [{"id": "lamp", "position": [100000000000, 200000000000, 9700000000000]}]})",
+                                   "funnel.json");
+  for (const Scene* sc : {&far, &funnel}) {
+    INFO(sc->name);
+    CHECK(failures(*sc, computed_results(*sc, *parse_precision("double"), Method::direct)) == 0);
+    CHECK(failures(*sc, rounded(exact_results(*sc))) == 0);  // the best a double R can be
+  }
+  // h tilted by 1e-6 about the object (x / l_z, an angle): fails, in exact and rounded
+  ResultSet bad = exact_results(far);
+  auto& s = bad.shadows[0];
+  const Q lz = Q("4999999999999999999999999999998") / 13;
+  const Vec4<Q> tilted(Q(1, 1000000), 0, 1, -lz);
+  s.R = s.polar * tilted.transpose() + tilted * s.polar.transpose();
+  CHECK(failures(far, bad) == 1);
+  CHECK(failures(far, rounded(bad)) == 1);
+  // float: a cone lit along its axis from 1e12 (R's h 1.8e-8 of its distance off): verify fails, eval flags;
+  // from 1000 (exact in float) neither
+  for (const char* z : {"1000000000000", "1000"}) {
+    const Scene sc = parse_scene(std::string(R"({"format": "qverify-scene/1", "name": "axis", "quadrics": [{"id": "c",
+        "cone": {"apex": [0, 0, 0], "axis": [0, 0, 1], "tan_half_angle": 1}}], "lights": [{"id": "l", "position":
+        [0, 0, )") + z + "]}]}", "axis.json");
+    const ResultSet rs = computed_results(sc, *parse_precision("float"), Method::direct);
+    const bool fails = failures(sc, rs) == 1;
+    INFO(z);
+    CHECK(fails == (std::string(z) != "1000"));
+    CHECK(rs.shadows[0].accuracy->inaccurate == fails);
+  }
+}
+// and: check_flags/measured_errors take the larger of each check's geometric_error and its
+// second_plane_error (and, for reflections, M_error), so every "[verdicts][accuracy]" flag test
+// checks the whole of what verify judges.
+

@@ -41,61 +41,6 @@ Measure inf_norm(const Mat4<Q>& m) {
   return best;
 }
 
-/// R's second plane h (the plane the paper's frame sends to infinity: z = l_z
-/// for a point light, the plane at infinity for a parallel one), in the
-/// result's frame: R must vanish on it. Point light: rational points of h
-/// near the object, the first-order distance divided by the larger of the
-/// object size and the point's distance from `inside` (h may pass far from
-/// the object: an angle, not a length, is what can be asked there). The
-/// points keep away from the line where h crosses the polar plane `pi`: R's
-/// gradient there is (pi . y) h, zero on the line, where a first-order
-/// distance means nothing (a rounded R, a hyperboloid about sqrt(eps) from
-/// the line, measured O(1) there: a false failure of accurate results). So,
-/// where pi is not parallel to h, the point of h above `inside` is moved
-/// across pi to pi . y = +-step |n|_max (n = (pi_x, pi_y), the normal of the
-/// line in h), and the + point also by `step` along the line; else the point
-/// above `inside` and that point moved by `step` along x and y. Parallel
-/// light: points at infinity (d, 0), the relative residual |y^T R y| / (|R|_F |y|^2).
-Measure second_plane_error(const Mat4<Q>& R, const Vec4<Q>& L, const Vec4<Q>& pi, const Vec4<Q>& inside, Q step,
-                           const Measure& size, bool& all_zero) {
-  all_zero = true;
-  if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own
-  Measure worst = 0;
-  std::vector<Vec4<Q>> ys;
-  if (L(3) == 0) {
-    for (const Vec4<Q>& d : {Vec4<Q>(1, 0, 0, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(0, 0, 1, 0), Vec4<Q>(1, 2, 3, 0)}) ys.push_back(d);
-  } else {
-    const Vec4<Q> base(inside(0) / inside(3), inside(1) / inside(3), L(2) / L(3), 1);
-    const Q nx = pi(0), ny = pi(1), nn = nx * nx + ny * ny;
-    if (nn == 0) {
-      ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
-    } else {
-      const Q nmax = std::max(abs_of<Q>(nx), abs_of<Q>(ny)), at = pi.dot(base);
-      for (const Q& target : {Q(step * nmax), Q(-step * nmax)}) {
-        const Q t = (target - at) / nn;  // pi . (base + t (n, 0)) = target
-        ys.push_back(Vec4<Q>(base + t * Vec4<Q>(nx, ny, 0, 0)));
-      }
-      ys.push_back(Vec4<Q>(ys[0] + (step / nmax) * Vec4<Q>(-ny, nx, 0, 0)));  // along the line: pi . y unchanged
-    }
-  }
-  const Measure rn = frobenius(R);
-  for (const Vec4<Q>& y : ys) {
-    const Q f = form(R, y);
-    if (f == 0) continue;
-    all_zero = false;
-    const Measure fm = abs(to_measure(f));
-    if (L(3) == 0) {
-      worst = mmax(worst, rn > 0 ? Measure(fm / (rn * to_measure(Q(y.squaredNorm())))) : kInf);
-      continue;
-    }
-    const Vec4<Q> g = R * y;
-    const Measure gn = sqrt(to_measure(Q(g.head<3>().squaredNorm())));
-    const Measure dist = sqrt(to_measure(Q((y - inside / inside(3)).head<3>().squaredNorm())));
-    worst = mmax(worst, gn > 0 ? Measure(fm / (2 * gn) / mmax(size, dist)) : kInf);
-  }
-  return worst;
-}
-
 /// One measured quadric, judged (exact: every point exactly on; else geometric error <= T).
 QuadricCheck judged(std::string name, const Metric& m, const std::vector<RootPoint>& pts, const Measure& size, bool exact,
                     const Measure& T, bool judge = true) {
@@ -314,14 +259,9 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (onPolar && onPolar->judged) judge(*onPolar, "on_polar_plane");
   if (onGen) judge(*onGen, "on_generators (P is not the cone from L through the terminator)");
   if (onPlane) judge(*onPlane, "R on the polar plane");
-  if (got.R && !one_point) {
+  if (got.R) {  // (also at a single point: the matrices' cross residual does not see h's height off)
     bool h_zero = true;
-    Measure h_err = 0;
-    for (const RootPoint& x : local)  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
-      if (x.p()(3) != 0) {
-        h_err = second_plane_error(*got.R, Le, pi_ref, x.p(), to_rational(pts.size.convert_to<double>()), pts.size, h_zero);
-        break;
-      }
+    const Measure h_err = second_plane_error(local, pts.size, Ae, Le, *got.R, h_zero);  // (accuracy.hpp; eval counts it too)
     rep.second_plane_error = h_err < kInf ? to_d(h_err) : std::numeric_limits<double>::infinity();
     if (exact ? !h_zero : h_err > T)
       problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane "

@@ -303,6 +303,21 @@ bool single_point(const std::vector<RootPoint>& terminator);
 Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
                             const Vec4<Rational>* polar, const Mat4<Rational>* R);
 
+/// R's second plane h (the plane the paper's frame sends to infinity: z = l_z for a point light, the
+/// plane at infinity for a parallel one): R must vanish on it. Measured the same way by verify
+/// (R_on_second_plane, judged against the target) and by eval (counted in error_bound), at exact
+/// points of h, A and L in the result's frame, `local` the item's terminator points in that frame
+/// (the rational part of the first one is the point `inside` the object that h's points are taken
+/// above) and `size` the object size. Point light: the first-order distance of each point of h
+/// divided by the larger of the object size and the point's distance from `inside` (h may pass far
+/// from the object: an angle, not a length). The points keep away from the line where h crosses the
+/// polar plane pi, where R's gradient (pi . y) h vanishes and a first-order distance means nothing,
+/// by a step that grows with their distance from `inside` (see accuracy.cpp). Parallel light: points
+/// at infinity (d, 0), the relative residual |y^T R y| / (|R|_F |y|^2). `all_zero`: R vanishes
+/// exactly at every point (0 is returned, also where no point of `local` is finite).
+Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& size, const Mat4<Rational>& A,
+                           const Vec4<Rational>& L, const Mat4<Rational>& R, bool& all_zero);
+
 /// Options of the accuracy assessment (cli.md "Accuracy"; below).
 struct AccuracyOptions {
   double target = kDefaultAccuracy;
