@@ -94,8 +94,9 @@ std::optional<Rational> parse_decimal(std::string_view text, std::string& error,
     return std::nullopt;
   }
   const long scale = e - static_cast<long>(fp.size());  // value = digits * 10^scale
-  const long magnitude = scale + static_cast<long>(digits.size());
-  if (magnitude > limits.max_decimal_exponent || magnitude < -limits.max_decimal_exponent) {
+  // the leading digit's decimal exponent (floor(log10 |x|)): 1e10000 and 1e-10000 are in, 1e-10001 is not
+  const long leading = scale + static_cast<long>(digits.size()) - 1;
+  if (leading > limits.max_decimal_exponent || leading < -limits.max_decimal_exponent) {
     error = "number \"" + std::string(text.substr(0, 40)) + "\" is out of the exact range (|exponent| <= " +
             std::to_string(limits.max_decimal_exponent) + ")";
     return std::nullopt;

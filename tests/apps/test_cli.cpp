@@ -252,6 +252,13 @@ TEST_CASE("verify with a candidate catches wrong matrices and passes right ones"
     c["shadows"][0]["status"] = "light-on-surface";
     fails_with(c, "status", "status");
   }
+  {  // a status that is not a word is malformed (it was taken for no status, and passed)
+    auto c = doc;
+    c["shadows"][0]["status"] = 5;
+    const Run r = verdict(c, "status-number");
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+  }
   {  // malformed: exit 2, nothing on stdout
     auto c = doc;
     c["shadows"][0]["P"][0][1] = "abc";

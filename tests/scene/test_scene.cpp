@@ -56,6 +56,15 @@ TEST_CASE("numbers are read exactly from their text", "[numbers]") {
   CHECK(num("0/5") == 0);
   CHECK(num("09.5") == Q(19, 2));
   std::string err;
+  // the range is the leading digit's decimal exponent, -10000 to 10000 (1e-10001 was in, 1e10000 out)
+  CHECK(parse_rational("1e10000", err));
+  CHECK(parse_rational("9.99e10000", err));
+  CHECK(parse_rational("1e-10000", err));
+  CHECK(parse_rational("0.001e-9997", err));
+  for (const char* bad : {"1e10001", "1e-10001", "0.01e-9999", "10e10000"}) {
+    INFO(bad);
+    CHECK_FALSE(parse_rational(bad, err));
+  }
   for (const char* bad : {"abc", "1/0", "1/-2", "1e", "--1", "1.2.3", "", "1e1000000000", "0x10", "1/2/3", "nan", "inf"}) {
     INFO(bad);
     CHECK_FALSE(parse_rational(bad, err));

@@ -294,7 +294,9 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
           r.fail(path + ".origin", "origin must be finite");
         origin = v;
       }
-      const JsonNode* st = it.find("status");
+      const JsonNode* st = it.find("status");  // (null: not given)
+      if (st && st->kind != JsonNode::Kind::string && st->kind != JsonNode::Kind::null)
+        r.fail(path + ".status", "expected a status word (a string)");
       const std::string status = st && st->kind == JsonNode::Kind::string ? st->text : "";
       if (shadow) {
         ShadowMatrices& m = rs.shadows[static_cast<std::size_t>(slot)];
