@@ -955,11 +955,22 @@ std::string reflection_sign_problem(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
   return "B has the wrong sign or vanishes where M^T A M does not (must be M^T A M up to a positive factor)";
 }
 
-bool single_point(const std::vector<RootPoint>& terminator) {
-  if (terminator.empty()) return false;
-  for (const RootPoint& x : terminator)
-    if ((x.delta() != 0 && !x.q().isZero()) || cross_residual(x.p(), terminator.front().p()) != 0) return false;
+namespace {
+/// Every point rational and proportional to the first (false for none).
+bool all_one_point(const std::vector<RootPoint>& xs) {
+  if (xs.empty()) return false;
+  for (const RootPoint& x : xs)
+    if ((x.delta() != 0 && !x.q().isZero()) || cross_residual(x.p(), xs.front().p()) != 0) return false;
   return true;
+}
+}  // namespace
+
+bool single_point(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<RootPoint>& terminator) {
+  if (!all_one_point(terminator)) return false;  // (two points, or an irrational one: decided)
+  if (terminator.size() >= static_cast<std::size_t>(kDefaultSamples)) return true;
+  // Fewer samples (verify --samples 1 found a cone's apex first, where its terminator is a line pair):
+  // the default count, with a seed of its own, so that the answer does not depend on --samples or --seed.
+  return all_one_point(terminator_points(A, L, kDefaultSamples, item_seed(1, 1, 0)).points);
 }
 
 Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R) {
@@ -970,9 +981,23 @@ Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P
   return e;
 }
 
+std::vector<std::string> shadow_zero_problems(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Mat4<Q>* R) {
+  std::vector<std::string> out;
+  const Vec4<Q> pi = A * L;
+  if (P && P->isZero() != reference_cone(A, L).isZero())
+    out.emplace_back("P is zero where it should not be (or the converse)");
+  if (R && R->isZero() != pi.isZero())  // R = pi h^T + h pi^T, h != 0
+    out.emplace_back("R is zero where it should not be (or the converse)");
+  return out;
+}
+
+std::string reflection_zero_problem(const Mat4<Q>& A, const Mat4<Q>& B) {
+  return B.isZero() != A.isZero() ? "B is zero where it should not be (or the converse)" : "";
+}
+
 namespace {
-/// A result of the wrong sign: wrong whatever its geometric error (which cannot see a sign).
-ItemAccuracy wrong_sign(const std::string& problem) {
+/// A result of the wrong sign or wrongly zero: wrong whatever its geometric error (which sees neither).
+ItemAccuracy wrong_result(const std::string& problem) {
   ItemAccuracy acc;
   acc.reason = problem + ": no error bound is given";
   acc.inaccurate = true;
@@ -1000,7 +1025,8 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
   const Mat4<Q> Ae = quadric_to_local(A_, o);
   const Vec4<Q> Le = point_to_local(L_, o);
-  if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_sign(sign.front());
+  if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
+  if (const auto zero = shadow_zero_problems(Ae, Le, &P, &R); !zero.empty()) return wrong_result(zero.front());
   // R on its second plane h, which verify judges (R_on_second_plane) and no bound covers: measured at
   // the points of h verify takes above these terminator points, counted as a sampled error
   const auto on_h = [&](const ItemPoints& p) {
@@ -1009,9 +1035,9 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   };
   // (a cone lit from 1e12 along its axis: R's h is 2e-8 of its height off in float, which the matrices'
   // cross residual, relative to their largest entry, does not see)
-  if (single_point(pts_.points))
-    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h(pts_)), {"P", "polar_plane", "R"},
-                            opt_.target);
+  if (single_point(A_, L_, pts_.points))
+    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h(pts_)), {"P", "polar_plane"},
+                            opt_.target);  // (R: also on h, at points: measured, not certified)
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
@@ -1065,7 +1091,7 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
   const Measure e = mirror_error(*M, Mat4<Q>(translation<Q>(Vec3<Q>(-o)) * M_ * translation<Q>(o)));
   double up = e.convert_to<double>();
   if (Measure(up) < e) up = std::nextafter(up, std::numeric_limits<double>::infinity());
-  acc.certified.emplace_back("M");
+  if (acc.bound) acc.certified.emplace_back("M");
   acc.attained = std::max(acc.attained, e.convert_to<double>());
   if (acc.bound) acc.bound = std::max(*acc.bound, up);
   acc.inaccurate = acc.inaccurate || up > opt_.target;
@@ -1074,7 +1100,8 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
 
 ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B) {
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
-  if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_sign(sign);
+  if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_result(sign);
+  if (const std::string zero = reflection_zero_problem(A_, B); !zero.empty()) return wrong_result(zero);
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
@@ -1103,7 +1130,12 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       std::to_string(accuracy.seed) + ") count as well; certified_for names what is bounded. What no bound covers (a "
       "terminator with too few real points) is measured on those points (near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
-      " times, a margin that is not a proof; flag inaccurate when error_bound > accuracy";
+      " times, a margin that is not a proof. R also on its second plane h, at three points of h above the "
+      "terminator kept away from the line where R's planes cross (verify's R_on_second_plane), counted as measured. "
+      "Where the terminator is a single real point, P, the polar plane and R are measured as matrices instead, their "
+      "largest relative cross residual against the exact ones, exactly (verify's as_matrices). For a reflection, M's "
+      "error (its largest entry off the exact reflection, relative to the larger of 1 and the reflection's largest "
+      "entry) is counted exactly (certified_for M). Flag inaccurate when error_bound > accuracy";
 }
 
 }  // namespace qverify

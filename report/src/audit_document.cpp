@@ -6,18 +6,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace qverify {
 namespace {
 
 using json = nlohmann::ordered_json;
 
-/// max_rel_error, median_rel_error, correct_bits (= -log2(error); for an exact zero, all the significand's
-/// bits of a floating precision, `bits`, and null for exact arithmetic or no precision) and exact_match.
+/// max_rel_error, median_rel_error, correct_bits (= -log2(error), at most the significand's bits of a floating
+/// precision, `bits`, which an exact zero gets too; null for an exact zero in exact arithmetic or without a
+/// precision) and exact_match.
 void error_fields(json& r, const ErrorStats& stats, std::optional<unsigned> bits = std::nullopt) {
   r["max_rel_error"] = number_or_null(stats.max);
   r["median_rel_error"] = number_or_null(stats.median);
-  r["correct_bits"] = stats.max > 0 ? number_or_null(-std::log2(stats.max)) : bits ? json(*bits) : json(nullptr);
+  const double b = bits ? static_cast<double>(*bits) : std::numeric_limits<double>::infinity();
+  r["correct_bits"] = stats.max > 0 ? number_or_null(std::min(-std::log2(stats.max), b)) : bits ? json(*bits) : json(nullptr);
   if (stats.max == 0) r["exact_match"] = true;
 }
 

@@ -76,7 +76,9 @@ json check_json(const VerifyCheck& v, bool exact) {
     c["item_status"] = r.item_status;
     if (v.inaccurate) c["flags"] = json::array({"inaccurate"});
     if (v.origin) c["origin"] = origin_json(*v.origin);
-    for (const std::string& n : r.notes) c["note"] = n;
+    std::string notes;  // every remark, one key
+    for (const std::string& n : r.notes) notes += (notes.empty() ? "" : "; ") + n;
+    if (!notes.empty()) c["note"] = notes;
   } else {
     measures_json(c, r, {"on_B"});
     if (exact) c["proved_exactly"] = r.proved_exactly;

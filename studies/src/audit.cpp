@@ -179,8 +179,8 @@ class SceneAudit {
         }
         if (g.report && !g.report->skipped && std::isfinite(g.report->geometric_error))
           candidate_geo_[i] = g.report->geometric_error;
-        else if (g.skipped())
-          candidate_geo_[i] = NAN;  // nothing to measure on (no real terminator point)
+        else if (g.skipped() || !g.report)
+          candidate_geo_[i] = NAN;  // nothing to measure on (no real terminator point; an item missing: a failed check)
       }
       c.status = v.failed > 0 ? "fail" : "pass";
       c.claimed_precision = call.results.precision.name();

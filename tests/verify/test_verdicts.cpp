@@ -808,3 +808,26 @@ TEST_CASE("R's second plane far away: accurate results pass, a tilted h fails, e
 // second_plane_error (and, for reflections, M_error), so every "[verdicts][accuracy]" flag test
 // checks the whole of what verify judges.
 
+
+TEST_CASE("eval flags a result that is wrongly zero or wrongly not, which verify fails, also without points",
+          "[verdicts][accuracy]") {
+  // Degenerate quadrics under an exact rotation: the exact P of a double plane lit by a lamp is the zero
+  // matrix and the double one rounding noise; verify failed it ("P is zero where it should not be"), eval
+  // gave no bound ("no real point") and no flag.
+  const Scene sc = parse_scene(R"JSON({"format": "qverify-scene/1", "name": "degenerate", "quadrics": [{"id": "cone", "cone": {"apex": ["2/15", "86/13", "-21/65"], "axis": ["-1", "-14/13", "34/13"], "tan_half_angle": "3/4"}}, {"id": "planepair", "matrix": [["-7/25", "24/65", "288/325", "-701/975"], ["24/65", "7/169", "84/845", "-181/845"], ["288/325", "84/845", "1008/4225", "-2172/4225"], ["-701/975", "-181/845", "-2172/4225", "27032/38025"]]}, {"id": "doubleplane", "matrix": [["9/25", "12/65", "144/325", "-366/325"], ["12/65", "16/169", "192/845", "-488/845"], ["144/325", "192/845", "2304/4225", "-5856/4225"], ["-366/325", "-488/845", "-5856/4225", "14884/4225"]]}, {"id": "point", "sphere": {"center": ["14/15", "95/13", "-82/65"], "radius": "0"}}, {"id": "imag", "matrix": [["1", "0", "0", "-1/3"], ["0", "1", "0", "-7"], ["0", "0", "1", "2"], ["-1/3", "-7", "2", "487/9"]]}, {"id": "line", "cylinder": {"point": ["-7/15", "94/13", "-94/65"], "axis": ["0", "-12/13", "5/13"], "radius": "0"}}, {"id": "flat", "ellipsoid": {"center": ["1/3", "7", "-2"], "radii": ["1", "2", "0"], "axes": [["3/5", "-4/5", "0"], ["4/13", "3/13", "-12/13"], ["48/65", "36/65", "5/13"]]}}, {"id": "zero", "matrix": [["0", "0", "0", "0"], ["0", "0", "0", "0"], ["0", "0", "0", "0"], ["0", "0", "0", "0"]]}, {"id": "cyl", "cylinder": {"point": ["1/3", "7", "-2"], "axis": ["0", "-12/13", "5/13"], "radius": "1"}}, {"id": "para", "matrix": [["1", "0", "0", "-1/3"], ["0", "25/169", "60/169", "23/169"], ["0", "60/169", "144/169", "-329/338"], ["-1/3", "23/169", "-329/338", "-9740/1521"]]}], "lights": [{"id": "lamp", "position": ["-16/15", "-29/13", "458/65"]}, {"id": "sun", "direction": ["-1", "46/13", "9/13"]}, {"id": "apexlamp", "position": ["2/15", "86/13", "-21/65"]}], "mirrors": [{"id": "m", "plane": ["-1", "-14/13", "34/13", "394/39"]}]})JSON", "degenerate-rotated.json");
+  for (const char* precision : {"double", "long-double"})
+    for (Method method : {Method::direct, Method::paper}) {
+      INFO(precision << " " << method_name(method));
+      const ResultSet rs = computed_results(sc, *parse_precision(precision), method);
+      const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+      for (std::size_t k = 0; k < v.checks.size(); ++k) {
+        const VerifyCheck& c = v.checks[k];
+        if (c.passed() || c.skipped()) continue;
+        INFO(c.kind << " " << c.quadric << "/" << c.other);
+        const bool shadow = k < rs.shadows.size();
+        const auto& acc = shadow ? rs.shadows[k].accuracy : rs.reflections[k - rs.shadows.size()].accuracy;
+        REQUIRE(acc);
+        CHECK(acc->inaccurate);
+      }
+    }
+}

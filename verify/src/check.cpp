@@ -192,9 +192,8 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     if (got.R && !symmetric_within(*got.R, T)) problems.push_back("R is not symmetric");
     for (std::string& sign : shadow_sign_problems(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr))
       problems.push_back(std::move(sign));
-    if (got.P && got.P->isZero() != P_ref.isZero()) problems.push_back("P is zero where it should not be (or the converse)");
-    if (got.R && got.R->isZero() != pi_ref.isZero())  // R = pi h^T + h pi^T, h != 0
-      problems.push_back("R is zero where it should not be (or the converse)");
+    for (std::string& zero : shadow_zero_problems(Ae, Le, got.P ? &*got.P : nullptr, got.R ? &*got.R : nullptr))
+      problems.push_back(std::move(zero));
     if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
     if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
       problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
@@ -222,7 +221,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   std::optional<QuadricCheck> onP, onR, onPolar, onGen, onPlane, asMatrices;
   // A terminator of one point says nothing of the results' shapes (single_point): they are judged
   // as matrices against the exact ones, up to a factor, instead of on points.
-  const bool one_point = single_point(pts.points);
+  const bool one_point = single_point(Aw, Lw, pts.points);
   if (one_point) {
     const Measure e = shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
                                           got.polar_plane ? &*got.polar_plane : nullptr, got.R ? &*got.R : nullptr);
@@ -362,7 +361,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
     }
     if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
-    if (got.B && got.B->isZero() != Aw.isZero()) problems.push_back("B is zero where it should not be (or the converse)");
+    if (got.B)
+      if (std::string zero = reflection_zero_problem(Aw, *got.B); !zero.empty()) problems.push_back(std::move(zero));
     if (got.B)
       if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
     if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")

@@ -113,10 +113,13 @@ template <class S, class F> inline Mat4<S> symmetric_from(F&& f) {
 /// and 6e-8 of their largest entry from symmetric, which verify fails. The symmetric part is what
 /// x^T X x reads, so the geometry is the product's: keeping one triangle instead (or computing it
 /// alone) lost the two roundings' averaging and measured up to twice the geometric error on far
-/// mirrors and in the float paper route (tests/golden, stress-mirror-far).
+/// mirrors and in the float paper route (tests/golden, stress-mirror-far). Halves first, then adds:
+/// (a + b) / 2 overflows where both are above half the largest finite value. Exact types need none
+/// of it (their product is symmetric).
 template <class S> inline Mat4<S> congruence(const Mat4<S>& A, const Mat4<S>& N) {
   const Mat4<S> X = N.transpose() * A * N;
-  return symmetric_from<S>([&](int i, int j) { return i == j ? X(i, i) : S((X(i, j) + X(j, i)) / S(2)); });
+  if (ScalarOps<S>::exact()) return X;
+  return symmetric_from<S>([&](int i, int j) { return i == j ? X(i, i) : S(X(i, j) / S(2) + X(j, i) / S(2)); });
 }
 
 /// u v^T + v u^T: the quadric of the plane pair {u = 0} ∪ {v = 0}.

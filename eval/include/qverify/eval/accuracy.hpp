@@ -284,18 +284,29 @@ std::vector<std::string> shadow_sign_problems(const Mat4<Rational>& A, const Vec
                                               const Vec4<Rational>* polar);
 /// B against M^T A M (B_ref, in B's frame): the problem, or "".
 std::string reflection_sign_problem(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
+/// P and R against the exact ones' vanishing: where the exact P (a degenerate quadric, a light at a
+/// cone's apex) or R (A L = 0) is the zero matrix, any other result is wrong whatever its size (and
+/// a zero result where the exact one is not); a problem for each, none when right. A and L in the
+/// results' frame; a result not given is not judged. No point can see it: verify judges it, and eval
+/// flags it, also where there is no point to sample.
+std::vector<std::string> shadow_zero_problems(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
+                                              const Mat4<Rational>* R);
+/// The same for B (zero exactly when A is): the problem, or "".
+std::string reflection_zero_problem(const Mat4<Rational>& A, const Mat4<Rational>& B);
 /// M's error against the exact reflection M_ref (in M's frame), as verify judges it (M_error) and eval
 /// counts it (error_bound): the largest entry of M - M_ref over the larger of 1 and M_ref's largest
 /// entry. Exact: M is not sampled, so this part of the bound is certified.
 Measure mirror_error(const Mat4<Rational>& M, const Mat4<Rational>& M_ref);
 
-/// Is the sampled terminator one real point (a cone lit along its axis or from inside, a point
-/// sphere, a light on a sphere)? Exactly: every point rational (no sqrt part) and proportional to
-/// the first. There the terminator says nothing of the shape of P, of the polar plane's
+/// Is the terminator of A and L (world frame) one real point (a cone lit along its axis or from
+/// inside, a point sphere, a light on a sphere)? Exactly: every sampled point rational (no sqrt
+/// part) and proportional to the first, in `terminator` when it holds at least kDefaultSamples
+/// points, else in a sample of that many with a seed of its own (the answer does not depend on
+/// --samples or --seed: one sample of a cone lit from outside is its apex). There the terminator says nothing of the shape of P, of the polar plane's
 /// orientation or of R (P and R are singular at that point, so a first-order distance there
 /// means nothing, and a second-order one about the square root of the rounding), and the results
 /// are judged as matrices instead (shadow_matrix_error).
-bool single_point(const std::vector<RootPoint>& terminator);
+bool single_point(const Mat4<Rational>& A, const Vec4<Rational>& L, const std::vector<RootPoint>& terminator);
 /// The largest relative cross residual (core/projective.hpp, cross_residual: zero exactly when
 /// proportional) of P, the polar plane and R, each when given, against (L^T A L) A - (A L)(A L)^T,
 /// A L and the plane pair R of (A, L), A and L in the results' frame: the error of a shadow item

@@ -77,7 +77,7 @@ struct IntervalPack {
     // of x (-0 counts as negative: the product is 0 either way).
     const DoublePack nha = opaque(-a.hi);
     auto pick = [](const DoublePack& x, const DoublePack& if_nonneg, const DoublePack& if_neg) {
-#if defined(__AVX512F__)
+#if QVERIFY_PACK_512  // (one 512-bit register: pack.hpp)
       const __mmask8 negative = _mm512_cmplt_epi64_mask(_mm512_castpd_si512(static_cast<__m512d>(x)), _mm512_setzero_si512());
       return DoublePack(_mm512_mask_blend_pd(negative, static_cast<__m512d>(if_nonneg), static_cast<__m512d>(if_neg)));
 #else
