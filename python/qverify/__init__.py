@@ -196,8 +196,10 @@ def verify_scene(scene, candidate=None, precision="double", method="direct", *, 
             (e.g. what eval_scene returned, possibly altered). Its floats
             are taken exactly.
         precision: the precision to compute in (without a candidate); with a
-            candidate it only sets the information consistent_with_precision
-            when the document does not name its precision.
+            candidate, "exact" judges it in proof mode (every residual exactly
+            zero, as `verify --precision exact --candidate`), and another
+            only sets the information consistent_with_precision when the
+            document does not name its precision.
         method, frame: as in eval_scene.
         samples, seed: exact points per item and the sampler's seed.
         accuracy: the accuracy target (0 in the document with precision

@@ -329,7 +329,9 @@ py::object verify_scene_py(const py::object& path, const py::object& text, const
     const ResultSet rs = ctext   ? candidate_results_text(sc, *ctext, cand_name, prec)
                          : cpath ? candidate_results(sc, *cpath, prec)
                                  : computed_results(sc, prec, method, frame, AccuracyOptions{accuracy});  // eval's results
-    v = verify_results(sc, rs, VerifyOptions{samples, seed, accuracy});
+    VerifyOptions vo{samples, seed, accuracy};
+    vo.prove = (ctext || cpath) && prec.kind == Precision::Kind::exact;  // as `verify --precision exact --candidate`
+    v = verify_results(sc, rs, vo);
   }
   return json_to_python(verify_document(sc, v));
 }

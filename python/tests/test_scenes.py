@@ -93,6 +93,11 @@ def test_verify_candidate_file(tmp_path):
     f.write_text(json.dumps(qverify.eval_scene(path, precision="exact")))
     out = qverify.verify_scene(path, candidate=f, precision="exact")
     assert out["failed"] == 0 and out["source"] == str(f)
+    # precision="exact" with a double candidate is a proof, which rounded numbers do not pass (as the CLI)
+    egg = SCENES / "egg-sun-wall.json"  # (ball-lamp-floor's double results are exact: they pass a proof)
+    proof = qverify.verify_scene(egg, candidate=qverify.eval_scene(egg), precision="exact")
+    assert proof["accuracy"] == 0 and proof["failed"] >= 1
+    assert "proved_exactly" in proof["checks"][0]
 
 
 def test_adaptive_mode():

@@ -36,6 +36,30 @@ std::string html_page(const std::string& title, const std::string& body) {
          "that wrote it; re-run the same command to reproduce.</p>\n</body></html>\n";
 }
 
+namespace {
+/// The candidate's section of the audit's report.html: its verdict, why, and its reproducer.
+std::string audit_candidate_html(const json& doc) {
+  const json& c = doc["candidate"];
+  const json* row = nullptr;
+  for (const auto& r : doc["rows"])
+    if (r.value("source", "") == "candidate") row = &r;
+  std::string b = "<h2 id=\"candidate\">Candidate " + html_escape(c["name"].get<std::string>()) + ": " +
+                  sci(c["status"]) + "</h2>\n<p>Command: <code>" + html_escape(c["command"].get<std::string>()) +
+                  "</code>. Accuracy target " + sci(c["accuracy"]) + ".</p>\n";
+  if (row && row->contains("error")) b += "<p>The call failed: " + sci((*row)["error"]) + "</p>\n";
+  if (row && row->contains("problems") && !(*row)["problems"].empty()) {
+    b += "<ul id=\"candidate-problems\">\n";
+    for (const auto& p : (*row)["problems"]) b += "<li>" + sci(p) + "</li>\n";
+    b += "</ul>\n";
+  }
+  for (const auto& r : c["reproducers"])
+    b += "<p>Reproducer (" + sci(r["status"]) + "): <a href=\"" + sci(r["scene"]) + "\">scene</a>" +
+         (r["returned"].is_null() ? std::string() : ", <a href=\"" + sci(r["returned"]) + "\">what it returned</a>") +
+         (r["log"].is_null() ? std::string() : ", <a href=\"" + sci(r["log"]) + "\">log</a>") + ".</p>\n";
+  return b + "<p class=\"note\">" + html_escape(c["rule"].get<std::string>()) + ".</p>\n";
+}
+}  // namespace
+
 std::string audit_html(const json& doc, const std::string& svg) {
   std::string b;
   b += "<p>Scene: <b>" + html_escape(doc["scene"].get<std::string>()) +
@@ -59,6 +83,7 @@ std::string audit_html(const json& doc, const std::string& svg) {
          "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
   }
   b += "</table>\n";
+  if (doc.contains("candidate")) b += audit_candidate_html(doc);
   b += "<h2>Items</h2>\n<table id=\"items\"><tr><th class=\"l\">kind</th><th class=\"l\">quadric</th>"
        "<th class=\"l\">light / mirror</th><th class=\"l\">exact status</th>";
   for (const auto& r : doc["rows"])

@@ -222,6 +222,12 @@ TEST_CASE("audit --candidate-cmd: a failing candidate is a row with its reason a
   std::ifstream log(dir / "failures/candidate-audit-0.log");
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   CHECK(text.find("nothing useful") != std::string::npos);
+  // report.html says so too, with the reproducer (it showed the row alone, its correct bits as "exact")
+  std::ifstream html(dir / "report.html");
+  const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  CHECK(page.find("Candidate candidate: candidate-failed") != std::string::npos);
+  CHECK(page.find("The call failed: exit status 4") != std::string::npos);
+  CHECK(page.find("href=\"failures/candidate-audit-0.json\"") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
