@@ -678,6 +678,11 @@ double size_down(const Measure& size) {
 }
 
 namespace {
+/// An error rounded up to a double (a bound stays a bound): size_down's twin.
+double up_to_double(const Measure& e) {
+  const double d = e.convert_to<double>();
+  return Measure(d) < e ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+}
 
 /// Combines a certified bound with the largest sampled error of the same results (the larger counts:
 /// CoveredBound::check has checked a first-order bound against them) and the sampled error of the
@@ -699,8 +704,7 @@ ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_
     acc.inaccurate = true;
     return acc;
   }
-  acc.bound = bound.convert_to<double>();
-  if (Measure(*acc.bound) < bound) acc.bound = std::nextafter(*acc.bound, std::numeric_limits<double>::infinity());
+  acc.bound = up_to_double(bound);
   acc.inaccurate = *acc.bound > target;
   return acc;
 }
@@ -1009,8 +1013,7 @@ ItemAccuracy measured_exactly(const Measure& e, std::vector<std::string> certifi
   ItemAccuracy acc;
   acc.certified = std::move(certified);
   acc.attained = e.convert_to<double>();
-  acc.bound = acc.attained;
-  if (Measure(*acc.bound) < e) acc.bound = std::nextafter(*acc.bound, std::numeric_limits<double>::infinity());
+  acc.bound = up_to_double(e);
   acc.inaccurate = *acc.bound > target;
   return acc;
 }
@@ -1089,8 +1092,7 @@ ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, c
   // M against the exact reflection in the item's frame (M_local = T^-1 M T), as verify judges it
   const Vec3<Q> o = origin ? *origin : Vec3<Q>::Zero();
   const Measure e = mirror_error(*M, Mat4<Q>(translation<Q>(Vec3<Q>(-o)) * M_ * translation<Q>(o)));
-  double up = e.convert_to<double>();
-  if (Measure(up) < e) up = std::nextafter(up, std::numeric_limits<double>::infinity());
+  const double up = up_to_double(e);
   if (acc.bound) acc.certified.emplace_back("M");
   acc.attained = std::max(acc.attained, e.convert_to<double>());
   if (acc.bound) acc.bound = std::max(*acc.bound, up);

@@ -41,6 +41,12 @@ Measure inf_norm(const Mat4<Q>& m) {
   return best;
 }
 
+/// A candidate's status against the exact inputs' (none given, or "non-finite", is not judged): the problem, or "".
+std::string status_problem(const std::string& got, const std::string& exact) {
+  if (got.empty() || got == exact || got == "non-finite") return "";
+  return "status \"" + got + "\" but the exact inputs give \"" + exact + "\"";
+}
+
 /// One measured quadric, judged (exact: every point exactly on; else geometric error <= T).
 QuadricCheck judged(std::string name, const Metric& m, const std::vector<RootPoint>& pts, const Measure& size, bool exact,
                     const Measure& T, bool judge = true) {
@@ -195,8 +201,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     for (std::string& zero : shadow_zero_problems(Ae, Le, got.P ? &*got.P : nullptr, got.R ? &*got.R : nullptr))
       problems.push_back(std::move(zero));
     if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
-    if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
-      problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+    if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
   const ItemPoints pts = terminator_points(Aw, Lw, opt.samples, item_seed(opt.seed, 1, item));
   if (pts.points.empty()) {
@@ -365,8 +370,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (std::string zero = reflection_zero_problem(Aw, *got.B); !zero.empty()) problems.push_back(std::move(zero));
     if (got.B)
       if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
-    if (!got.status.empty() && got.status != rep.exact_status && got.status != "non-finite")
-      problems.push_back("status \"" + got.status + "\" but the exact inputs give \"" + rep.exact_status + "\"");
+    if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
   const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, item));
   if (pts.points.empty()) {
