@@ -261,6 +261,46 @@ TEST_CASE("interval packs give CGAL's bounds, operation by operation", "[batch][
   CHECK(refused > 1000);
 }
 
+// As for double packs: a block of interval packs is read from and written to its rows by whole
+// vectors (contiguous rows: load_pair_rows, and stream_pair_rows where aligned to the pack), or pair
+// by pair (rows farther apart than their entries, or only 16-byte aligned); every way must read
+// and write exactly the lanes' intervals where they belong.
+TEST_CASE("a block of interval packs is loaded from and stored to its rows whole or pair by pair", "[batch][pack]") {
+  using Ln = BatchLanes<IF>;
+  constexpr int W = Ln::width;
+  const auto value = [](int k, int j) { return IF(-1000.0 * k - j - 0.5, 1000.0 * k + j + 0.25); };
+  const auto check = [&](auto n_tag, Eigen::Index stride, Eigen::Index offset) {
+    constexpr int N = decltype(n_tag)::value;
+    INFO("N " << N << ", stride " << stride << ", offset " << offset);
+    Eigen::Matrix<IF, Eigen::Dynamic, 1> buf(offset + W * stride + 8);
+    buf.setConstant(IF(-7, 7));
+    IntervalPack v[N];
+    for (int k = 0; k < N; ++k)
+      v[k] = IntervalPack(DoublePack([&](auto j) { return -value(k, static_cast<int>(j)).inf(); }),
+                          DoublePack([&](auto j) { return value(k, static_cast<int>(j)).sup(); }));
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      Ln::store<N>(buf.data() + offset, stride, v);
+      store_fence();
+    }
+    for (Eigen::Index x = 0; x < buf.size(); ++x) {
+      const Eigen::Index rel = x - offset, j = rel / stride, k = rel % stride;
+      const bool written = rel >= 0 && j < W && k < N;
+      CHECK(same_bounds(buf(x), written ? value(static_cast<int>(k), static_cast<int>(j)) : IF(-7, 7)));
+    }
+    IntervalPack back[N];
+    Ln::load<N>(buf.data() + offset, stride, back);
+    for (int k = 0; k < N; ++k)
+      for (int j = 0; j < W; ++j) CHECK(same_bounds(pack_lane(back[k], j), value(k, j)));
+  };
+  for (Eigen::Index offset : {0, 1, 2, 4}) {  // in intervals: 0 aligned to the pack; 1 to 16 bytes only
+    check(std::integral_constant<int, 4>{}, 4, offset);
+    check(std::integral_constant<int, 10>{}, 10, offset);
+    check(std::integral_constant<int, 12>{}, 12, offset);
+    check(std::integral_constant<int, 10>{}, 12, offset);  // rows farther apart than their entries
+  }
+}
+
 TEST_CASE("the terminator quadric of intervals is the plane pair pi h^T + h pi^T, bound for bound", "[batch][pack]") {
   // terminator_quadric_from_polar leaves out the terms with a zero factor of h and doubles the diagonal's one
   // product (core/shadow.hpp): for CGAL intervals and for interval packs the same bounds as plane_pair

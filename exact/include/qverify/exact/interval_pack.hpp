@@ -136,9 +136,24 @@ template <bool Protected> struct BatchLanes<CGAL::Interval_nt<Protected>> : Scal
 
   /// Entries 0..N-1 of `width` rows; a non-finite bound gives up (item by item).
   /// With SSE2 an Interval_nt is one register {-lo, hi}: W of them transpose
-  /// into the packs (-lo, hi) (from/to_lane_pairs).
+  /// into the packs (-lo, hi). A block of contiguous rows (every block of a
+  /// batch) goes by whole vectors (load_pair_rows, stream_pair_rows: pack.hpp),
+  /// other rows pair by pair (from/to_lane_pairs).
   template <int N> static void load(const Scalar* row0, Eigen::Index stride, Pack (&v)[N]) {
     prefetch_rows<N, width>(row0, stride);
+#if defined(CGAL_USE_SSE2) && (QVERIFY_PACK_512 || defined(__AVX__))
+    if constexpr (N % 2 == 0) {
+      if (stride == N) {  // the W rows are one contiguous block: whole vectors
+        DoublePack nlo[N], hi[N];
+        load_pair_rows<N>(reinterpret_cast<const double*>(row0), nlo, hi);
+        for (int k = 0; k < N; ++k) {
+          v[k] = Pack(nlo[k], hi[k]);
+          if (!ScalarOps<Pack>::finite(v[k])) throw MixedLanes{};
+        }
+        return;
+      }
+    }
+#endif
     for (int k = 0; k < N; ++k) {
       DoublePack nlo, hi;
 #if defined(CGAL_USE_SSE2) && defined(__SSE2__)
@@ -154,12 +169,21 @@ template <bool Protected> struct BatchLanes<CGAL::Interval_nt<Protected>> : Scal
     }
   }
   template <int N> static void store(Scalar* row0, Eigen::Index stride, const Pack (&v)[N]) {
+#if defined(CGAL_USE_SSE2) && (QVERIFY_PACK_512 || defined(__AVX__))
+    if constexpr (N % 2 == 0) {
+      if (stride == N && pack_aligned(row0)) {  // non-temporal whole vectors, as the double batches
+        DoublePack nlo[N], hi[N];
+        for (int k = 0; k < N; ++k) nlo[k] = v[k].nlo, hi[k] = v[k].hi;
+        stream_pair_rows<N>(reinterpret_cast<double*>(row0), nlo, hi);
+        return;
+      }
+    }
+#endif
     for (int k = 0; k < N; ++k) {
 #if defined(CGAL_USE_SSE2) && defined(__SSE2__)
       __m128d out[width];
       to_lane_pairs(v[k].nlo, v[k].hi, out);
       // Non-temporal, as the double batches: the output lines are not read first.
-      // (Entry by entry across the W rows; writing each row whole instead measured slower.)
       for (int j = 0; j < width; ++j) _mm_stream_pd(reinterpret_cast<double*>(row0 + j * stride + k), out[j]);
 #else
       for (int j = 0; j < width; ++j) row0[j * stride + k] = Scalar(-v[k].nlo[j], v[k].hi[j]);
