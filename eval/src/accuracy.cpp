@@ -901,10 +901,15 @@ Measure mirror_error(const Mat4<Q>& M, const Mat4<Q>& M_ref) {
 Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& size, const Mat4<Q>& A, const Vec4<Q>& L,
                            const Mat4<Q>& R, bool& all_zero) {
   all_zero = true;
-  const auto in = std::find_if(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; });
-  if (in == local.end()) return 0;
-  // a rational point inside the object: the chord midpoint p of x = p + sqrt(d) q
-  const Vec4<Q> inside = in->p(), pi = A * L;
+  const Vec4<Q> pi = A * L;
+  if (pi.head<3>().isZero() ||
+      std::none_of(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; }))
+    return 0;
+  // A rational point at the object, of A and L alone (not of the samples, so that eval's count and
+  // verify's judgement agree at every --samples and --seed): the section's centre, where the sampler's
+  // chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The first chord's
+  // midpoint, taken before, moved with the seed for a parabola's terminator.)
+  const Vec4<Q> inside = section_base(A, pi);
   const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Q step = to_rational(size.convert_to<double>());
   if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own

@@ -167,6 +167,19 @@ Q quadric_value(const Mat4<Q>& A, const Vec3<Q>& y) {
   return y.dot(Mat3<Q>(A.topLeftCorner<3, 3>()) * y) + 2 * Vec3<Q>(A.topRightCorner<3, 1>()).dot(y) + A(3, 3);
 }
 
+Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi) {
+  const Vec3<Q> normal = pi.head<3>();
+  const Eigen::Matrix<Q, 4, 3> E = plane_basis<Q>(pi);
+  const Mat3<Q> K = E.transpose() * A * E;
+  if (K.determinant() != 0) {  // the centre of the section, the pole of its line at infinity
+    const Eigen::Matrix<Q, 3, 1> ell = E.transpose() * Vec4<Q>(0, 0, 0, 1);
+    const Vec4<Q> c = E * Eigen::Matrix<Q, 3, 1>(adjugate3<Q>(K) * ell);
+    if (c(3) != 0) return c / c(3);
+  }
+  const Vec3<Q> y = core_point(A);  // else the foot on the plane of A's core point
+  return finite(Vec3<Q>(y - (normal.dot(y) + pi(3)) / normal.squaredNorm() * normal));
+}
+
 SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed) {
   SampleReport rep;
   const Vec3<Q> normal = pi.head<3>();
@@ -199,17 +212,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
       }
     }
   }
-  // Base point: the centre of the section (pole of its line at infinity), else a point of the plane.
-  Vec4<Q> b = Vec4<Q>::Zero();
-  if (K.determinant() != 0) {
-    const Eigen::Matrix<Q, 3, 1> ell = E.transpose() * Vec4<Q>(0, 0, 0, 1);
-    const Vec4<Q> c = E * Eigen::Matrix<Q, 3, 1>(adj * ell);
-    if (c(3) != 0) b = c / c(3);
-  }
-  if (b(3) == 0) {  // the foot on the plane of A's core point (core_point)
-    const Vec3<Q> y = core_point(A);
-    b = finite(Vec3<Q>(y - (normal.dot(y) + pi(3)) / normal.squaredNorm() * normal));
-  }
+  Vec4<Q> b = section_base(A, pi);
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
   int hits = 0;

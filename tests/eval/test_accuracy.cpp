@@ -6,10 +6,12 @@
 
 #include <qverify/core/core.hpp>
 #include <qverify/eval/accuracy.hpp>
+#include <qverify/eval/certified_bound.hpp>
 #include <qverify/eval/results.hpp>
 #include <qverify/scene/scene.hpp>
 #include <qverify/exact/rounding.hpp>
 
+#include <algorithm>
 #include <vector>
 
 using namespace qverify;
@@ -128,4 +130,35 @@ TEST_CASE("the accuracy measure reports progress once per item, in order, and it
   }
   for (std::size_t k = 0; k < a.reflections.size(); ++k)
     if (a.reflections[k].accuracy) CHECK(a.reflections[k].accuracy->bound == b.reflections[k].accuracy->bound);
+}
+
+// R on its second plane h is measured above a point of A and L alone (section_base), not above a
+// sampled point: for a parabola's terminator, where the sampler's chords have no common midpoint,
+// the first chord's midpoint moved with the seed, and with it the points of h and the error eval
+// counted against the one verify judged at another --seed.
+TEST_CASE("R on its second plane is measured above a point that does not depend on the samples", "[accuracy]") {
+  // a hyperboloid of one sheet x^2 + y^2 - z^2 = 1 lit from (3, 4, 5), where the polar plane
+  // 3x + 4y - 5z = 1 is parallel to a generator: the terminator is a parabola
+  Mat4<Q> A = Mat4<Q>::Zero();
+  A(0, 0) = 1, A(1, 1) = 1, A(2, 2) = -1, A(3, 3) = -1;
+  const Vec4<Q> L(3, 4, 5, 1), pi = A * L;
+  Mat4<Q> R = reference_plane_pair(A, L);
+  R(0, 3) += Q(1, 1000), R(3, 0) += Q(1, 1000);  // off h by a little
+  const Vec4<Q> base = section_base(A, pi);
+  CHECK(pi.dot(base) == 0);  // a point of the polar plane
+  std::vector<Measure> errors;
+  std::vector<Vec4<Q>> first_midpoints;
+  for (std::uint64_t seed : {1u, 2u, 3u, 7u}) {
+    const ItemPoints pts = terminator_points(A, L, 16, seed);
+    REQUIRE(!pts.points.empty());
+    first_midpoints.push_back(pts.points.front().p());
+    bool zero = true;
+    errors.push_back(second_plane_error(pts.points, Measure(10), A, L, R, zero));
+    CHECK(!zero);
+  }
+  // the samples differ (the old anchor would have moved) ...
+  CHECK(std::any_of(first_midpoints.begin(), first_midpoints.end(), [&](const Vec4<Q>& p) { return p != first_midpoints[0]; }));
+  // ... the measure does not
+  for (const Measure& e : errors) CHECK(e == errors.front());
+  CHECK(errors.front() > 0);
 }

@@ -166,6 +166,9 @@ inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack&
 /// completed by another far away. (The double shadow batch on one thread of
 /// AMD Zen 5, out of the caches: 16-17 ns per item with 16-byte stores, 13-14
 /// with whole lines; README, "bench".)
+/// Whether dst is aligned to a 64-byte line.
+inline bool line_aligned(const void* dst) { return (reinterpret_cast<std::uintptr_t>(dst) & 63) == 0; }
+
 template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)[Count]) {
   constexpr int per = static_cast<int>(DoublePack::size()) / 2;
   static_assert(Count % per == 0, "a whole number of vectors");
@@ -175,8 +178,13 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
     typedef double V8 __attribute__((vector_size(64)));
     typedef double V4 __attribute__((vector_size(32)));
     const V4 lo = _mm256_set_m128d(seq[q + 1], seq[q]), hi = _mm256_set_m128d(seq[q + 3], seq[q + 2]);
-    const V8 line = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
-    _mm512_stream_pd(dst + 2 * q, static_cast<__m512d>(line));
+    if (line_aligned(dst)) {
+      const V8 line = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+      _mm512_stream_pd(dst + 2 * q, static_cast<__m512d>(line));
+    } else {  // 32-byte aligned (pack_aligned): two halves
+      _mm256_stream_pd(dst + 2 * q, static_cast<__m256d>(lo));
+      _mm256_stream_pd(dst + 2 * q + 4, static_cast<__m256d>(hi));
+    }
 #elif defined(__AVX__)
     static_assert(per == 2, "a 256-bit pack");
     _mm256_stream_pd(dst + 2 * q, _mm256_set_m128d(seq[q + 1], seq[q]));
@@ -190,7 +198,7 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
 #if QVERIFY_PACK_512 || defined(__AVX__)
 /// W contiguous rows of N pairs, row j holding (a_k[j], b_k[j]) for k < N (a block of CGAL
 /// intervals {-lo, hi}), to and from the lanes, by whole vectors of the pack's width, N even:
-/// stream_pair_rows streams them non-temporally (dst aligned to the pack's size),
+/// stream_pair_rows streams them non-temporally (dst as pack_aligned requires),
 /// load_pair_rows reads them from anywhere. For 8 lanes and one entry, to/from_lane_pairs with
 /// 16-byte loads and stores took about 22 instructions, mostly moves between registers and
 /// extractions of 16-byte parts; these take about 7. (The interval shadow kernel for AVX-512, one
@@ -226,7 +234,15 @@ inline void interleave(Vec& x, Vec& y) {
   x = e;
 }
 inline Vec load(const double* p) { return static_cast<Vec>(_mm512_loadu_pd(p)); }
-inline void stream(double* p, const Vec& v) { _mm512_stream_pd(p, static_cast<__m512d>(v)); }
+/// A whole line where p is 64-byte aligned, else two 32-byte halves (pack_aligned).
+inline void stream(double* p, const Vec& v) {
+  if (line_aligned(p)) {
+    _mm512_stream_pd(p, static_cast<__m512d>(v));
+  } else {
+    _mm256_stream_pd(p, static_cast<__m256d>(__builtin_shufflevector(v, v, 0, 1, 2, 3)));
+    _mm256_stream_pd(p + 4, static_cast<__m256d>(__builtin_shufflevector(v, v, 4, 5, 6, 7)));
+  }
+}
 #else
 typedef double Vec __attribute__((vector_size(32)));
 typedef __m256d Native;
@@ -286,8 +302,13 @@ template <int N> inline void load_pair_rows(const double* src, DoublePack (&a)[N
 }
 #endif
 
-/// Whether dst is aligned for stream_pieces.
-inline bool pack_aligned(const void* dst) { return (reinterpret_cast<std::uintptr_t>(dst) % sizeof(DoublePack)) == 0; }
+/// Whether dst is aligned for stream_pieces and stream_pair_rows: to the pack's size, or to 32 bytes
+/// for a 512-bit pack, whose vectors then go as two 32-byte halves. The library is built for
+/// x86-64-v3 (cmake/ChooseArch.cmake), for which Eigen aligns a batch's storage to 32 bytes only,
+/// and its AVX-512 kernels write into it: with 64 required, they fell back to 16-byte pieces.
+inline bool pack_aligned(const void* dst) {
+  return (reinterpret_cast<std::uintptr_t>(dst) % (QVERIFY_PACK_512 ? 32 : sizeof(DoublePack))) == 0;
+}
 #endif
 
 template <> struct ScalarOps<DoublePack> {

@@ -48,6 +48,13 @@ QuadricCore quadric_core(const Mat4<Rational>& A);
 /// A's value at the Cartesian point y: y^T K y + 2 k . y + A_ww.
 Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
 
+/// The point sample_section draws its lines through, a function of A and pi alone: the centre of
+/// the section A ∩ {pi . x = 0} (the pole of its line at infinity) where that is a finite point,
+/// else the foot on the plane of A's core point (a parabola's section, a degenerate one). Finite;
+/// pi's normal must not be zero. (verify's check of R on its second plane starts from it:
+/// eval/accuracy.hpp, second_plane_error.)
+Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi);
+
 /// Up to n points of A ∩ {pi . x = 0}, all finite.
 SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed);
 
