@@ -905,10 +905,10 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   if (pi.head<3>().isZero() ||
       std::none_of(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; }))
     return 0;
-  // A rational point at the object, of A and L alone (not of the samples, so that eval's count and
-  // verify's judgement agree at every --samples and --seed): the section's centre, where the sampler's
-  // chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The first chord's
-  // midpoint, taken before, moved with the seed for a parabola's terminator.)
+  // A rational point at the object, of A and L alone, not of the samples: the section's centre, where
+  // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The
+  // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
+  // does where the object is not an ellipsoid.)
   const Vec4<Q> inside = section_base(A, pi);
   const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Q step = to_rational(size.convert_to<double>());

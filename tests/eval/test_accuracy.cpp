@@ -153,6 +153,8 @@ TEST_CASE("R on its second plane is measured above a point that does not depend 
     REQUIRE(!pts.points.empty());
     first_midpoints.push_back(pts.points.front().p());
     bool zero = true;
+    // (one size for all: a hyperboloid's size is measured over the samples, ItemPoints::size; the
+    // anchor is what this checks)
     errors.push_back(second_plane_error(pts.points, Measure(10), A, L, R, zero));
     CHECK(!zero);
   }

@@ -512,7 +512,7 @@ TEST_CASE("verify: wrong cones, planes and signs fail - also in exact arithmetic
 }
 
 TEST_CASE("verify: R's second plane is checked away from the line where R's planes cross", "[verdicts][verify]") {
-  // A vertical cylinder's polar plane is vertical: the point of h above a terminator chord's midpoint lies on
+  // A vertical cylinder's polar plane is vertical: the point of h above the section's centre lies on
   // the line where R's planes cross, where R's gradient vanishes and a first-order distance from a rounded R
   // measured 0.096: accurate double results failed. The same for a point sphere (one terminator point, size 0).
   for (const char* quadric : {R"({"id": "q", "cylinder": {"point": [0.1, 0.2, 0.3], "axis": [0, 0, 1], "radius": 0.7}})",

@@ -263,9 +263,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (onPolar && onPolar->judged) judge(*onPolar, "on_polar_plane");
   if (onGen) judge(*onGen, "on_generators (P is not the cone from L through the terminator)");
   if (onPlane) judge(*onPlane, "R on the polar plane");
+  Measure h_err = 0;  // R on its second plane (also counted in the geometric error, below)
   if (got.R) {  // (also at a single point: the matrices' cross residual does not see h's height off)
     bool h_zero = true;
-    const Measure h_err = second_plane_error(local, pts.size, Ae, Le, *got.R, h_zero);  // (accuracy.hpp; eval counts it too)
+    h_err = second_plane_error(local, pts.size, Ae, Le, *got.R, h_zero);  // (accuracy.hpp; eval counts it too)
     rep.second_plane_error = h_err < kInf ? to_d(h_err) : std::numeric_limits<double>::infinity();
     if (exact ? !h_zero : h_err > T)
       problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane "
@@ -308,6 +309,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   for (const auto* c : {&onP, &onPolar, &onR, &onGen, &onPlane})
     if (*c && (*c)->judged) geo = mmax(geo, relative((*c)->metric, pts.size));
   if (asMatrices) geo = mmax(geo, asMatrices->metric.distance);
+  geo = mmax(geo, h_err);  // (a result failed for R's second plane reports that error, not a smaller one)
   rep.geometric_error = geo < kInf ? to_d(geo) : std::numeric_limits<double>::infinity();
   if (pts.exhausted) rep.notes.push_back("only " + std::to_string(pts.points.size()) + " real point(s) found on this terminator");
   if (one_point)

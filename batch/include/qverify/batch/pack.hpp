@@ -157,17 +157,18 @@ inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack&
 #endif
 
 #if defined(__SSE2__)
+/// Whether dst is aligned to a 64-byte line.
+inline bool line_aligned(const void* dst) { return (reinterpret_cast<std::uintptr_t>(dst) & 63) == 0; }
+
 /// Streams `Count` 16-byte pieces, given in memory order, to dst as whole
 /// vectors of the pack's width (W / 2 pieces each: one 64-byte line with
-/// AVX-512, half a line with AVX2), non-temporally. dst must be aligned to
-/// the pack's size. A block of W contiguous rows is a whole number of such
+/// AVX-512, or its two halves where dst is 32-byte aligned only; half a line
+/// with AVX2), non-temporally. dst as pack_aligned requires. A block of W contiguous rows is a whole number of such
 /// vectors; stored this way it takes a quarter of the store instructions of
 /// 16-byte pieces, and no line is ever partly written by one store and
 /// completed by another far away. (The double shadow batch on one thread of
 /// AMD Zen 5, out of the caches: 16-17 ns per item with 16-byte stores, 13-14
 /// with whole lines; README, "bench".)
-/// Whether dst is aligned to a 64-byte line.
-inline bool line_aligned(const void* dst) { return (reinterpret_cast<std::uintptr_t>(dst) & 63) == 0; }
 
 template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)[Count]) {
   constexpr int per = static_cast<int>(DoublePack::size()) / 2;
@@ -272,9 +273,13 @@ template <int N> inline void stream_pair_rows(double* dst, const DoublePack (&a)
     u[0][k] = static_cast<Vec>(static_cast<Native>(a[k])), u[1][k] = static_cast<Vec>(static_cast<Native>(b[k]));
     interleave(u[0][k], u[1][k]);
   }
-  // Each store is a whole aligned vector, so the order of the stores does not matter to the
-  // write-combining buffers; in memory order instead (all the block's vectors formed first, then
-  // streamed) measured slower: 36 against 30 ns per item (AVX-512, one thread, 2026-12-03).
+  // By groups, not in memory order: with whole lines (dst 64-byte aligned) each store fills its line
+  // and the order does not matter to the write-combining buffers, and memory order (all the block's
+  // vectors formed first, then streamed) measured slower: 36 against 30 ns per item (AVX-512, one
+  // thread, 2026-12-03). With 32-byte halves (dst 32-byte aligned only, as the library's batches)
+  // a line is completed by the next group's store, so up to V - 1 lines of each output are half
+  // written at a time; the two orders could not be told apart on this machine's noise that day, and
+  // `qverify bench` times this path (README, "bench").
   for (int g = 0; g < G; ++g) {
     Vec x[V];
     for (int i = 0; i < V; ++i) x[i] = u[(V * g + i) / N][(V * g + i) % N];

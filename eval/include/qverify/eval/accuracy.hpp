@@ -319,8 +319,9 @@ Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, co
 /// (R_on_second_plane, judged against the target) and by eval (counted in error_bound), at exact
 /// points of h, A and L in the result's frame, `local` the item's terminator points in that frame
 /// (none finite: nothing is measured) and `size` the object size. h's points are taken above
-/// `inside`, section_base(A, A L) (exact/sampling.hpp): a point of A and L alone, so that the
-/// measure does not depend on the samples. Point light: the first-order distance of each point of h
+/// `inside`, section_base(A, A L) (exact/sampling.hpp): a point of A and L alone, so that where the
+/// object size does not depend on the samples (an ellipsoid's) neither does the measure. (The size
+/// of other objects is measured over the sampled points: ItemPoints::size.) Point light: the first-order distance of each point of h
 /// divided by the larger of the object size and the point's distance from `inside` (h may pass far
 /// from the object: an angle, not a length). The points keep away from the line where h crosses the
 /// polar plane pi, where R's gradient (pi . y) h vanishes and a first-order distance means nothing,

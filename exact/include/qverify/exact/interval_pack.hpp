@@ -137,8 +137,9 @@ template <bool Protected> struct BatchLanes<CGAL::Interval_nt<Protected>> : Scal
   /// Entries 0..N-1 of `width` rows; a non-finite bound gives up (item by item).
   /// With SSE2 an Interval_nt is one register {-lo, hi}: W of them transpose
   /// into the packs (-lo, hi). A block of contiguous rows (every block of a
-  /// batch) goes by whole vectors (load_pair_rows, stream_pair_rows: pack.hpp),
-  /// other rows pair by pair (from/to_lane_pairs).
+  /// batch) is read by whole vectors (load_pair_rows, pack.hpp) and written so
+  /// where it is aligned as pack_aligned requires (stream_pair_rows); other
+  /// rows go pair by pair (from/to_lane_pairs).
   template <int N> static void load(const Scalar* row0, Eigen::Index stride, Pack (&v)[N]) {
     prefetch_rows<N, width>(row0, stride);
 #if defined(CGAL_USE_SSE2) && (QVERIFY_PACK_512 || defined(__AVX__))

@@ -93,7 +93,7 @@ struct CheckReport {
   std::string item_status;            ///< the candidate's status (or the exact one when it gave none)
   double accuracy = kDefaultAccuracy;
   double object_size = 0;
-  double geometric_error = 0;  ///< largest over the judged quadrics (+inf: unbounded)
+  double geometric_error = 0;  ///< largest over the judged quadrics and second_plane_error (+inf: unbounded)
   std::size_t points = 0;      ///< exact points sampled
   bool exhausted = false;      ///< fewer real points than asked
   std::vector<QuadricCheck> checks;
