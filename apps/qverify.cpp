@@ -59,8 +59,13 @@ const CLI::Validator kPositiveFinite(
       errno = 0;
       const double v = std::strtod(text.c_str(), &end);
       // (strtod sets ERANGE for a subnormal too: only a value that became 0 or infinite is refused)
-      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0))
-        return "expected a positive finite number, found \"" + text + "\"";
+      const std::string problem = "expected a positive finite number, found \"" + text + "\"";
+      const bool whole = !text.empty() && end == text.c_str() + text.size();
+      if (whole && errno == ERANGE && v == 0 && !std::signbit(v))  // a positive value that underflowed
+        return problem + " (a value below the smallest double, which reads as 0)";
+      if (whole && errno == ERANGE && std::isinf(v) && text.find_first_of("iInN") == std::string::npos)
+        return problem + " (a value beyond the largest double)";
+      if (!whole || !std::isfinite(v) || !(v > 0)) return problem;
       return "";
     },
     "POSITIVE");

@@ -587,6 +587,10 @@ TEST_CASE("seed and accuracy options: out of range or not a number is exit 2 wit
     CHECK(r.err.find("expected a positive finite number") != std::string::npos);
     CHECK(r.err.size() < 300);  // no 309-digit bound
   }
+  // a value that parses but leaves double's range says so
+  CHECK(run_both(v + " --accuracy 1e-400").err.find("below the smallest double") != std::string::npos);
+  CHECK(run_both(v + " --accuracy 1e999").err.find("beyond the largest double") != std::string::npos);
+  CHECK(run_both(v + " --accuracy -1e-400").err.find("below the smallest double") == std::string::npos);
   // a subnormal is a positive finite number
   CHECK(run("eval " + scene("ball-lamp-floor.json") + " --json --accuracy 1e-310").code == 0);
 }
