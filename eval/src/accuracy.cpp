@@ -222,7 +222,7 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   std::tie(out.size, centre) = object_size(out.points, A);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
-    if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u)))
+    if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u), Vec3<Q>(centre / u)))
       out.size = std::max(out.size, Measure(Measure(*whole) * to_measure(u)));
   }
   out.generator_offsets = generator_offsets(out.points, L, out.size);

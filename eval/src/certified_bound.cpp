@@ -566,10 +566,9 @@ double largest_offset(const Geometry& geo) { return offset_range(geo).first; }
 
 }  // namespace
 
-std::optional<double> terminator_size(const Mat4<Q>& A, const Vec4<Q>& L) {
+std::optional<double> terminator_size(const Mat4<Q>& A, const Vec4<Q>& L, const Vec3<Q>& centre) {
   const auto ell = ellipsoid(A);
-  if (!ell) return std::nullopt;
-  const auto e = make_ellipse(A, L, ell->c);
+  const auto e = make_ellipse(A, L, ell ? ell->c : centre);
   if (!e) return std::nullopt;
   return largest_offset(*e);
 }

@@ -65,8 +65,8 @@ struct ItemPoints {
   /// at each, the points are the terminator of one quadric (generator_map).
   std::vector<Rational> generator_offsets;
   /// Largest distance of the object's points from A's centre: over all of them where A is an
-  /// ellipsoid (terminator_size, ellipsoid_size: a certified lower bound within 2^-19), else over
-  /// the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
+  /// ellipsoid or the terminator a real ellipse (terminator_size, ellipsoid_size: a certified lower
+  /// bound within 2^-19), else over the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
   /// 7 units of its 10^4: a size from the samples alone made every relative error 1400 times too large.)
   Measure size = 0;
   /// A's centre (the points' centroid where K is singular) and a reach of at least `size`: the
