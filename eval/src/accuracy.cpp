@@ -908,7 +908,7 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   // A rational point at the object, of A and L alone, not of the samples: the section's centre, where
   // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The
   // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
-  // does where the object is not an ellipsoid.)
+  // does where the terminator is not a real ellipse.)
   const Vec4<Q> inside = section_base(A, pi);
   const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Q step = to_rational(size.convert_to<double>());
@@ -1036,7 +1036,7 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
   if (const auto zero = shadow_zero_problems(Ae, Le, &P, &R); !zero.empty()) return wrong_result(zero.front());
   // R on its second plane h, which verify judges (R_on_second_plane) and no bound covers: measured at
-  // the points of h verify takes above these terminator points, counted as a sampled error
+  // the points of h verify takes (second_plane_error), counted as a sampled error
   const auto on_h = [&](const ItemPoints& p) {
     bool zero = true;
     return second_plane_error(in_frame(p.points, origin), p.size, Ae, Le, R, zero);
@@ -1138,7 +1138,7 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "terminator with too few real points) is measured on those points (near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
       " times, a margin that is not a proof. R also on its second plane h, at three points of h above the "
-      "terminator kept away from the line where R's planes cross (verify's R_on_second_plane), counted as measured. "
+      "centre of the terminator's plane section, kept away from the line where R's planes cross (verify's R_on_second_plane), counted as measured. "
       "Where the terminator is a single real point, P, the polar plane and R are measured as matrices instead, their "
       "largest relative cross residual against the exact ones, exactly (verify's as_matrices). For a reflection, M's "
       "error (its largest entry off the exact reflection, relative to the larger of 1 and the reflection's largest "

@@ -157,8 +157,21 @@ inline void from_lane_pairs(const __m128d (&in)[DoublePack::size()], DoublePack&
 #endif
 
 #if defined(__SSE2__)
-/// Whether dst is aligned to a 64-byte line.
-inline bool line_aligned(const void* dst) { return (reinterpret_cast<std::uintptr_t>(dst) & 63) == 0; }
+#if QVERIFY_PACK_512
+/// Streams one 512-bit vector to p: a whole line where p is 64-byte aligned, else two 32-byte halves
+/// (p 32-byte aligned only, as pack_aligned allows).
+/// (Vector shuffles for the halves, not _mm512_extractf64x4_pd: GCC PR 105593, as to_lane_pairs.)
+inline void stream_vector(double* p, __m512d v) {
+  if ((reinterpret_cast<std::uintptr_t>(p) & 63) == 0) {
+    _mm512_stream_pd(p, v);
+  } else {
+    typedef double V8 __attribute__((vector_size(64)));
+    const V8 x = static_cast<V8>(v);
+    _mm256_stream_pd(p, static_cast<__m256d>(__builtin_shufflevector(x, x, 0, 1, 2, 3)));
+    _mm256_stream_pd(p + 4, static_cast<__m256d>(__builtin_shufflevector(x, x, 4, 5, 6, 7)));
+  }
+}
+#endif
 
 /// Streams `Count` 16-byte pieces, given in memory order, to dst as whole
 /// vectors of the pack's width (W / 2 pieces each: one 64-byte line with
@@ -169,7 +182,6 @@ inline bool line_aligned(const void* dst) { return (reinterpret_cast<std::uintpt
 /// completed by another far away. (The double shadow batch on one thread of
 /// AMD Zen 5, out of the caches: 16-17 ns per item with 16-byte stores, 13-14
 /// with whole lines; README, "bench".)
-
 template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)[Count]) {
   constexpr int per = static_cast<int>(DoublePack::size()) / 2;
   static_assert(Count % per == 0, "a whole number of vectors");
@@ -179,13 +191,8 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
     typedef double V8 __attribute__((vector_size(64)));
     typedef double V4 __attribute__((vector_size(32)));
     const V4 lo = _mm256_set_m128d(seq[q + 1], seq[q]), hi = _mm256_set_m128d(seq[q + 3], seq[q + 2]);
-    if (line_aligned(dst)) {
-      const V8 line = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
-      _mm512_stream_pd(dst + 2 * q, static_cast<__m512d>(line));
-    } else {  // 32-byte aligned (pack_aligned): two halves
-      _mm256_stream_pd(dst + 2 * q, static_cast<__m256d>(lo));
-      _mm256_stream_pd(dst + 2 * q + 4, static_cast<__m256d>(hi));
-    }
+    const V8 line = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+    stream_vector(dst + 2 * q, static_cast<__m512d>(line));
 #elif defined(__AVX__)
     static_assert(per == 2, "a 256-bit pack");
     _mm256_stream_pd(dst + 2 * q, _mm256_set_m128d(seq[q + 1], seq[q]));
@@ -235,15 +242,7 @@ inline void interleave(Vec& x, Vec& y) {
   x = e;
 }
 inline Vec load(const double* p) { return static_cast<Vec>(_mm512_loadu_pd(p)); }
-/// A whole line where p is 64-byte aligned, else two 32-byte halves (pack_aligned).
-inline void stream(double* p, const Vec& v) {
-  if (line_aligned(p)) {
-    _mm512_stream_pd(p, static_cast<__m512d>(v));
-  } else {
-    _mm256_stream_pd(p, static_cast<__m256d>(__builtin_shufflevector(v, v, 0, 1, 2, 3)));
-    _mm256_stream_pd(p + 4, static_cast<__m256d>(__builtin_shufflevector(v, v, 4, 5, 6, 7)));
-  }
-}
+inline void stream(double* p, const Vec& v) { stream_vector(p, static_cast<__m512d>(v)); }
 #else
 typedef double Vec __attribute__((vector_size(32)));
 typedef __m256d Native;

@@ -66,8 +66,9 @@ struct ItemPoints {
   std::vector<Rational> generator_offsets;
   /// Largest distance of the object's points from A's centre: over all of them where A is an
   /// ellipsoid or the terminator a real ellipse (terminator_size, ellipsoid_size: a certified lower
-  /// bound within 2^-19), else over the sampled points. (64 random chords of a terminator 1400 times longer than wide reach
-  /// 7 units of its 10^4: a size from the samples alone made every relative error 1400 times too large.)
+  /// bound within 2^-19), else over the sampled points. (64 random chords of a terminator 1400 times
+  /// longer than wide reach 7 units of its 10^4: a size from the samples alone made every relative
+  /// error 1400 times too large.)
   Measure size = 0;
   /// A's centre (the points' centroid where K is singular) and a reach of at least `size`: the
   /// points a ball bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball;
@@ -320,9 +321,9 @@ Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, co
 /// points of h, A and L in the result's frame, `local` the item's terminator points in that frame
 /// (none finite: nothing is measured) and `size` the object size. h's points are taken above
 /// `inside`, section_base(A, A L) (exact/sampling.hpp): a point of A and L alone, so that where the
-/// object size does not depend on the samples (an ellipsoid's) neither does the measure. (The size
-/// of other objects is measured over the sampled points: ItemPoints::size.) Point light: the first-order distance of each point of h
-/// divided by the larger of the object size and the point's distance from `inside` (h may pass far
+/// object size does not depend on the samples (a real ellipse's) neither does the measure. (Other
+/// terminators' sizes are measured over the sampled points: ItemPoints::size.) Point light: the
+/// first-order distance of each point of h divided by the larger of the object size and the point's distance from `inside` (h may pass far
 /// from the object: an angle, not a length). The points keep away from the line where h crosses the
 /// polar plane pi, where R's gradient (pi . y) h vanishes and a first-order distance means nothing,
 /// by a step that grows with their distance from `inside` (see accuracy.cpp). Parallel light: points
