@@ -269,7 +269,8 @@ Commands declare_commands(CLI::App& app, Options& o) {
   c.eval->add_option("--tolerance", o.tolerance,
                      "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
                      "this relative tolerance (double output; per-item 'certified' says by which stage)")
-      ->check(CLI::Range(0.0, 1.0));
+      // (0 would read as "no adaptive mode" and silently compute the plain double results instead)
+      ->check(kPositiveFinite & CLI::Range(0.0, 1.0));
 
   c.verify = app.add_subcommand("verify",
                                 "Check results on exact sample points: terminator points on A, P and R, "

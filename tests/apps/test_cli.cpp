@@ -593,6 +593,14 @@ TEST_CASE("seed and accuracy options: out of range or not a number is exit 2 wit
   CHECK(run_both(v + " --accuracy -1e-400").err.find("below the smallest double") == std::string::npos);
   // a subnormal is a positive finite number
   CHECK(run("eval " + scene("ball-lamp-floor.json") + " --json --accuracy 1e-310").code == 0);
+  // eval's adaptive tolerance: 0 was taken as "no adaptive mode" and plain double results came out
+  for (const char* t : {"0", "-1e-9", "nan", "2"}) {
+    INFO("tolerance '" << t << "'");
+    const RunBoth r = run_both("eval " + scene("ball-lamp-floor.json") + " --json --tolerance " + t);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("--tolerance") != std::string::npos);
+  }
 }
 
 TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors, at every door", "[cli][status]") {
