@@ -209,8 +209,34 @@ std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, co
 
 }  // namespace
 
-std::uint64_t item_seed(std::uint64_t seed, int kind, std::size_t index) {
-  return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + index;
+namespace {
+/// 64-bit FNV-1a over the decimal digits of integers (the same value on every platform and compiler).
+struct DigitHash {
+  std::uint64_t h = 14695981039346656037ull;
+  void add(const std::string& s) {
+    for (const char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    h = (h ^ static_cast<unsigned char>(',')) * 1099511628211ull;
+  }
+  /// The integers divided by their gcd (a positive factor; all zero stays zero).
+  template <std::size_t N> void add_primitive(std::array<BigInt, N> v) {
+    BigInt g = 0;
+    for (const BigInt& x : v) g = gcd(g, x);
+    for (BigInt& x : v) add((g > 1 ? BigInt(x / g) : x).str());
+    h = (h ^ static_cast<unsigned char>(';')) * 1099511628211ull;
+  }
+};
+}  // namespace
+
+std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
+  DigitHash f;
+  BigInt D;
+  std::array<BigInt, 16> a;
+  clear_denominators(A, a, D);  // A D, D > 0: with the gcd divided out, the same for every positive multiple of A
+  f.add_primitive(a);
+  std::array<BigInt, 4> x;
+  clear_denominators(other, x, D);
+  f.add_primitive(x);
+  return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + f.h;
 }
 
 ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uint64_t seed) {
@@ -979,7 +1005,7 @@ bool single_point(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<RootPoin
   if (terminator.size() >= static_cast<std::size_t>(kDefaultSamples)) return true;
   // Fewer samples (verify --samples 1 found a cone's apex first, where its terminator is a line pair):
   // the default count, with a seed of its own, so that the answer does not depend on --samples or --seed.
-  return all_one_point(terminator_points(A, L, kDefaultSamples, item_seed(1, 1, 0)).points);
+  return all_one_point(terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L)).points);
 }
 
 Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R) {
@@ -1024,8 +1050,8 @@ ItemAccuracy measured_exactly(const Measure& e, std::vector<std::string> certifi
 }
 }  // namespace
 
-ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt, std::size_t k)
-    : A_(A), L_(L), opt_(opt), k_(k), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, k))),
+ShadowMeter::ShadowMeter(const Mat4<Q>& A, const Vec4<Q>& L, const AccuracyOptions& opt)
+    : A_(A), L_(L), opt_(opt), pts_(terminator_points(A, L, opt.samples, item_seed(opt.seed, 1, A, L))),
       bounds_(A, L, pts_) {}
 
 ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& P, const Vec4<Q>& polar,
@@ -1046,7 +1072,7 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (single_point(A_, L_, pts_.points))
     return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h(pts_)), {"P", "polar_plane"},
                             opt_.target);  // (R: also on h, at points: measured, not certified)
-  auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, k_)); };
+  auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, A_, L_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
     return refined_accuracy(
@@ -1087,9 +1113,9 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   return combined_accuracy(b.bound, covered, other, b.certified, opt_.target);
 }
 
-ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt, std::size_t k)
-    : A_(A), M_(reference_mirror(plane)), opt_(opt), k_(k),
-      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, k))), bounds_(A, M_, pts_) {}
+ReflectionMeter::ReflectionMeter(const Mat4<Q>& A, const Vec4<Q>& plane, const AccuracyOptions& opt)
+    : A_(A), M_(reference_mirror(plane)), plane_(plane), opt_(opt),
+      pts_(reflected_points(A, M_, opt.samples, item_seed(opt.seed, 2, A, plane))), bounds_(A, M_, pts_) {}
 
 ItemAccuracy ReflectionMeter::operator()(const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B, const Mat4<Q>* M) {
   ItemAccuracy acc = B_accuracy(origin, B);
@@ -1112,7 +1138,7 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },
-        [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, k_)); });
+        [&] { return reflected_points(A_, M_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 2, A_, plane_)); });
   const CoveredBound b = bounds_(origin, B, size_down(pts_.size), opt_.target);
   const Measure sampled = reflection_error(pts_, origin, B).geometric;
   b.check([&](const std::string&) { return sampled; });

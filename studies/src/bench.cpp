@@ -914,8 +914,8 @@ struct VerifyItems {
   }
 };
 
-/// Samples the first K double-valued items on `threads` threads (item_seed(1, 1, i) for shadows,
-/// item_seed(1, 2, i) for reflections, as verify).
+/// Samples the first K double-valued items on `threads` threads (item_seed(1, 1, A, L) for shadows,
+/// item_seed(1, 2, A, plane) for reflections, as verify).
 VerifyItems sample_verify_items(int K, int threads) {
   std::vector<std::optional<VerifyShadow>> vs(static_cast<std::size_t>(K));
   std::vector<std::optional<VerifyReflection>> vr(static_cast<std::size_t>(K));
@@ -927,7 +927,7 @@ VerifyItems sample_verify_items(int K, int threads) {
       Mat4<Rational> A;
       Vec4<Rational> L;
       exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, L);
-      ItemPoints ip = terminator_points(A, L, kVerifySamples, item_seed(1, 1, i));
+      ItemPoints ip = terminator_points(A, L, kVerifySamples, item_seed(1, 1, A, L));
       if (ip.points.empty()) continue;
       const Vec4<Rational> pe = polar_plane<Rational>(A, L);
       const Mat4<Rational> Pe = tangent_cone_from_polar<Rational>(A, L, pe), Re = terminator_quadric_from_polar<Rational>(L, pe);
@@ -944,7 +944,7 @@ VerifyItems sample_verify_items(int K, int threads) {
       Mat4<Rational> A;
       Vec4<Rational> plane;
       exact_item(Kind::double_valued, static_cast<Eigen::Index>(i), A, plane);
-      ItemPoints ip = reflected_points(A, reference_mirror(plane), kVerifySamples, item_seed(1, 2, i));
+      ItemPoints ip = reflected_points(A, reference_mirror(plane), kVerifySamples, item_seed(1, 2, A, plane));
       if (ip.points.empty()) continue;
       const Mat4<Rational> Be = mirror_image_of_plane<Rational>(A, plane);
       vr[i].emplace(VerifyReflection{FilterPoints(std::move(ip.points), ip.size, kVerifyAccuracy), rounded(Be),

@@ -519,14 +519,14 @@ class FamilySweep {
     if (fam_.reflection) {
       const Mat4<double> B = rounded(quadric_to_local(ref.reflections[0].result.B, o));
       if (!all_finite(B)) return INFINITY;
-      ReflectionMeter meter(ref.scene.A[0], ref.scene.planes[0], eval_options, 0);
+      ReflectionMeter meter(ref.scene.A[0], ref.scene.planes[0], eval_options);
       return std::max(geometric_error(pts, robust_origin, exact_matrix(B)), meter(robust_origin, exact_matrix(B)).attained);
     }
     const ShadowResult<Q>& r = ref.shadows[0].result;
     const Mat4<double> P = rounded(quadric_to_local(r.P, o)), R = rounded(quadric_to_local(r.R, o));
     const Vec4<double> polar = rounded(Vec4<Q>(translation<Q>(o).transpose() * r.polar_plane));  // the plane in the frame
     if (!all_finite(P) || !all_finite(R) || !all_finite(polar)) return INFINITY;
-    ShadowMeter meter(ref.scene.A[0], ref.scene.L[0], eval_options, 0);
+    ShadowMeter meter(ref.scene.A[0], ref.scene.L[0], eval_options);
     const ItemAccuracy acc = meter(robust_origin, exact_matrix(P), exact_matrix(polar), exact_matrix(R));
     return std::max(geometric_error(pts, robust_origin, exact_matrix(P)), acc.attained);
   }

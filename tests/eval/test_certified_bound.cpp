@@ -553,7 +553,7 @@ TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points"
     CHECK(worst > Measure(rel) * 1e3);  // not first order: a sampled bound (2x the samples' error) missed it
     CHECK(b.bound.upper < 1e3 * std::sqrt(rel));
     AccuracyOptions opt;
-    ShadowMeter meter(A, L, opt, 0);
+    ShadowMeter meter(A, L, opt);
     const ItemAccuracy acc = meter(std::nullopt, P_ref, pi_ref, R);
     REQUIRE(acc.bound);
     CHECK(Measure(*acc.bound) >= worst);

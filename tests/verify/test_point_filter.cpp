@@ -167,7 +167,7 @@ TEST_CASE("filter: decisions equal the exact measure on terminator points of dou
   int items = 0;
   for (int k = 0; k < 6 && items < 3; ++k) {
     const Item it = random_item(g);
-    const ItemPoints ip = terminator_points(it.A, it.L, 24, item_seed(1, 1, static_cast<std::size_t>(k)));
+    const ItemPoints ip = terminator_points(it.A, it.L, 24, item_seed(1, 1, it.A, it.L));
     if (ip.points.empty()) continue;
     ++items;
     INFO("item " << k);
@@ -194,7 +194,7 @@ TEST_CASE("filter: decisions equal the exact measure on reflected points", "[fil
   Tally tally;
   for (int k = 0; k < 3; ++k) {
     const Item it = random_item(g);
-    const ItemPoints ip = reflected_points(it.A, reference_mirror(it.L), 24, item_seed(1, 2, static_cast<std::size_t>(k)));
+    const ItemPoints ip = reflected_points(it.A, reference_mirror(it.L), 24, item_seed(1, 2, it.A, it.L));
     if (ip.points.empty()) continue;
     INFO("item " << k);
     const Mat4<Q> B = mirror_image_of_plane<Q>(it.A, it.L);
@@ -311,7 +311,7 @@ TEST_CASE("filter: the proof mode on cleared integers equals RootPoint::form", "
   std::mt19937_64 g(10);
   for (int k = 0; k < 3; ++k) {
     const Item it = random_item(g);
-    const ItemPoints ip = terminator_points(it.A, it.L, 16, item_seed(2, 1, static_cast<std::size_t>(k)));
+    const ItemPoints ip = terminator_points(it.A, it.L, 16, item_seed(2, 1, it.A, it.L));
     if (ip.points.empty()) continue;
     const ClearedPoints cp(ip.points);
     const Vec4<Q> pi = polar_plane<Q>(it.A, it.L);

@@ -629,7 +629,7 @@ TEST_CASE("a terminator of one point: the results are judged as matrices, by ver
     // eval's meter, given the same results, flags them
     const TypedScene<Q> t = typed_scene<Q>(sc);
     const std::size_t k = bug == 0 ? 0 : 1;
-    ShadowMeter meter(t.A[sc.shadows[k].quadric], t.L[sc.shadows[k].other], AccuracyOptions{}, k);
+    ShadowMeter meter(t.A[sc.shadows[k].quadric], t.L[sc.shadows[k].other], AccuracyOptions{});
     CHECK(meter(std::nullopt, bad.shadows[k].P, bad.shadows[k].polar, bad.shadows[k].R).inaccurate);
   }
 }

@@ -212,7 +212,7 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
               [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
-    ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy, k);
+    ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy);
     accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2]))
                                        : non_finite_accuracy());
     rep.shadows.push_back(std::move(item));
@@ -230,7 +230,7 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
               [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
-    ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy, k);
+    ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy);
     const Mat4<Rational> M = finite_values(v) ? exact4(v[0]) : Mat4<Rational>(Mat4<Rational>::Zero());
     accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[1]), &M) : non_finite_accuracy());
     rep.reflections.push_back(std::move(item));

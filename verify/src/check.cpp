@@ -176,7 +176,7 @@ Measure machine_epsilon(const Precision& p) {
 }
 
 CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const ExactShadowCandidate& got,
-                               const CheckOptions& opt, const Measure& eps, std::size_t item) {
+                               const CheckOptions& opt, const Measure& eps) {
   CheckReport rep = begin_report("shadow", got.origin, got.status, exact_shadow_word(Aw, Lw, opt.method), opt, eps);
   const bool exact = rep.exact;
   const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
@@ -203,7 +203,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
-  const ItemPoints pts = terminator_points(Aw, Lw, opt.samples, item_seed(opt.seed, 1, item));
+  const ItemPoints pts = terminator_points(Aw, Lw, opt.samples, item_seed(opt.seed, 1, Aw, Lw));
   if (pts.points.empty()) {
     point_free_checks();  // a wrong status, sign or zero fails; else nothing to judge: skipped
     if (rep.problems.empty()) {
@@ -346,8 +346,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
 }
 
 CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, const ExactReflectionCandidate& got,
-                                   const CheckOptions& opt, const Measure& eps, std::size_t item,
-                                   const std::optional<Vec3<Q>>& center) {
+                                   const CheckOptions& opt, const Measure& eps, const std::optional<Vec3<Q>>& center) {
   CheckReport rep = begin_report("reflection", got.origin, got.status, exact_reflection_word(Aw), opt, eps);
   const bool exact = rep.exact;
   const Measure T = exact ? Measure(0) : Measure(opt.accuracy);
@@ -374,7 +373,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
-  const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, item));
+  const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, Aw, plane));
   if (pts.points.empty()) {
     point_free_checks();  // a wrong status, sign, zero or M fails; else nothing to judge: skipped
     if (rep.problems.empty()) {
@@ -429,8 +428,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
 }
 
 CheckReport check_reflection_exact(const Mat4<Q>& A, const Vec4<Q>& plane, const ExactReflectionCandidate& c,
-                                   const CheckOptions& opt, const Measure& eps, std::size_t item) {
-  return check_reflection_exact(A, plane, c, opt, eps, item, matrix_center(A));
+                                   const CheckOptions& opt, const Measure& eps) {
+  return check_reflection_exact(A, plane, c, opt, eps, matrix_center(A));
 }
 
 // ------------------------------------------------------------------ inputs

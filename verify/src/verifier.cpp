@@ -57,7 +57,7 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     cand.origin = got.origin;
     cand.status = got.status;
     cand.A = got.A ? *got.A : quadric_to_local(rs.A[pr.quadric], got.origin ? *got.origin : Vec3<Q>::Zero());
-    c.report = check_shadow_exact(Aw, Lw, cand, copt, eps, k);
+    c.report = check_shadow_exact(Aw, Lw, cand, copt, eps);
     c.exact_status = c.report->exact_status;
     c.inaccurate = got.accuracy && got.accuracy->inaccurate;
     c.origin = got.origin;
@@ -81,12 +81,12 @@ VerifyReport verify_results(const Scene& sc, const ResultSet& rs, const VerifyOp
     cand.B = got.B;
     cand.origin = got.origin;
     cand.status = got.status;
-    c.report = check_reflection_exact(Aw, plane, cand, copt, eps, k, center);
+    c.report = check_reflection_exact(Aw, plane, cand, copt, eps, center);
     c.exact_status = c.report->exact_status;
     c.inaccurate = got.accuracy && got.accuracy->inaccurate;
     c.origin = got.origin;
   };
-  // Items are independent (item k's points come from its own seed): threads over them,
+  // Items are independent (an item's points come from its own inputs, item_seed): threads over them,
   // the checks kept in the scene's order.
   for_each_item(n, opt.threads, opt.progress, [&](std::size_t i) {
     if (i < ns) check_shadow_item(i, checks[i]);

@@ -367,10 +367,10 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     for (auto& a : ev.reflection_accuracy) a.bound = 0;
     return;
   } else {
-    // Items are independent (item k's points come from its own seed): threads over them,
+    // Items are independent (an item's points come from its own inputs, item_seed): threads over them,
     // shadows and reflections in one pass (one progress count).
     auto shadow_item = [&](std::size_t k) {
-      ShadowMeter meter(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other], opt, k);
+      ShadowMeter meter(ex.A[ev.shadows[k].pair.quadric], ex.L[ev.shadows[k].pair.other], opt);
       auto measure = [&](const ShadowItem<S>& it) {
         const ShadowResult<S>& r = it.result;
         if (!all_finite(r.P) || !all_finite(r.polar_plane) || !all_finite(r.R)) return non_finite_accuracy();
@@ -388,7 +388,7 @@ void assess_accuracy(const TypedScene<Rational>& ex, Method method, Evaluation<S
     };
     auto reflection_item = [&](std::size_t k) {
       const Pair& p = ev.reflections[k].pair;
-      ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt, k);
+      ReflectionMeter meter(ex.A[p.quadric], ex.planes[p.other], opt);
       auto measure = [&](const ReflectionItem<S>& it) {
         if (!all_finite(it.M) || !all_finite(it.result.B)) return non_finite_accuracy();
         const Mat4<Rational> M = exact_matrix(it.M);  // judged by verify too: counted (exactly)

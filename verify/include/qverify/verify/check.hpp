@@ -134,16 +134,15 @@ using ExactReflectionCandidate = ReflectionCandidate<Rational>;
 /// The core of a check, on exact inputs. `eps`: the machine epsilon of the
 /// precision the candidate was computed in (0 = exact: proof mode).
 CheckReport check_shadow_exact(const Mat4<Rational>& A, const Vec4<Rational>& L, const ExactShadowCandidate& c,
-                               const CheckOptions& opt, const Measure& eps, std::size_t item = 0);
+                               const CheckOptions& opt, const Measure& eps);
 CheckReport check_reflection_exact(const Mat4<Rational>& A, const Vec4<Rational>& plane,
-                                   const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps,
-                                   std::size_t item = 0);
+                                   const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps);
 /// The same with the quadric's natural centre given (a shape's centre, point
 /// or apex: kappa of consistent_with_precision is measured in that frame);
 /// the overload above takes the centre of A's quadratic part when it has one.
 CheckReport check_reflection_exact(const Mat4<Rational>& A, const Vec4<Rational>& plane,
                                    const ExactReflectionCandidate& c, const CheckOptions& opt, const Measure& eps,
-                                   std::size_t item, const std::optional<Vec3<Rational>>& center);
+                                   const std::optional<Vec3<Rational>>& center);
 
 /// The status word of exact inputs: a shadow's (the paper method adds
 /// singular-frame where l_z = 0) and a reflection's.
