@@ -698,16 +698,25 @@ ItemAccuracy refined_accuracy(const ItemPoints& pts, std::optional<ItemPoints>& 
 
 }  // namespace
 
+namespace {
+/// How far a Measure may be from the value it stands for, relatively: it is the result of a few
+/// 80-digit operations (a square root, quotients, each rounded to nearest), 10^-78 or so. A double
+/// within this of a Measure is not known to lie on the safe side of the value, so the roundings
+/// below step one more unit in the last place there (an exactly representable size or error loses
+/// an ulp it need not: a bound stays a bound).
+const Measure kMeasureSlack("1e-70");
+}  // namespace
+
 double size_down(const Measure& size) {
   const double d = size.convert_to<double>();
-  return Measure(d) > size ? std::nextafter(d, 0.0) : d;
+  return Measure(d) > Measure(size * (1 - kMeasureSlack)) ? std::nextafter(d, 0.0) : d;
 }
 
 namespace {
 /// An error rounded up to a double (a bound stays a bound): size_down's twin.
 double up_to_double(const Measure& e) {
   const double d = e.convert_to<double>();
-  return Measure(d) < e ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+  return Measure(d) < Measure(e * (1 + kMeasureSlack)) ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
 }
 
 /// Combines a certified bound with the largest sampled error of the same results (the larger counts:

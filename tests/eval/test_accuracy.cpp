@@ -164,3 +164,15 @@ TEST_CASE("R on its second plane is measured above a point that does not depend 
   for (const Measure& e : errors) CHECK(e == errors.front());
   CHECK(errors.front() > 0);
 }
+
+TEST_CASE("the object size a bound divides by lies below the 80-digit size by more than its error", "[accuracy]") {
+  // An 80-digit size is a few roundings away from the value it stands for: where a double equals it
+  // (or lies within 10^-70 of it), that double is not known to be a lower bound, so the size steps down.
+  CHECK(size_down(Measure(0.5)) == std::nextafter(0.5, 0.0));
+  CHECK(size_down(Measure(Measure(0.5) * Measure(1 + 1e-75))) == std::nextafter(0.5, 0.0));
+  // far from a double, the double below
+  const Measure tenth = Measure(1) / 10;
+  CHECK(Measure(size_down(tenth)) < tenth);
+  CHECK(size_down(tenth) >= std::nextafter(0.1, 0.0));
+  CHECK(size_down(Measure(0)) == 0.0);
+}

@@ -93,7 +93,8 @@ ItemPoints terminator_points(const Mat4<Rational>& A, const Vec4<Rational>& L, i
 ItemPoints reflected_points(const Mat4<Rational>& A, const Mat4<Rational>& M, int n, std::uint64_t seed);
 
 /// The object size rounded down to a double (a lower bound of the true size, as the sampled one is):
-/// what a certified bound divides by.
+/// what a certified bound divides by. Below the 80-digit value by at least its possible error, not
+/// only by the rounding to double.
 double size_down(const Measure& size);
 
 /// The points moved exactly into the frame with origin o (x_local = x - o).
