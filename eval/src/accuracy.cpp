@@ -251,6 +251,8 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
     if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u), Vec3<Q>(centre / u)))
       out.size = std::max(out.size, Measure(Measure(*whole) * to_measure(u)));
   }
+  for (std::size_t i = 0; i < out.points.size(); ++i)
+    if (singular_point(A, out.points[i])) out.singular.push_back(i);
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, A, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
@@ -274,6 +276,15 @@ ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint
   }
   out.ball = counted_ball(centre, out.size);  // of A's points, not yet reflected
   out.points = RootPoint::mapped(s.points, M);
+  return out;
+}
+
+std::vector<RootPoint> P_points(const std::vector<RootPoint>& local, const ItemPoints& pts) {
+  if (pts.singular.empty()) return local;
+  std::vector<RootPoint> out;
+  out.reserve(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i)
+    if (!std::binary_search(pts.singular.begin(), pts.singular.end(), i)) out.push_back(local[i]);
   return out;
 }
 
@@ -633,7 +644,7 @@ ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& or
                          const Vec4<Q>& polar, const Mat4<Q>& R) {
   const std::vector<RootPoint> local = in_frame(pts.points, origin);
   ShadowError e;
-  e.P = measure_quadric(local, P);
+  e.P = measure_quadric(P_points(local, pts), P);
   e.polar = measure_plane(local, polar);
   e.R = measure_quadric(local, R);
   e.generators = measure_quadric(in_frame(pts.generators, origin), P);

@@ -59,6 +59,32 @@ TEST_CASE("check_shadow passes qverify's own results in every scalar type", "[ch
   CHECK(own_shadow<double>(Method::paper).passed);
 }
 
+TEST_CASE("a cone lit from outside: an accurate P passes at its apex, where P's gradient vanishes", "[check]") {
+  // The terminator is two of the cone's lines, crossing at its apex, which the sampler takes (the
+  // line pair's singular point). There P_ref = (L^T A L) A - (A L)(A L)^T vanishes with its gradient,
+  // and a rounded P's first-order distance was about half the apex's distance from the frame's
+  // origin: every floating P failed, here by 5.7e-5 of the object's size. (The cone is exact in
+  // double: t^2 = 1/4, integer apex and axis.)
+  const Mat4<double> A = cone_quadric<double>(Vec3<double>(1, 2, 3), Vec3<double>(0, 1, 1), 0.5);
+  // outside (0.86 from the axis for each unit along it, against 0.5); 10/3 rounded, so that P rounds
+  // (integer inputs give an exact P, which vanishes at the apex)
+  const Vec4<double> L(10.0 / 3, -3, 2, 1);
+  const auto exact = [](const auto& m) { return m.unaryExpr([](double x) { return Q(x); }).eval(); };
+  const ItemPoints pts = terminator_points(exact(A), exact(L), kDefaultSamples, item_seed(1, 1, exact(A), exact(L)));
+  REQUIRE(pts.singular.size() == 1);  // the apex is sampled: the case at hand
+  CHECK(pts.points[pts.singular[0]].p() == Vec4<Q>(1, 2, 3, 1));
+  const ShadowResult<double> s = shadow<double>(A, L, Method::direct);
+  const CheckReport good = check_shadow<double>(A, L, candidate_of(s));
+  INFO(good.summary());
+  CHECK(good.passed);
+  CHECK(good.geometric_error < 1e-14);
+  // P is exactly zero at the apex in exact arithmetic too, and a P off elsewhere still fails
+  CHECK(check_shadow<Q>(exact(A), exact(L), candidate_of(shadow<Q>(exact(A), exact(L), Method::direct))).passed);
+  ShadowCandidate<double> bad = candidate_of(s);
+  (*bad.P)(0, 0) *= 1 + 1e-6;
+  CHECK_FALSE(check_shadow<double>(A, L, bad).passed);
+}
+
 TEST_CASE("check_shadow with rationals is a proof: every residual exactly zero", "[check]") {
   const CheckReport r = own_shadow<Q>();
   INFO(r.summary());

@@ -244,7 +244,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     asMatrices = c;
   }
   // (at a single point they are measured as information only)
-  if (got.P) onP = judged("on_P", measure_quadric(local, *got.P), local, pts.size, exact, T, !one_point);
+  if (got.P) {  // (not at A's singular points, where P's gradient vanishes: ItemPoints::singular)
+    const std::vector<RootPoint> at = P_points(local, pts);
+    onP = judged("on_P", measure_quadric(at, *got.P), at, pts.size, exact, T, !one_point);
+  }
   if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T, !one_point);
   if (got.polar_plane)
     onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T, !one_point);

@@ -61,6 +61,14 @@ struct ItemPoints {
   /// terminator; only the cone P vanishes on these), and rational points of the polar plane
   /// inside the object (R, the plane pair through it, vanishes there; A does not).
   std::vector<RootPoint> generators, plane;
+  /// Shadow items: the indices in `points` of A's singular points (A x = 0: a cone's apex, sampled
+  /// as the singular point of the line pair a cone lit from outside has as its terminator). P is not
+  /// measured there (P_points): P_ref = (L^T A L) A - (A L)(A L)^T has P_ref x = s A x = 0, its
+  /// gradient vanishes, and a rounded P's first-order distance there is about half the point's
+  /// distance from the frame's origin however accurate P is (every floating P of a cone lit from
+  /// outside failed, by 1e-4 to 1e-2 of the object's size). P's certified bound covers the apex's
+  /// neighbourhood, by the Euclidean distance (second order: ball_quadric_bound).
+  std::vector<std::size_t> singular;
   /// The offsets rho of `generators` (x + rho (L_xyz - L_w x), one scale for the item; accuracy.cpp):
   /// at each, the points are the terminator of one quadric (generator_map).
   std::vector<Rational> generator_offsets;
@@ -96,6 +104,10 @@ ItemPoints reflected_points(const Mat4<Rational>& A, const Mat4<Rational>& M, in
 /// what a certified bound divides by. Below the 80-digit value by at least its possible error, not
 /// only by the rounding to double.
 double size_down(const Measure& size);
+
+/// `local` (the item's points, moved into a frame) without A's singular points (ItemPoints::singular):
+/// the terminator points P is measured on.
+std::vector<RootPoint> P_points(const std::vector<RootPoint>& local, const ItemPoints& pts);
 
 /// The points moved exactly into the frame with origin o (x_local = x - o).
 std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Rational>>& origin);
