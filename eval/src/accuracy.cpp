@@ -731,8 +731,9 @@ double up_to_double(const Measure& e) {
 }
 
 /// Combines a certified bound with the largest sampled error of the same results (the larger counts:
-/// CoveredBound::check has checked a first-order bound against them) and the sampled error of the
-/// results it does not cover (times the margin).
+/// CoveredBound::check has checked a first-order bound against them) and with errors measured at
+/// fixed points (R on h), both as they are, and the sampled error of the results it does not cover
+/// (times the margin).
 ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
                                std::vector<std::string> certified, double target) {
   // (checked part by part before, CoveredBound::check; a bound of the Euclidean distance near a point
@@ -1082,7 +1083,9 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
   if (const auto zero = shadow_zero_problems(Ae, Le, &P, &R); !zero.empty()) return wrong_result(zero.front());
   // R on its second plane h, which verify judges (R_on_second_plane) and no bound covers: measured at
-  // the points of h verify takes (second_plane_error), counted as a sampled error
+  // the points of h verify takes (second_plane_error), counted as measured. They are fixed points of
+  // h, not samples of a geometry with points between them, so no margin: with one (kBoundMargin),
+  // eval flagged what verify passed, an error between T / 2 and T on h.
   const auto on_h = [&](const ItemPoints& p) {
     bool zero = true;
     return second_plane_error(in_frame(p.points, origin), p.size, Ae, Le, R, zero);
@@ -1122,13 +1125,13 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
     if (!has("P_generators") || !same_offsets) r = std::max(r, at("P_generators"));
     return r;
   };
-  Measure covered = 0;
+  Measure covered = on_h(pts_);  // (measured, as verify measures it)
   for (const std::string& n : b.certified) covered = std::max(covered, sampled(e, pts_.size)(n));
-  Measure other = std::max(uncovered(e, pts_.size, true), on_h(pts_));
+  Measure other = uncovered(e, pts_.size, true);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
     const ShadowError d = shadow_error(*dense_, origin, P, polar, R);
-    other = std::max({other, uncovered(d, dense_->size, false), on_h(*dense_)});
+    other = std::max(other, uncovered(d, dense_->size, false));
   }
   return combined_accuracy(b.bound, covered, other, b.certified, opt_.target);
 }
