@@ -227,6 +227,22 @@ struct DigitHash {
 };
 }  // namespace
 
+Mat4<Q> canonical_quadric(const Mat4<Q>& A) {
+  std::array<BigInt, 16> a;
+  primitive_integers(A, a);
+  Mat4<Q> out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) out(i, j) = Q(a[static_cast<std::size_t>(4 * i + j)]);
+  return out;
+}
+
+Vec4<Q> canonical_light(const Vec4<Q>& L) {
+  if (L(3) != 0) return Vec4<Q>(L / abs(L(3)));
+  std::array<BigInt, 4> v;
+  primitive_integers(L, v);
+  return Vec4<Q>(Q(v[0]), Q(v[1]), Q(v[2]), Q(v[3]));
+}
+
 std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   DigitHash f;
   BigInt D;
@@ -239,7 +255,9 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Ve
   return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + f.h;
 }
 
-ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uint64_t seed) {
+ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int n, std::uint64_t seed) {
+  const Mat4<Q> A = canonical_quadric(A_given);
+  const Vec4<Q> L = canonical_light(L_given);
   const SampleReport s = sample_section(A, Vec4<Q>(A * L), n, seed);
   ItemPoints out;
   out.points = s.points;
@@ -264,7 +282,8 @@ ItemPoints terminator_points(const Mat4<Q>& A, const Vec4<Q>& L, int n, std::uin
   return out;
 }
 
-ItemPoints reflected_points(const Mat4<Q>& A, const Mat4<Q>& M, int n, std::uint64_t seed) {
+ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std::uint64_t seed) {
+  const Mat4<Q> A = canonical_quadric(A_given);
   const SampleReport s = sample_quadric(A, n, seed);
   ItemPoints out;
   out.exhausted = s.exhausted;
@@ -771,8 +790,8 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   if (pts.points.empty() || pts.exhausted) return;
   // in units of the object's size (length_unit), as the results are bounded (operator()); the
   // generator offsets rho are the same there (x + rho (L_xyz - L_w x) scales as x)
-  const Mat4<Q> A = object_in_units(A_world, unit_);
-  const Vec4<Q> L = point_in_units(L_world, unit_);
+  const Mat4<Q> A = object_in_units(canonical_quadric(A_world), unit_);
+  const Vec4<Q> L = point_in_units(canonical_light(L_world), unit_);
   pi_ref_ = A * L;
   h_ = reference_second_plane(L);
   R_ref_ = reference_plane_pair(A, L);
@@ -866,7 +885,7 @@ ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_worl
     : unit_(length_unit(pts.size)) {
   if (pts.points.empty() || pts.exhausted) return;
   // in units of the object's size (length_unit), as B is bounded (operator())
-  const Mat4<Q> A = object_in_units(A_world, unit_), M = map_in_units(M_world, unit_);
+  const Mat4<Q> A = object_in_units(canonical_quadric(A_world), unit_), M = map_in_units(M_world, unit_);
   const Ball ball = ball_in_units(pts.ball, unit_);
   geo_ = reflection_geometry(A, M);
   if (geo_) return;

@@ -244,6 +244,27 @@ void clear_denominators(const Mat4<Rational>& Q, std::array<BigInt, 16>& out, Bi
   scale_to(R.data(), 16, D, out.data());
 }
 
+namespace {
+template <std::size_t N> void divide_gcd(std::array<BigInt, N>& a) {
+  BigInt g = 0;
+  for (const BigInt& x : a) mpz_gcd(mpz(g), mpz(g), mpz(x));
+  if (g > 1)
+    for (BigInt& x : a) mpz_divexact(mpz(x), mpz(x), mpz(g));
+}
+}  // namespace
+
+void primitive_integers(const Vec4<Rational>& v, std::array<BigInt, 4>& out) {
+  BigInt D;
+  clear_denominators(v, out, D);
+  divide_gcd(out);
+}
+
+void primitive_integers(const Mat4<Rational>& Q, std::array<BigInt, 16>& out) {
+  BigInt D;
+  clear_denominators(Q, out, D);
+  divide_gcd(out);
+}
+
 IntegerPoint::IntegerPoint(const RootPoint& x) {
   clear_denominators(x.p(), P, Dp);
   clear_denominators(x.q(), V, Dv);

@@ -29,9 +29,11 @@ struct Draw {
 };
 
 /// Lines b + t u through a base point b, met with A, on integers: A is
-/// scaled to an integer matrix Ai (a positive multiple: the same quadric), b
-/// is B / Db, and each direction u is scaled to an integer vector U (a
-/// positive multiple: the same line). With alpha = U^T Ai U, beta = U^T Ai B,
+/// scaled to its primitive integer matrix Ai (a positive multiple: the same quadric), b
+/// is B / Db, and each direction u is scaled to its primitive integer vector U (a
+/// positive multiple: the same line). Primitive, so that every positive multiple of A or u gives
+/// the same points in the same representation (p, q, delta: plane_points steps along q); the
+/// rational formulas below are those of Ai and U themselves (DA = Du = 1). With alpha = U^T Ai U, beta = U^T Ai B,
 /// c = B^T Ai B (B's part computed once per base point) the line meets A at
 ///   x = (alpha B - beta U) / (Db alpha) +- sqrt(beta^2 - alpha c) U / (Db alpha),
 /// the points of the rational quadratic of the line, with one gcd per
@@ -40,7 +42,7 @@ struct Draw {
 class Lines {
  public:
   Lines(const Mat4<Q>& A, const Vec4<Q>& b) {
-    clear_denominators(A, Ai_, DA_);
+    primitive_integers(A, Ai_);
     set_base(b);
   }
   void set_base(const Vec4<Q>& b) {
@@ -58,8 +60,7 @@ class Lines {
   /// Adds the points where the line b + t u meets A (u at infinity); false when it misses (or touches) A.
   bool intersect(const Vec4<Q>& u, std::vector<RootPoint>& out, int want) const {
     std::array<BigInt, 4> U;
-    BigInt Du;
-    clear_denominators(u, U, Du);
+    primitive_integers(u, U);
     BigInt alpha, beta;
     for (int i = 0; i < 4; ++i) {
       BigInt ui;
@@ -77,18 +78,18 @@ class Lines {
     }
     const BigInt delta = beta * beta - alpha * c_;
     if (delta <= 0) return false;
-    // In the rational terms of the line as given (u, not U; A, not Ai): q = u / (u^T A u) =
-    // DA Du U / alpha and delta = delta_int / (Du DA Db)^2. The same p, q and delta as the
-    // rational formulas, not merely the same points: plane_points (accuracy.cpp) steps along q.
-    // RootPoint keeps sqrt(n / m) (n / m in lowest terms) as sqrt(n m) / m: the radicand n m
-    // and q / m are made here on integers, one canonical fraction per coordinate.
-    const BigInt den = Db_ * alpha, qscale = DA_ * Du, droot = Du * DA_ * Db_;
+    // In the rational terms of the primitive forms (U, Ai): q = U / (U^T Ai U) = U / alpha and
+    // delta = delta_int / Db^2. The same p, q and delta as the rational formulas, not merely the
+    // same points: plane_points (accuracy.cpp) steps along q. RootPoint keeps sqrt(n / m) (n / m in
+    // lowest terms) as sqrt(n m) / m: the radicand n m and q / m are made here on integers, one
+    // canonical fraction per coordinate.
+    const BigInt den = Db_ * alpha, droot = Db_;
     const Q d(delta, BigInt(droot * droot));
     const BigInt n = numerator(d), m = denominator(d), qden = alpha * m;
     Vec4<Q> p, q;
     for (std::size_t i = 0; i < 4; ++i) {
       p(static_cast<Eigen::Index>(i)) = Q(BigInt(alpha * B_[i] - beta * U[i]), den);
-      q(static_cast<Eigen::Index>(i)) = Q(BigInt(qscale * U[i]), qden);
+      q(static_cast<Eigen::Index>(i)) = Q(U[i], qden);
     }
     const Q radicand(BigInt(n * m));
     if (static_cast<int>(out.size()) + 1 < want) {
@@ -103,7 +104,6 @@ class Lines {
 
  private:
   std::array<BigInt, 16> Ai_;
-  BigInt DA_;
   Vec4<Q> b_;
   std::array<BigInt, 4> B_;
   BigInt Db_, AB_[4], c_;
@@ -222,9 +222,12 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     if (d.isZero()) continue;
     hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
     // no line has met the section yet (the base may be its singular point, a cone's apex, which
-    // every line through it only touches): move the base point within the plane
+    // every line through it only touches): move the base point within the plane (by the normal's
+    // primitive integer form: the same shift for every positive multiple of A and L)
     if (rep.attempts % 8 == 0 && hits == 0) {
-      const Vec3<Q> shift = normal.cross(draw.vec3());
+      std::array<BigInt, 4> n;
+      primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), n);
+      const Vec3<Q> shift = Vec3<Q>(Q(n[0]), Q(n[1]), Q(n[2])).cross(draw.vec3());
       b.head<3>() += shift;
       lines.set_base(b);
     }

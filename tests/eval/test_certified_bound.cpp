@@ -143,7 +143,8 @@ TEST_CASE("certified bound: P on its generator lines, over the terminator moved 
   for (int t = 0; t < 24; ++t) {
     INFO("case " << t);
     const Mat4<Q> A = random_ellipsoid(rng, t % 4 == 0 ? Q(100000) : Q(1));
-    const Vec4<Q> L = random_light(rng, A, t % 3 == 0);
+    // (the offsets are of the light's canonical form, w = 1 or a primitive direction, as the bounds take it)
+    const Vec4<Q> L = canonical_light(random_light(rng, A, t % 3 == 0));
     const ItemPoints pts = terminator_points(A, L, 64, 300 + t);
     const auto geo = pts.points.empty() ? std::nullopt : shadow_geometry(A, L);
     if (!geo) continue;
@@ -291,7 +292,8 @@ TEST_CASE("certified bound: the object size is the whole terminator's, not the s
   Mat4<Q> A = Mat4<Q>::Zero();
   A(0, 0) = Q(100000000), A(1, 1) = 1, A(2, 2) = Q(1, 100000000), A(3, 3) = -1;
   const Vec4<Q> L(2, 3, 6, 1);
-  const auto whole = terminator_size(A, L, Vec3<Q>::Zero());
+  // (the points' size comes from A's canonical form, as this does: the same lower bound, bit for bit)
+  const auto whole = terminator_size(canonical_quadric(A), L, Vec3<Q>::Zero());
   REQUIRE(whole);
   CHECK(*whole > 9999);
   CHECK(*whole < 10001);

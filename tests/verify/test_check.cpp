@@ -366,6 +366,47 @@ void same_report(const CheckReport& a, const CheckReport& b) {
 
 }  // namespace
 
+TEST_CASE("positive multiples of A, L and the mirror plane get the very same report", "[check]") {
+  // The same quadric, light and mirror: the same points in the same representation, sizes and bounds
+  // (ItemPoints from canonical_quadric / canonical_light; the sampler on primitive integers). A
+  // multiple once moved the polar plane's points and the generator offsets, and sizes in their last
+  // digits.
+  const Mat4<Q> A = [] {
+    Mat4<Q> m;
+    m << Q(2), Q(1, 3), Q(0), Q(1, 5), Q(1, 3), Q(3), Q(1, 7), Q(-1), Q(0), Q(1, 7), Q(1), Q(0), Q(1, 5), Q(-1), Q(0), Q(-4);
+    return m;
+  }();
+  for (const Vec4<Q>& L : {Vec4<Q>(Q(1, 10), Q(1, 5), Q(97, 10), Q(1)), Vec4<Q>(Q(-1), Q(2), Q(4), Q(0))}) {
+    const ShadowResult<double> s = shadow<double>(A.unaryExpr([](const Q& q) { return q.convert_to<double>(); }).eval(),
+                                                  L.unaryExpr([](const Q& q) { return q.convert_to<double>(); }).eval(),
+                                                  Method::direct);
+    ExactShadowCandidate c;
+    c.P = s.P.unaryExpr([](double x) { return Q(x); }).eval();
+    c.polar_plane = s.polar_plane.unaryExpr([](double x) { return Q(x); }).eval();
+    c.R = s.R.unaryExpr([](double x) { return Q(x); }).eval();
+    const Measure eps = std::numeric_limits<double>::epsilon() / 2;
+    const CheckReport base = check_shadow_exact(A, L, c, CheckOptions{}, eps);
+    for (const Q& k : {Q(7), Q(1, 3), Q(4)})
+      for (const Q& lk : {Q(1), Q(3), Q(2, 9)}) {
+        INFO("A times " << k << ", L times " << lk);
+        const CheckReport r = check_shadow_exact(Mat4<Q>(A * k), Vec4<Q>(L * lk), c, CheckOptions{}, eps);
+        same_report(base, r);
+        CHECK(r.second_plane_error == base.second_plane_error);
+        REQUIRE(r.certified.has_value() == base.certified.has_value());
+        if (r.certified) CHECK(r.certified->upper == base.certified->upper);
+      }
+  }
+  const Vec4<Q> plane(Q(1, 3), Q(2, 3), Q(2, 3), Q(-5));
+  ExactReflectionCandidate m;
+  m.B = mirror_image_of_plane<Rational>(A, plane).unaryExpr([](const Q& q) { return Q(q.convert_to<double>()); }).eval();
+  const Measure eps = std::numeric_limits<double>::epsilon() / 2;
+  const CheckReport base = check_reflection_exact(A, plane, m, CheckOptions{}, eps);
+  for (const Q& k : {Q(7), Q(1, 3)}) {
+    const CheckReport r = check_reflection_exact(Mat4<Q>(A * k), Vec4<Q>(plane * Q(3)), m, CheckOptions{}, eps);
+    same_report(base, r);
+  }
+}
+
 TEST_CASE("check_shadow_batch: each report is its item's alone, on any number of threads", "[check][batch]") {
   const Eigen::Index n = 9;
   SymBatch<double> A, P, R;

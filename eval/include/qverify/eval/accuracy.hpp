@@ -70,7 +70,8 @@ struct ItemPoints {
   /// neighbourhood, by the Euclidean distance (second order: ball_quadric_bound).
   std::vector<std::size_t> singular;
   /// The offsets rho of `generators` (x + rho (L_xyz - L_w x), one scale for the item; accuracy.cpp):
-  /// at each, the points are the terminator of one quadric (generator_map).
+  /// at each, the points are the terminator of one quadric (generator_map). Of L in its canonical form
+  /// (canonical_light: w = +-1, or a primitive direction), which the points' map uses.
   std::vector<Rational> generator_offsets;
   /// Largest distance of the object's points from A's centre: over all of them where A is an
   /// ellipsoid or the terminator a real ellipse (terminator_size, ellipsoid_size: a certified lower
@@ -94,6 +95,13 @@ struct ItemPoints {
 /// measured 6.6e-10 in one scene and 1.26e-9, flagged and failed, as a scene's only request); and
 /// eval's bound and verify sample the same points for the same (seed, samples).
 std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Rational>& A, const Vec4<Rational>& other);
+
+/// One representative of all positive multiples (the same quadric, light or mirror plane): A's
+/// primitive integer matrix; a point light scaled to w = +-1, a direction (w = 0) to its primitive
+/// integer vector. The points, sizes and bounds of an item are computed from these, so that 3 A, or
+/// a light written as (15, 0, 0, 3), gives the very numbers A and (5, 0, 0, 1) give.
+Mat4<Rational> canonical_quadric(const Mat4<Rational>& A);
+Vec4<Rational> canonical_light(const Vec4<Rational>& L);
 
 /// Terminator points of the exact (A, L), with the points of its generator lines and its plane.
 ItemPoints terminator_points(const Mat4<Rational>& A, const Vec4<Rational>& L, int n, std::uint64_t seed);

@@ -34,6 +34,14 @@ void clear_denominators(const Vec4<Rational>& v, std::array<BigInt, 4>& out, Big
 /// The integer matrix Q D with D > 0 the least common multiple of Q's denominators (row-major).
 void clear_denominators(const Mat4<Rational>& Q, std::array<BigInt, 16>& out, BigInt& D);
 
+/// v or Q times the positive rational that makes it a primitive integer array (denominators
+/// cleared, the entries' gcd divided out; zero stays zero): one form for all of its positive
+/// multiples, the same quadric, plane, point or direction. The sampler works on these
+/// (sampling.hpp), so that 3 A, or a light written with other denominators, gets the same points
+/// in the same representation.
+void primitive_integers(const Vec4<Rational>& v, std::array<BigInt, 4>& out);
+void primitive_integers(const Mat4<Rational>& Q, std::array<BigInt, 16>& out);
+
 /// A RootPoint on integers (see the file comment).
 struct IntegerPoint {
   explicit IntegerPoint(const RootPoint& x);
