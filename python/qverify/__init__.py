@@ -53,6 +53,7 @@ from ._qverify import (  # noqa: F401
     InputError,
     ReflectionResult,
     ShadowResult,
+    _decimal,
     _eval_scene,
     _stress,
     _verify_scene,
@@ -118,6 +119,8 @@ def _exact_json(value, path):
         return out
     if isinstance(value, (list, tuple)):
         return [_exact_json(v, "%s[%d]" % (path, i)) for i, v in enumerate(value)]
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 10000:
+        return _decimal(value)  # (json.dumps would call str(), which refuses more than 4300 digits)
     if isinstance(value, bool) or value is None or isinstance(value, (int, str)):
         return value
     if isinstance(value, float):
@@ -129,16 +132,16 @@ def _exact_json(value, path):
     if isinstance(value, _Fraction) or (hasattr(value, "numerator") and hasattr(value, "denominator")):
         p, q = int(value.numerator), int(value.denominator)
         if q == 0:
-            problem = "a fraction with zero denominator (%d/0)" % p
+            problem = "a fraction with zero denominator (%s/0)" % _decimal(p)
             raise InputError("<dict>: %s: %s" % (path, problem), path, "<dict>", problem)
-        return str(p) if q == 1 else "%d/%d" % (p, q)
+        return _decimal(p) if q == 1 else "%s/%s" % (_decimal(p), _decimal(q))
     if hasattr(value, "as_integer_ratio"):  # decimal.Decimal, numpy long double
         try:
             p, q = value.as_integer_ratio()
         except (ValueError, OverflowError):
             problem = "not a finite number (%r)" % (value,)
             raise InputError("<dict>: %s: %s" % (path, problem), path, "<dict>", problem) from None
-        return str(p) if q == 1 else "%d/%d" % (p, q)
+        return _decimal(p) if q == 1 else "%s/%s" % (_decimal(p), _decimal(q))
     problem = "not a JSON value: %s" % type(value).__name__
     raise InputError("<dict>: %s: %s" % (path or "(document)", problem), path, "<dict>", problem)
 

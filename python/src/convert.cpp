@@ -4,7 +4,10 @@
 #include <qverify/exact/rounding.hpp>
 #include <qverify/eval/frames.hpp>  // floor_log2, exact_pow2
 
+#include <gmp.h>
+
 #include <cmath>
+#include <string>
 
 namespace qverify::py_glue {
 
@@ -20,8 +23,26 @@ std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<
 namespace {
 
 std::string short_repr(py::handle h) {
-  std::string r = py::repr(h).cast<std::string>();
+  std::string r;
+  try {
+    r = py::repr(h).cast<std::string>();
+  } catch (const py::error_already_set&) {  // repr() of an int beyond Python's 4300-digit limit raises
+    return "a " + type_name(h) + " (no repr)";
+  }
   return r.size() > 60 ? r.substr(0, 57) + "..." : r;
+}
+
+/// Python's builtins (hex, int): integers cross in base 16, which has no size limit; str() and
+/// int(text) refuse integers beyond 4300 decimal digits (sys.set_int_max_str_digits), which a
+/// scene's exact numbers may have (10**5000 raised a bare ValueError).
+py::object builtin(const char* name) { return py::module_::import("builtins").attr(name); }
+
+/// z in a base, by GMP into our own buffer (its size: mpz_sizeinbase, plus sign and terminator).
+std::string mpz_text(mpz_srcptr z, int base) {
+  std::string out(mpz_sizeinbase(z, base) + 2, '\0');
+  mpz_get_str(out.data(), base, z);
+  out.resize(std::char_traits<char>::length(out.c_str()));
+  return out;
 }
 
 Rational exact_text(const std::string& text, const std::string& path) {
@@ -31,8 +52,6 @@ Rational exact_text(const std::string& text, const std::string& path) {
   return *v;
 }
 
-/// An int-valued Python object (int, numpy integer) as decimal text.
-std::string int_text(py::handle h) { return py::str(py::int_(py::reinterpret_borrow<py::object>(h))).cast<std::string>(); }
 
 Rational from_ratio(py::handle num, py::handle den, const std::string& path) {
   const std::string d = int_text(den);
@@ -45,6 +64,17 @@ bool is_sequence(py::handle h) {
 }
 
 }  // namespace
+
+/// An int-valued Python object (int, numpy integer) as decimal text (through hex: any size).
+std::string int_text(py::handle h) {
+  const std::string hex = builtin("hex")(py::int_(py::reinterpret_borrow<py::object>(h))).cast<std::string>();
+  mpz_t z;
+  mpz_init(z);
+  mpz_set_str(z, hex.c_str(), 0);  // "0x..." or "-0x...": base from the prefix
+  std::string text = mpz_text(z, 10);
+  mpz_clear(z);
+  return text;
+}
 
 void bad_argument(const std::string& path, const std::string& problem) { throw InputError("", path, problem); }
 
@@ -140,7 +170,10 @@ template Eigen::Matrix<Rational, 4, 1> to_vector<4>(py::handle, const std::strin
 
 py::object fraction(const Rational& q) {
   static py::object* cls = new py::object(py::module_::import("fractions").attr("Fraction"));  // leaked on purpose
-  return (*cls)(py::int_(py::str(numerator(q).str())), py::int_(py::str(denominator(q).str())));
+  const auto py_int = [](const auto& z) {  // through hex: any size (short_repr's note)
+    return builtin("int")(py::str(mpz_text(z.backend().data(), 16)), 16);
+  };
+  return (*cls)(py_int(numerator(q)), py_int(denominator(q)));
 }
 
 double nearest_double(const Rational& q) {

@@ -484,6 +484,8 @@ Raises:
         normal).
 )");
 
+  m.def("_decimal", [](const py::int_& x) { return int_text(x); },
+        "Decimal text of an int of any size (str() refuses more than 4300 digits); for scenes given as dicts.");
   m.def("_eval_scene", &eval_scene_py, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("precision"),
         py::arg("method"), py::arg("frame"), py::arg("accuracy"), py::arg("tolerance"),
         "eval of a scene file (path) or JSON text; see qverify.eval_scene.");

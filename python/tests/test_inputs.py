@@ -238,3 +238,21 @@ def test_exact_number_types_are_read_exactly():
     for x, v in zip(third, values):
         s = qverify.shadow(UNIT, [x, 0, 3, 1], precision="exact")
         assert s.polar_plane[0] == v, x  # A L = (x, 0, 3, -1) for the unit sphere
+
+
+def test_integers_beyond_pythons_str_limit_are_numbers_like_any_other():
+    # Python's str() and int(text) refuse integers beyond 4300 digits; a scene's numbers may have
+    # 10000. They once raised a bare ValueError, with no path.
+    big = 10**5000
+    assert qverify.shadow(with_entry(0, 0, big), LIGHT).status == "ok"
+    assert qverify.shadow(with_entry(0, 0, Fraction(1, big)), LIGHT, precision="exact").status == "ok"
+    assert qverify.shadow(with_entry(0, 0, -big), LIGHT).status == "ok"
+    scene = {"format": "qverify-scene/1", "lights": [{"id": "l", "position": [3, 4, 8]}],
+             "quadrics": [{"id": "a", "matrix": with_entry(0, 0, big).tolist()}]}
+    assert qverify.eval_scene(scene)["shadows"][0]["status"] == "ok"
+    scene["quadrics"][0]["matrix"][0][0] = Fraction(1, big)
+    assert qverify.eval_scene(scene)["shadows"][0]["status"] == "ok"
+    # beyond the scene format's 10000 digits: an InputError naming the entry
+    assert path_of(lambda: qverify.shadow(with_entry(0, 0, 10**20000), LIGHT)) == "A[0][0]"
+    scene["quadrics"][0]["matrix"][0][0] = 10**20000
+    assert path_of(lambda: qverify.eval_scene(scene)) == "quadrics[0].matrix[0][0]"
