@@ -85,6 +85,19 @@ TEST_CASE("a cone lit from outside: an accurate P passes at its apex, where P's 
   CHECK_FALSE(check_shadow<double>(A, L, bad).passed);
 }
 
+TEST_CASE("a cylinder lit from inside: status ok, skipped, and the reason says its points lie at infinity", "[check]") {
+  // The polar plane x = 2 is parallel to the axis: the section's one real point is the axis's point at
+  // infinity (so the status is ok, not no-real-silhouette), and there is no finite point to sample.
+  const Mat4<double> A = cylinder_quadric<double>(Vec3<double>(0, 0, 0), Vec3<double>(0, 0, 1), 1);
+  const Vec4<double> L(0.5, 0, 0, 1);
+  const CheckReport r = check_shadow<double>(A, L, candidate_of(shadow<double>(A, L, Method::direct)));
+  CHECK(r.exact_status == "ok");
+  CHECK(r.skipped);
+  CHECK_FALSE(r.passed);
+  REQUIRE(r.problems.size() == 1);
+  CHECK(r.problems[0].find("real points lie at infinity") != std::string::npos);
+}
+
 TEST_CASE("check_shadow with rationals is a proof: every residual exactly zero", "[check]") {
   const CheckReport r = own_shadow<Q>();
   INFO(r.summary());

@@ -208,7 +208,12 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     point_free_checks();  // a wrong status, sign or zero fails; else nothing to judge: skipped
     if (rep.problems.empty()) {
       rep.skipped = true;
-      rep.problems.push_back(std::string("the terminator has no real point to sample (exact status: ") + rep.exact_status + ")");
+      // (status ok with no point: the terminator's only real points are at infinity, e.g. a cylinder lit
+      // from inside, whose polar plane is parallel to its axis; the sampler takes finite points)
+      rep.problems.push_back(rep.exact_status == "ok"
+                                 ? "the terminator has no real finite point to sample: its real points lie at infinity "
+                                   "(exact status: ok)"
+                                 : "the terminator has no real point to sample (exact status: " + rep.exact_status + ")");
     }
     return rep;
   }
