@@ -242,11 +242,8 @@ struct DigitHash {
     for (const char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
     h = (h ^ static_cast<unsigned char>(',')) * 1099511628211ull;
   }
-  /// The integers divided by their gcd (a positive factor; all zero stays zero).
-  template <std::size_t N> void add_primitive(std::array<BigInt, N> v) {
-    BigInt g = 0;
-    for (const BigInt& x : v) g = gcd(g, x);
-    for (BigInt& x : v) add((g > 1 ? BigInt(x / g) : x).str());
+  template <std::size_t N> void add_all(const std::array<BigInt, N>& v) {
+    for (const BigInt& x : v) add(x.str());
     h = (h ^ static_cast<unsigned char>(';')) * 1099511628211ull;
   }
 };
@@ -269,14 +266,13 @@ Vec4<Q> canonical_light(const Vec4<Q>& L) {
 }
 
 std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
-  DigitHash f;
-  BigInt D;
+  DigitHash f;  // of the primitive integer forms: the same for every positive multiple
   std::array<BigInt, 16> a;
-  clear_denominators(A, a, D);  // A D, D > 0: with the gcd divided out, the same for every positive multiple of A
-  f.add_primitive(a);
+  primitive_integers(A, a);
+  f.add_all(a);
   std::array<BigInt, 4> x;
-  clear_denominators(other, x, D);
-  f.add_primitive(x);
+  primitive_integers(other, x);
+  f.add_all(x);
   return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + f.h;
 }
 
@@ -712,6 +708,10 @@ Mat4<Q> reference_mirror(const Vec4<Q>& plane) {
 }
 
 
+namespace {
+double up_to_double(const Measure& e);
+}  // namespace
+
 ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double target) {
   ItemAccuracy acc;
   if (!has_points) {
@@ -720,7 +720,7 @@ ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double tar
     acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
     acc.inaccurate = true;
   } else {
-    acc.bound = Measure(geometric * kBoundMargin).convert_to<double>();
+    acc.bound = up_to_double(Measure(geometric * kBoundMargin));  // (up: a bound stays a bound)
     acc.inaccurate = *acc.bound > target;
     acc.attained = geometric.convert_to<double>();
   }
@@ -771,6 +771,22 @@ namespace {
 double up_to_double(const Measure& e) {
   const double d = e.convert_to<double>();
   return Measure(d) < Measure(e * (1 + kMeasureSlack)) ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+}
+
+/// An item's accuracy with an error measured at fixed points (R on h) counted as it is, not times the
+/// margin of sampled errors: the larger of the two, up; no bound where h's error is not finite.
+ItemAccuracy with_measured(ItemAccuracy acc, const Measure& measured, double target) {
+  if (!acc.bound) return acc;  // (no point, or already no finite bound: flagged as it is)
+  if (!(measured < std::numeric_limits<Measure>::infinity())) {
+    acc.bound.reset();
+    acc.reason = "R off its second plane h where R's gradient vanishes: no first-order distance";
+    acc.inaccurate = true;
+    return acc;
+  }
+  acc.bound = std::max(*acc.bound, up_to_double(measured));
+  acc.attained = std::max(acc.attained, measured.convert_to<double>());
+  acc.inaccurate = *acc.bound > target;
+  return acc;
 }
 
 /// Combines a certified bound with the largest sampled error of the same results (the larger counts:
@@ -1141,9 +1157,10 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, A_, L_)); };
   const ShadowCover& c = bounds_.cover();
   if (!c.P && !c.polar && !c.generators && !c.R)
-    return refined_accuracy(
-        pts_, dense_, opt_,
-        [&](const ItemPoints& p) { return std::max(shadow_error(p, origin, P, polar, R).geometric, on_h(p)); }, dense);
+    return with_measured(refined_accuracy(pts_, dense_, opt_,
+                                          [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; },
+                                          dense),
+                         on_h(pts_), opt_.target);
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   const auto sampled = [](const ShadowError& err, const Measure& size) {
     return [p = &err, size](const std::string& name) {  // (err: the caller's, alive while this is used)

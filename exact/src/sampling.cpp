@@ -225,9 +225,9 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     // every line through it only touches): move the base point within the plane (by the normal's
     // primitive integer form: the same shift for every positive multiple of A and L)
     if (rep.attempts % 8 == 0 && hits == 0) {
-      std::array<BigInt, 4> n;
-      primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), n);
-      const Vec3<Q> shift = Vec3<Q>(Q(n[0]), Q(n[1]), Q(n[2])).cross(draw.vec3());
+      std::array<BigInt, 4> np;
+      primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
+      const Vec3<Q> shift = Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2])).cross(draw.vec3());
       b.head<3>() += shift;
       lines.set_base(b);
     }

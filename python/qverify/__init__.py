@@ -119,8 +119,8 @@ def _exact_json(value, path):
         return out
     if isinstance(value, (list, tuple)):
         return [_exact_json(v, "%s[%d]" % (path, i)) for i, v in enumerate(value)]
-    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 10000:
-        return _decimal(value)  # (json.dumps would call str(), which refuses more than 4300 digits)
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 2000:
+        return _decimal(value)  # (json.dumps would call str(), which refuses more than 4300 digits, or fewer)
     if isinstance(value, bool) or value is None or isinstance(value, (int, str)):
         return value
     if isinstance(value, float):

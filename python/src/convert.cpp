@@ -22,15 +22,6 @@ std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<
 
 namespace {
 
-std::string short_repr(py::handle h) {
-  std::string r;
-  try {
-    r = py::repr(h).cast<std::string>();
-  } catch (const py::error_already_set&) {  // repr() of an int beyond Python's 4300-digit limit raises
-    return "a " + type_name(h) + " (no repr)";
-  }
-  return r.size() > 60 ? r.substr(0, 57) + "..." : r;
-}
 
 /// Python's builtins (hex, int): integers cross in base 16, which has no size limit; str() and
 /// int(text) refuse integers beyond 4300 decimal digits (sys.set_int_max_str_digits), which a
@@ -64,6 +55,16 @@ bool is_sequence(py::handle h) {
 }
 
 }  // namespace
+
+std::string short_repr(py::handle h) {
+  std::string r;
+  try {
+    r = py::repr(h).cast<std::string>();
+  } catch (const py::error_already_set&) {  // repr() of an int beyond Python's 4300-digit limit raises
+    return "a " + type_name(h) + " (no repr)";
+  }
+  return r.size() > 60 ? r.substr(0, 57) + "..." : r;
+}
 
 /// An int-valued Python object (int, numpy integer) as decimal text (through hex: any size).
 std::string int_text(py::handle h) {

@@ -57,6 +57,10 @@ std::string type_name(py::handle h);
 /// A numpy array's shape as "(3, 4)".
 std::string shape_text(py::handle arr);
 
+/// repr(h), cut to 60 characters; a placeholder where repr() raises (an int beyond Python's
+/// 4300-digit str() limit).
+std::string short_repr(py::handle h);
+
 /// An int-valued Python object (int, numpy integer) as decimal text, of any size: Python's own
 /// str() refuses integers beyond 4300 digits (sys.set_int_max_str_digits).
 std::string int_text(py::handle h);

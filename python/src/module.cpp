@@ -34,7 +34,7 @@ double number_arg(const py::object& x, const char* name) {
   try {
     return py::float_(x).cast<double>();
   } catch (const py::error_already_set&) {  // float() refused it: 10**400, a Fraction beyond double
-    bad_argument(name, "expected a number a double holds, found " + py::repr(x).cast<std::string>().substr(0, 60));
+    bad_argument(name, "expected a number a double holds, found " + short_repr(x));
   }
 }
 
@@ -84,14 +84,14 @@ double accuracy_arg(const py::object& arg) {
 int samples_arg(const py::object& arg) {
   const py::int_ samples = integer_arg(arg, "samples");
   if (samples < py::int_(1) || samples > py::int_(100000))
-    bad_argument("samples", "expected 1 to 100000 sample points, found " + py::repr(samples).cast<std::string>());
+    bad_argument("samples", "expected 1 to 100000 sample points, found " + short_repr(samples));
   return samples.cast<int>();
 }
 
 std::uint64_t seed_arg(const py::object& arg) {
   const py::int_ seed = integer_arg(arg, "seed");
   if (seed < py::int_(0) || seed > py::int_(std::numeric_limits<std::uint64_t>::max()))
-    bad_argument("seed", "expected a seed from 0 to 2^64 - 1, found " + py::repr(seed).cast<std::string>());
+    bad_argument("seed", "expected a seed from 0 to 2^64 - 1, found " + short_repr(seed));
   return seed.cast<std::uint64_t>();
 }
 
@@ -99,7 +99,7 @@ int threads_arg(const py::object& arg) {
   const py::int_ threads = integer_arg(arg, "threads");
   if (threads < py::int_(0) || threads > py::int_(1 << 16))
     bad_argument("threads", "expected 0 (one per logical processor) or a positive count up to 65536, found " +
-                                py::repr(threads).cast<std::string>());
+                                short_repr(threads));
   return threads.cast<int>();
 }
 

@@ -256,3 +256,7 @@ def test_integers_beyond_pythons_str_limit_are_numbers_like_any_other():
     assert path_of(lambda: qverify.shadow(with_entry(0, 0, 10**20000), LIGHT)) == "A[0][0]"
     scene["quadrics"][0]["matrix"][0][0] = 10**20000
     assert path_of(lambda: qverify.eval_scene(scene)) == "quadrics[0].matrix[0][0]"
+    # and as options: named, not a bare ValueError from their repr()
+    s = qverify.shadow(UNIT, LIGHT)
+    for name in ("seed", "samples", "accuracy"):
+        assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=s.P, **{name: 10**5000})) == name

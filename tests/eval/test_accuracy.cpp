@@ -169,7 +169,10 @@ TEST_CASE("the object size a bound divides by lies below the 80-digit size by mo
   // An 80-digit size is a few roundings away from the value it stands for: where a double equals it
   // (or lies within 10^-70 of it), that double is not known to be a lower bound, so the size steps down.
   CHECK(size_down(Measure(0.5)) == std::nextafter(0.5, 0.0));
-  CHECK(size_down(Measure(Measure(0.5) * Measure(1 + 1e-75))) == std::nextafter(0.5, 0.0));
+  // a Measure just above a double (within 10^-70): that double is not known to be below the value
+  CHECK(size_down(Measure(Measure(0.5) * (Measure(1) + Measure("1e-75")))) == std::nextafter(0.5, 0.0));
+  // just below one: the double below it, as before
+  CHECK(size_down(Measure(Measure(0.5) * (Measure(1) - Measure("1e-75")))) == std::nextafter(0.5, 0.0));
   // far from a double, the double below
   const Measure tenth = Measure(1) / 10;
   CHECK(Measure(size_down(tenth)) < tenth);

@@ -292,7 +292,7 @@ TEST_CASE("certified bound: the object size is the whole terminator's, not the s
   Mat4<Q> A = Mat4<Q>::Zero();
   A(0, 0) = Q(100000000), A(1, 1) = 1, A(2, 2) = Q(1, 100000000), A(3, 3) = -1;
   const Vec4<Q> L(2, 3, 6, 1);
-  // (the points' size comes from A's canonical form, as this does: the same lower bound, bit for bit)
+  // (the points' size comes from A's canonical form, as this one does; both are lower bounds within 2^-19)
   const auto whole = terminator_size(canonical_quadric(A), L, Vec3<Q>::Zero());
   REQUIRE(whole);
   CHECK(*whole > 9999);

@@ -252,6 +252,9 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (got.P) {  // (not at A's singular points, where P's gradient vanishes: ItemPoints::singular)
     const std::vector<RootPoint> at = P_points(local, pts);
     onP = judged("on_P", measure_quadric(at, *got.P), at, pts.size, exact, T, !one_point);
+    if (at.empty() && !one_point)
+      rep.notes.push_back("P is measured on no terminator point: every point sampled is the cone's apex, where P's "
+                          "gradient vanishes (take more samples)");
   }
   if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T, !one_point);
   if (got.polar_plane)
