@@ -203,13 +203,14 @@ std::vector<std::size_t> singular_points(const std::vector<RootPoint>& pts, cons
 /// through a singular point of A (the apex of a cone lit from outside, sampled as the terminator's
 /// singular point): there P = (L^T A L) A - (A L)(A L)^T has a vanishing gradient all along the
 /// generator line (P y = (1 - rho L_w) s A x = 0), so a first-order distance from a rounded P means
-/// nothing there (it is about |y| / 2 whatever the rounding).
-std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const Mat4<Q>& A, const Vec4<Q>& L,
-                                        const std::vector<Q>& offsets) {
+/// nothing there (it is about |y| / 2 whatever the rounding). `singular`: those points' indices,
+/// sorted (singular_points).
+std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator, const std::vector<std::size_t>& singular,
+                                        const Vec4<Q>& L, const std::vector<Q>& offsets) {
   std::vector<RootPoint> out;
   std::size_t used = 0;
   for (std::size_t i = 0; i < terminator.size() && used < 8; ++i) {
-    if (singular_point(A, terminator[i])) continue;
+    if (std::binary_search(singular.begin(), singular.end(), i)) continue;
     ++used;
     for (const Q& rho : offsets) out.push_back(terminator[i].mapped(generator_map(L, rho)));
   }
@@ -292,7 +293,7 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   }
   out.singular = singular_points(out.points, A);
   out.generator_offsets = generator_offsets(out.points, L, out.size);
-  out.generators = generator_points(out.points, A, L, out.generator_offsets);
+  out.generators = generator_points(out.points, out.singular, L, out.generator_offsets);
   out.plane = plane_points(out.points, Vec4<Q>(A * L));
   // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
   // the ball reaches it too, so that every point R is measured on is one the bound covers)

@@ -216,18 +216,22 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
   int hits = 0;
+  // the base's shifts (below) are made with the normal's primitive integer form: the same shifts for
+  // every positive multiple of A and L
+  const Vec3<Q> shift_normal = [&] {
+    std::array<BigInt, 4> np;
+    primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
+    return Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2]));
+  }();
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = normal.cross(draw.vec3());  // a direction inside the plane
     if (d.isZero()) continue;
     hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
     // no line has met the section yet (the base may be its singular point, a cone's apex, which
-    // every line through it only touches): move the base point within the plane (by the normal's
-    // primitive integer form: the same shift for every positive multiple of A and L)
+    // every line through it only touches): move the base point within the plane
     if (rep.attempts % 8 == 0 && hits == 0) {
-      std::array<BigInt, 4> np;
-      primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
-      const Vec3<Q> shift = Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2])).cross(draw.vec3());
+      const Vec3<Q> shift = shift_normal.cross(draw.vec3());
       b.head<3>() += shift;
       lines.set_base(b);
     }

@@ -22,7 +22,6 @@ std::string shape_text(py::handle arr) { return py::str(arr.attr("shape")).cast<
 
 namespace {
 
-
 /// Python's builtins (hex, int): integers cross in base 16, which has no size limit; str() and
 /// int(text) refuse integers beyond 4300 decimal digits (sys.set_int_max_str_digits), which a
 /// scene's exact numbers may have (10**5000 raised a bare ValueError).
@@ -42,7 +41,6 @@ Rational exact_text(const std::string& text, const std::string& path) {
   if (!v) bad_argument(path, err);
   return *v;
 }
-
 
 Rational from_ratio(py::handle num, py::handle den, const std::string& path) {
   const std::string d = int_text(den);
