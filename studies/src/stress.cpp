@@ -193,9 +193,13 @@ constexpr std::size_t kNaiveRun = 2, kDefaultRun = 3;
 
 const char* kColors[] = {"#9edae5", "#17becf", "#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#98df8a", "#9467bd", "#c5b0d5"};
 
-/// The geometric error of Qm (given in the frame with origin o) over the item's points.
-double geometric_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& Qm) {
-  return relative(measure_quadric(in_frame(pts.points, origin), Qm), pts.size).convert_to<double>();
+/// The geometric error of a family's one result (given in the frame with origin o) over the item's points:
+/// B on every reflected point; a shadow's P on the terminator's points but A's singular ones (P_points: P's
+/// gradient vanishes there, as eval and verify measure it).
+double geometric_error(const StressFamily& fam, const ItemPoints& pts, const std::optional<Vec3<Q>>& origin,
+                       const Mat4<Q>& Qm) {
+  const std::vector<RootPoint> local = in_frame(pts.points, origin);
+  return relative(measure_quadric(fam.reflection ? local : P_points(local, pts), Qm), pts.size).convert_to<double>();
 }
 
 /// One run's item measured against the exact result: the one measurement of every run, qverify's own and a
@@ -218,7 +222,7 @@ RunMeasure measure_run(const StressFamily& fam, const ResultSet& rs, const ItemP
   const Mat4<Q>& want = fam.reflection ? ref.reflections[0].result.B : ref.shadows[0].result.P;
   const Vec3<Q> o = m.origin ? *m.origin : Vec3<Q>::Zero();
   m.matrix = projective_error(quadric_from_local(got, o), want, true);
-  m.geometric = geometric_error(pts, m.origin, got);
+  m.geometric = geometric_error(fam, pts, m.origin, got);
   // the item's geometric error, over all its results (what eval's flag and a candidate's verdict are about)
   m.item_geometric = (fam.reflection ? reflection_error(pts, m.origin, got).geometric
                                      : shadow_error(pts, m.origin, got, rs.shadows[0].polar, rs.shadows[0].R).geometric)
@@ -520,7 +524,7 @@ class FamilySweep {
       const Mat4<double> B = rounded(quadric_to_local(ref.reflections[0].result.B, o));
       if (!all_finite(B)) return INFINITY;
       ReflectionMeter meter(ref.scene.A[0], ref.scene.planes[0], eval_options);
-      return std::max(geometric_error(pts, robust_origin, exact_matrix(B)), meter(robust_origin, exact_matrix(B)).attained);
+      return std::max(geometric_error(fam_, pts, robust_origin, exact_matrix(B)), meter(robust_origin, exact_matrix(B)).attained);
     }
     const ShadowResult<Q>& r = ref.shadows[0].result;
     const Mat4<double> P = rounded(quadric_to_local(r.P, o)), R = rounded(quadric_to_local(r.R, o));
@@ -528,7 +532,7 @@ class FamilySweep {
     if (!all_finite(P) || !all_finite(R) || !all_finite(polar)) return INFINITY;
     ShadowMeter meter(ref.scene.A[0], ref.scene.L[0], eval_options);
     const ItemAccuracy acc = meter(robust_origin, exact_matrix(P), exact_matrix(polar), exact_matrix(R));
-    return std::max(geometric_error(pts, robust_origin, exact_matrix(P)), acc.attained);
+    return std::max(geometric_error(fam_, pts, robust_origin, exact_matrix(P)), acc.attained);
   }
 
   const StressFamily& fam_;
