@@ -82,6 +82,34 @@ const CLI::Validator kSeedText(
     },
     "UINT64");
 
+/// An integer option from lo to hi, the whole text read (CLI11's Range calls "abc" a value "not in range").
+CLI::Validator integer_in(long lo, long hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const long v = std::strtol(text.c_str(), &end, 10);
+        const bool whole = !text.empty() && end == text.c_str() + text.size() && errno != ERANGE;
+        if (!whole || v < lo || v > hi) return fmt::format("expected an integer from {} to {}, found \"{}\"", lo, hi, text);
+        return "";
+      },
+      fmt::format("INT in [{} - {}]", lo, hi));
+}
+
+/// A number option from lo to hi, the whole text read: NaN is in no range (CLI11's Range lets it through,
+/// every comparison with it being false).
+CLI::Validator number_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool whole = !text.empty() && end == text.c_str() + text.size();
+        if (!whole || !(v >= lo && v <= hi)) return fmt::format("expected a number from {} to {}, found \"{}\"", lo, hi, text);
+        return "";
+      },
+      fmt::format("NUMBER in [{} - {}]", lo, hi));
+}
+
 Precision precision_of(const std::string& text) {
   const auto p = parse_precision(text);
   if (!p)
@@ -171,9 +199,12 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
     if (!v || *v <= 0) throw UsageError("--box: expected a positive number, got \"" + a.box + "\"" + (err.empty() ? "" : " (" + err + ")"));
     opt.box_half = *v;
   }
+  if (!a.compare && a.out.empty()) throw UsageError("render: --out image.png is required (or --compare)");
+  // every image's file before any work: an unwritable --ids must not leave --out written and exit 2
+  for (const std::string* file : {&a.out, &a.ids, &a.diff})
+    if (!file->empty()) check_writable(*file);
   const render::Renderer r(sc, opt);
   if (!a.compare) {
-    if (a.out.empty()) throw UsageError("render: --out image.png is required (or --compare)");
     const auto method = a.method == "raytrace" ? render::RenderMethod::raytrace : render::RenderMethod::transforms;
     const render::Image img = r.render(method);
     write_image(a.out, img, img.rgb);
@@ -270,13 +301,13 @@ Commands declare_commands(CLI::App& app, Options& o) {
                      "Adaptive mode: escalate each item double -> interval -> mpfr (MPFI) -> exact until its result is certified within "
                      "this relative tolerance (double output; per-item 'certified' says by which stage)")
       // (0 would read as "no adaptive mode" and silently compute the plain double results instead)
-      ->check(kPositiveFinite & CLI::Range(0.0, 1.0));
+      ->check(kPositiveFinite & number_in(0.0, 1.0));
 
   c.verify = app.add_subcommand("verify",
                                 "Check results on exact sample points: terminator points on A, P and R, "
                                 "reflected points on B (a proof in exact arithmetic)");
   add_common(c.verify);
-  c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(CLI::Range(1, 100000));
+  c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(integer_in(1, 100000));
   c.verify->add_option("--seed", o.seed, "Seed of the deterministic sampler (0 to 2^64 - 1)")
       ->capture_default_str()
       ->check(kSeedText);
@@ -290,7 +321,7 @@ Commands declare_commands(CLI::App& app, Options& o) {
   c.audit->add_option("--out", o.out_dir, "Output directory")->required();
   c.audit->add_option("--batch-ms", o.batch_ms, "Minimum duration of one timed batch (7 batches, median)")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 10000.0));
+      ->check(number_in(1.0, 10000.0));
   c.audit->add_flag("--json", o.as_json, "Also print report.json on stdout");
   c.audit_candidate = add_candidate(c.audit);
 
@@ -301,16 +332,16 @@ Commands declare_commands(CLI::App& app, Options& o) {
   c.stress->add_option("--out", o.out_dir, "Output directory");
   c.stress->add_option("--samples", o.stress_samples, "Exact points per item for the geometric error")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(integer_in(1, 1000));
   c.stress->add_flag("--json", o.as_json, "Also print report.json on stdout");
   c.stress_candidate = add_candidate(c.stress);
 
   c.bench = app.add_subcommand("bench", "Batch throughput against the memory-bandwidth limit: items/s, bytes "
                                         "per item and roofline fraction per op, precision, method and kind of "
                                         "inputs; the filtered verifier's point checks per second; the processor");
-  c.bench->add_option("--n", o.bench.n, "Items per run")->capture_default_str()->check(CLI::Range(1000L, 100000000L));
-  c.bench->add_option("--threads", o.bench.threads, "Threads")->capture_default_str()->check(CLI::Range(1, 256));
-  c.bench->add_option("--repeats", o.bench.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(CLI::Range(1, 50));
+  c.bench->add_option("--n", o.bench.n, "Items per run")->capture_default_str()->check(integer_in(1000, 100000000));
+  c.bench->add_option("--threads", o.bench.threads, "Threads")->capture_default_str()->check(integer_in(1, 256));
+  c.bench->add_option("--repeats", o.bench.repeats, "Rounds: each row is timed once per round, rows interleaved; best of the rounds")->capture_default_str()->check(integer_in(1, 50));
   c.bench->add_flag("!--no-huge-pages", o.bench.huge_pages,
                     "Do not advise huge pages for the buffers of the double and interval rows and of the bandwidth "
                     "copy (they are advised by default, as the batch functions do for the outputs they allocate): "
@@ -334,13 +365,13 @@ Commands declare_commands(CLI::App& app, Options& o) {
   c.render->add_option("--box", r.box, "Half side of the clipping cube around look_at (default: |eye - look_at|_inf / 2)");
   c.render->add_option("--frame", r.frame, "camera (origin at look_at, moved exactly before rounding) | world")
       ->capture_default_str()->check(CLI::IsMember({"camera", "world"}));
-  c.render->add_option("--threads", r.threads, "Threads (0: all)")->capture_default_str()->check(CLI::Range(0, 256));
+  c.render->add_option("--threads", r.threads, "Threads (0: all)")->capture_default_str()->check(integer_in(0, 256));
   c.render->add_option("--repeat", r.repeat, "With --compare: renders per method, the fastest is timed")
-      ->capture_default_str()->check(CLI::Range(1, 100));
+      ->capture_default_str()->check(integer_in(1, 100));
   c.render->add_option("--max-checked", r.max_checked, "With --compare: disagreeing pixels to certify at most")
-      ->capture_default_str()->check(CLI::Range(0L, 100000000L));
+      ->capture_default_str()->check(integer_in(0, 100000000));
   c.render->add_option("--min-agreement", r.min_agreement, "With --compare: exit 1 below this agreement fraction")
-      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+      ->capture_default_str()->check(number_in(0.0, 1.0));
   c.render->add_flag("--json", o.as_json, "Print exactly one JSON document on stdout");
   return c;
 }

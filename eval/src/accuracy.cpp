@@ -3,6 +3,8 @@
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/root_enclosure.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
@@ -20,6 +22,7 @@ using Q = Rational;
 namespace {
 
 Measure mmax(const Measure& a, const Measure& b) { return a < b ? b : a; }
+Measure mmin(const Measure& a, const Measure& b) { return a < b ? a : b; }
 
 /// Cartesian coordinates of x to 80 digits (w != 0 for every sampled point).
 Vec3<Measure> cartesian(const RootPoint& x) {
@@ -198,6 +201,36 @@ std::vector<std::size_t> singular_points(const std::vector<RootPoint>& pts, cons
   return out;
 }
 
+/// The indices of the points on the plane h (h . x = 0 exactly; ItemPoints::crossing), filtered as
+/// singular_points: a point whose enclosure leaves h . x certainly non-zero is off it.
+std::vector<std::size_t> plane_hits(const std::vector<RootPoint>& pts, const Vec4<Q>& h) {
+  std::vector<std::size_t> out;
+  FI hh[4];
+  for (int j = 0; j < 4; ++j) hh[j] = enclosed(h(j));
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    bool maybe = true;
+    {
+      CGAL::Protect_FPU_rounding<true> guard;
+      const PointEnclosure& X = pts[k].enclosure();
+      FI v(0);
+      for (int j = 0; j < 4; ++j) v += hh[j] * X[static_cast<std::size_t>(j)];
+      maybe = !(v.inf() > 0 || v.sup() < 0);
+    }
+    if (maybe && CGAL::is_zero(pts[k].linear(h))) out.push_back(k);
+  }
+  return out;
+}
+
+/// `local` without the points whose indices (sorted) are `skip`.
+std::vector<RootPoint> without(const std::vector<RootPoint>& local, const std::vector<std::size_t>& skip) {
+  if (skip.empty()) return local;
+  std::vector<RootPoint> out;
+  out.reserve(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i)
+    if (!std::binary_search(skip.begin(), skip.end(), i)) out.push_back(local[i]);
+  return out;
+}
+
 /// Points on the generator lines of the cone through (at most 8 of) the terminator points, at
 /// each offset: x mapped by generator_map, a linear map, so the point stays in x's field. Not
 /// through a singular point of A (the apex of a cone lit from outside, sampled as the terminator's
@@ -221,14 +254,19 @@ std::vector<RootPoint> generator_points(const std::vector<RootPoint>& terminator
 /// (chord midpoints) of terminator points x = p + sqrt(d) q, and p + q, where
 /// both lie on the plane. Where q's w is 0 (the sampler's points) and p's is
 /// not, both lie on the chord from p - sqrt(d) q to p + sqrt(d) q (the radicand
-/// d is an integer >= 1): inside the disc that terminator_quadric_bound covers.
-std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi) {
+/// d is an integer >= 1): inside the disc that terminator_quadric_bound covers. Not on R's second
+/// plane h (ItemPoints::crossing: there R's gradient vanishes; a point light level with a sphere's
+/// centre puts every chord's midpoint on h).
+std::vector<RootPoint> plane_points(const std::vector<RootPoint>& terminator, const Vec4<Q>& pi, const Vec4<Q>& h) {
   std::vector<RootPoint> out;
+  const auto add = [&](const Vec4<Q>& y) {
+    if (h.dot(y) != 0) out.emplace_back(y, Vec4<Q>::Zero(), Q(0));
+  };
   for (const RootPoint& x : terminator) {
     if (out.size() >= 16) break;
     if (pi.dot(x.p()) != 0 || pi.dot(x.q()) != 0 || x.p()(3) == 0 || x.q()(3) != 0) continue;
-    out.emplace_back(x.p(), Vec4<Q>::Zero(), Q(0));
-    if (!x.q().isZero()) out.emplace_back(Vec4<Q>(x.p() + x.q()), Vec4<Q>::Zero(), Q(0));
+    add(x.p());
+    if (!x.q().isZero()) add(Vec4<Q>(x.p() + x.q()));
   }
   return out;
 }
@@ -294,7 +332,9 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.singular = singular_points(out.points, A);
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, out.singular, L, out.generator_offsets);
-  out.plane = plane_points(out.points, Vec4<Q>(A * L));
+  const Vec4<Q> h = reference_second_plane(L);
+  if (L(3) != 0) out.crossing = plane_hits(out.points, h);  // (a parallel light's h is the plane at infinity)
+  out.plane = plane_points(out.points, Vec4<Q>(A * L), h);
   // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
   // the ball reaches it too, so that every point R is measured on is one the bound covers)
   Measure reach = out.size;
@@ -320,12 +360,11 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
 }
 
 std::vector<RootPoint> P_points(const std::vector<RootPoint>& local, const ItemPoints& pts) {
-  if (pts.singular.empty()) return local;
-  std::vector<RootPoint> out;
-  out.reserve(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i)
-    if (!std::binary_search(pts.singular.begin(), pts.singular.end(), i)) out.push_back(local[i]);
-  return out;
+  return without(local, pts.singular);
+}
+
+std::vector<RootPoint> R_points(const std::vector<RootPoint>& local, const ItemPoints& pts) {
+  return without(local, pts.crossing);
 }
 
 std::vector<RootPoint> in_frame(const std::vector<RootPoint>& pts, const std::optional<Vec3<Q>>& origin) {
@@ -530,6 +569,97 @@ void integer_norm(RefineScratch& s, int i, const BigInt* v, std::size_t count) {
   enclose_sqrt(s.lo[i], s.hi[i], sum);
 }
 
+/// The largest curvatures of a quadric's spatial part K = (Q_xyz,xyz + its transpose) / 2 found upward
+/// and downward: u^T K u / |u|^2 over K's eigenvectors (from a floating decomposition: any direction will
+/// do, the values are exact) and the axes; 0 where none curves that way.
+struct Curvatures {
+  Measure up = 0, down = 0;
+};
+Curvatures curvatures_of(const Mat4<Q>& Qm) {
+  const Mat3<Q> K = Mat3<Q>(Qm.topLeftCorner<3, 3>() + Qm.topLeftCorner<3, 3>().transpose()) / 2;
+  std::vector<Vec3<Q>> dirs = {Vec3<Q>(1, 0, 0), Vec3<Q>(0, 1, 0), Vec3<Q>(0, 0, 1)};
+  Measure big = 0;  // (scaled to entries near 1 in double, neither overflowing nor underflowing)
+  for (Eigen::Index i = 0; i < 9; ++i) big = mmax(big, abs(to_measure(K(i))));
+  if (!(big > 0)) return {};
+  const Eigen::Matrix3d Kd = K.unaryExpr([&](const Q& q) { return Measure(to_measure(q) / big).convert_to<double>(); });
+  if (Kd.allFinite()) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
+    if (eig.info() == Eigen::Success)
+      for (int c = 0; c < 3; ++c) {
+        Vec3<Q> u;
+        for (int i = 0; i < 3; ++i) u(i) = to_rational(eig.eigenvectors()(i, c));
+        if (!u.isZero()) dirs.push_back(u);
+      }
+  }
+  Curvatures out;
+  for (const Vec3<Q>& u : dirs) {
+    const Q c = u.dot(K * u) / u.squaredNorm();
+    if (c > 0) out.up = mmax(out.up, to_measure(c));
+    if (c < 0) out.down = mmax(out.down, to_measure(Q(-c)));
+  }
+  return out;
+}
+
+/// A point's distances from the quadric, to 80 digits (Metric): the first-order one, none where the
+/// gradient or w vanishes; and the second-order one, none where Q does not curve towards it.
+struct PointDistances {
+  bool zero = false;  ///< on the quadric exactly
+  std::optional<Measure> first, second;
+  std::optional<Measure> distance() const {
+    if (first && second) return mmin(*first, *second);
+    return first ? first : second;
+  }
+};
+PointDistances point_distances(const RootPoint& p, const std::array<BigInt, 16>& Qi, const BigInt& DQ,
+                               const Curvatures& k) {
+  PointDistances out;
+  const QuadricValues v(p, Qi);
+  if (v.zero) {
+    out.zero = true;
+    return out;
+  }
+  const IntegerPoint& x = v.x;
+  const BigInt DpDv = x.den();
+  const Measure fm = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(DpDv * DpDv * DQ));
+  const BigInt den = DpDv * DQ;
+  Measure g = 0;
+  for (int i = 0; i < 3; ++i) {
+    const Measure gi = root_magnitude(BigInt(v.y[i] * x.Dv), BigInt(v.z[i] * x.Dp), x.d, x.root(), den);
+    g += gi * gi;
+  }
+  const Measure w = x.magnitude(3);
+  if (!(w > 0)) return out;
+  if (g > 0) out.first = fm / (w * 2 * sqrt(g));
+  // Along a unit u with u^T K u = c, Q at the Cartesian point X / w + t u is f + 2 b t + c t^2 (f = x^T Q x
+  // / w^2): where c > 0 >= f (or c < 0 <= f) it has a root with |t| <= sqrt(|f| / |c|), whatever b
+  const Measure kappa = root_sign(v.f0, v.f1, x.d) < 0 ? k.up : k.down;
+  if (kappa > 0) out.second = sqrt(fm / kappa) / w;
+  return out;
+}
+
+/// The metric with each point's distance the smaller of its first- and second-order ones
+/// (measure_quadric). The first-order metric `m` is kept where its worst point's second-order distance
+/// is not below its first-order one: every other point's smaller distance is then at most the worst's
+/// (almost every item: one point evaluated again). Else (a point near where the result's gradient
+/// vanishes: a cone's apex, the line where a plane pair crosses, a double plane) every point is
+/// measured again, exactly, to 80 digits.
+Metric second_order(const Metric& m, const std::vector<RootPoint>& pts, const Mat4<Q>& Qm,
+                    const std::array<BigInt, 16>& Qi, const BigInt& DQ) {
+  if (m.all_zero || !m.worst || (!m.singular && m.distance == 0)) return m;
+  const Curvatures k = curvatures_of(Qm);
+  if (!(k.up > 0) && !(k.down > 0)) return m;
+  const PointDistances worst = point_distances(pts[*m.worst], Qi, DQ, k);
+  if (!m.singular && !(worst.second && *worst.second < m.distance)) return m;
+  Metric out;
+  out.residual = m.residual;
+  out.all_zero = m.all_zero;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const PointDistances d = point_distances(pts[i], Qi, DQ, k);
+    if (!d.zero) add_distance(out, i, d.distance());
+  }
+  return out;
+}
+
 }  // namespace
 
 Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
@@ -610,7 +740,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
     const Measure w = x.magnitude(3);
     add_distance(m, k, g > 0 && w > 0 ? std::optional<Measure>(fm / (w * 2 * sqrt(g))) : std::nullopt);
   });
-  return m;
+  return second_order(m, pts, Qm, Qi, DQ);
 }
 
 Metric measure_plane(const std::vector<RootPoint>& pts, const Vec4<Q>& pi) {
@@ -686,7 +816,7 @@ ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& or
   ShadowError e;
   e.P = measure_quadric(P_points(local, pts), P);
   e.polar = measure_plane(local, polar);
-  e.R = measure_quadric(local, R);
+  e.R = measure_quadric(R_points(local, pts), R);
   e.generators = measure_quadric(in_frame(pts.generators, origin), P);
   e.R_plane = measure_quadric(in_frame(pts.plane, origin), R);
   for (const Metric* m : {&e.P, &e.polar, &e.R, &e.generators, &e.R_plane}) e.geometric = mmax(e.geometric, relative(*m, pts.size));

@@ -149,7 +149,11 @@ def _exact_json(value, path):
 def _document_args(doc, what):
     """(path, text, name) for the C++ side: a file path, or a dict as exact JSON text."""
     if isinstance(doc, dict):
-        return None, _json.dumps(_exact_json(doc, "")), "<dict>"
+        try:
+            return None, _json.dumps(_exact_json(doc, "")), "<dict>"
+        except RecursionError:
+            problem = "nested too deeply, or contains itself"
+            raise InputError("<dict>: %s" % problem, "", "<dict>", problem) from None
     if isinstance(doc, (str, bytes, _os.PathLike)):
         return _os.fsdecode(doc), None, ""
     problem = "expected a file path or a dict, found %s" % type(doc).__name__
@@ -347,4 +351,6 @@ def stress(fn=None, *, shadow=None, reflection=None, families=None, out=None, na
             return _stress(shadow, reflection, families, tmp, False, name, samples, accuracy)
     if not isinstance(out, (str, bytes, _os.PathLike)):
         raise _argument_error("out", "expected a directory path or None, found %s" % type(out).__name__)
-    return _stress(shadow, reflection, families, _os.fsdecode(out), True, name, samples, accuracy)
+    if b"\0" in _os.fsencode(out):  # (the system would cut the path there)
+        raise _argument_error("out", "a directory path with a NUL character")
+    return _stress(shadow, reflection, families, _os.fsencode(out), True, name, samples, accuracy)

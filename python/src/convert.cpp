@@ -7,6 +7,7 @@
 #include <gmp.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace qverify::py_glue {
@@ -187,7 +188,10 @@ Rational json_exact(const nlohmann::ordered_json& v) {
   if (v.is_number_float()) return qverify::to_rational(v.get<double>());
   if (v.is_number_integer()) return Rational(v.get<long long>());
   if (v.is_string()) {
-    const auto q = parse_rational(v.get<std::string>(), err);
+    // qverify's own result, not a user's input: no limit on its size (a light at 1e9000 gives a cone
+    // with 36,000-digit entries, and an mpfr result may have an exponent beyond a scene's 10^10000)
+    constexpr long kNoLimit = std::numeric_limits<long>::max();
+    const auto q = parse_rational(v.get<std::string>(), err, NumberLimits{kNoLimit, kNoLimit});
     if (q) return *q;
   }
   if (v.is_object() && v.contains("lo") && v.contains("hi")) return (json_exact(v["lo"]) + json_exact(v["hi"])) / 2;

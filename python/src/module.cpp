@@ -77,7 +77,8 @@ std::optional<Frame> frame_arg(const py::object& frame) {
 double accuracy_arg(const py::object& arg) {
   const double accuracy = number_arg(arg, "accuracy");
   if (!(std::isfinite(accuracy) && accuracy > 0))
-    bad_argument("accuracy", "the accuracy target must be a positive finite number, found " + std::to_string(accuracy));
+    bad_argument("accuracy", "the accuracy target must be a positive finite number, found " + short_repr(arg) +
+                                 (accuracy == 0 ? " (0 as a double)" : ""));
   return accuracy;
 }
 
@@ -267,6 +268,21 @@ PyReflection reflection_py(py::handle A_in, py::handle plane_in, const py::objec
   return r;
 }
 
+/// A file path argument as the operating system's bytes (os.fsencode: a non-UTF-8 name works too); an
+/// InputError naming `name` for what is no path, or holds a NUL (the system would cut the path there).
+std::string path_arg(const py::object& p, const std::string& name) {
+  py::object encoded;
+  try {
+    encoded = py::module_::import("os").attr("fsencode")(p);
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_TypeError)) throw;
+    bad_argument(name, "expected a file path (str, bytes or os.PathLike), found " + type_name(p));
+  }
+  const std::string out = encoded.cast<std::string>();
+  if (out.find('\0') != std::string::npos) bad_argument(name, "a file path with a NUL character");
+  return out;
+}
+
 /// A scene from a file (`path`) or from JSON text (`text`, named `name` in messages).
 Scene scene_arg(const py::object& path, const py::object& text, const std::string& name) {
   if (!text.is_none()) {
@@ -274,7 +290,7 @@ Scene scene_arg(const py::object& path, const py::object& text, const std::strin
     py::gil_scoped_release nogil;
     return parse_scene(t, name);
   }
-  const std::string p = py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+  const std::string p = path_arg(path, "scene");
   py::gil_scoped_release nogil;
   return load_scene(p);
 }
@@ -321,7 +337,7 @@ py::object verify_scene_py(const py::object& path, const py::object& text, const
   std::optional<std::string> cpath, ctext;
   if (!cand_text.is_none()) ctext = cand_text.cast<std::string>();
   else if (!cand_path.is_none())
-    cpath = py::str(py::module_::import("os").attr("fspath")(cand_path)).cast<std::string>();
+    cpath = path_arg(cand_path, "candidate");
   VerifyReport v;
   {
     py::gil_scoped_release nogil;

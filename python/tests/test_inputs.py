@@ -7,6 +7,9 @@ import numpy as np
 import pytest
 
 import qverify
+from conftest import SCENES
+
+SCENE_FILE = SCENES / "ball-lamp-floor.json"
 
 UNIT = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
 LIGHT = [3, 4, 8, 1]
@@ -260,3 +263,44 @@ def test_integers_beyond_pythons_str_limit_are_numbers_like_any_other():
     s = qverify.shadow(UNIT, LIGHT)
     for name in ("seed", "samples", "accuracy"):
         assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=s.P, **{name: 10**5000})) == name
+
+
+def test_exact_results_beyond_a_scenes_digit_limit_come_back():
+    # a legal light at 1e9000 gives a cone with entries of 36,000 digits: qverify's own results are
+    # read back without the scene format's 10000-digit limit (it raised a RuntimeError)
+    A = np.diag([1, 1, 1, -1])
+    s = qverify.shadow(A, [3, 4, "1e9000", 1], precision="exact")
+    assert s.status == "ok" and s.P[2][2] != 0
+    assert qverify.shadow(A, [3, 4, "1e9000", 1], precision="mpfr:64").status == "ok"
+    big = 10**5000
+    assert qverify.reflection(A, [0, 0, 1, big], precision="exact").status == "ok"
+
+
+def test_file_paths(tmp_path):
+    # a name that is no UTF-8 is a path like any other; a NUL, which the system would cut the path
+    # at, is an InputError naming the argument
+    good = SCENE_FILE.read_bytes()
+    f = tmp_path / "sc\udcff.json"  # (the byte 0xff, as Python spells it in a str)
+    f.write_bytes(good)
+    raw = bytes(tmp_path) + b"/sc\xff.json"
+    assert qverify.eval_scene(raw)["format"] == "qverify-eval/1"
+    assert path_of(lambda: qverify.eval_scene(str(SCENE_FILE) + "\0/etc/passwd")) == "scene"
+    assert path_of(lambda: qverify.verify_scene(str(SCENE_FILE), candidate=str(SCENE_FILE) + "\0x")) == "candidate"
+    assert path_of(lambda: qverify.stress(lambda A, L: None, families=["light-far"], out=str(tmp_path / "st\0x"))) == "out"
+    assert not (tmp_path / "st").exists()
+
+
+def test_accuracy_errors_show_the_value_given():
+    with pytest.raises(qverify.InputError) as e:
+        qverify.shadow(UNIT, LIGHT, accuracy=-1e-12)
+    assert "-1e-12" in str(e.value)
+    with pytest.raises(qverify.InputError) as e:
+        qverify.shadow(UNIT, LIGHT, accuracy=Fraction(1, 10**400))
+    assert "0 as a double" in str(e.value)
+
+
+def test_a_dict_scene_that_contains_itself():
+    d = {"format": "qverify-scene/1", "quadrics": []}
+    d["quadrics"].append(d)
+    with pytest.raises(qverify.InputError):
+        qverify.eval_scene(d)

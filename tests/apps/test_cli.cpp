@@ -645,6 +645,35 @@ TEST_CASE("seed and accuracy options: out of range or not a number is exit 2 wit
   }
 }
 
+TEST_CASE("numeric options: NaN is in no range and a non-number is called one", "[cli]") {
+  // CLI11's Range let NaN through (every comparison with it false): audit ran with --batch-ms nan and
+  // reported batches of ">= -2147483648 ms"; and it called "abc" a value "not in range"
+  const std::string sc = scene("ball-lamp-floor.json");
+  const std::string out = fresh_dir("nan-batch-audit").string();
+  for (const std::string& args : {"audit " + sc + " --out " + out + " --batch-ms nan", "audit " + sc + " --out " + out + " --batch-ms 0.5",
+                                   "render " + sc + " --compare --min-agreement nan", "verify " + sc + " --samples abc",
+                                   "verify " + sc + " --samples 0", std::string("bench --threads 1.5")}) {
+    INFO(args);
+    const RunBoth r = run_both(args);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("expected a") != std::string::npos);
+  }
+  CHECK(run_both("verify " + sc + " --samples abc").err.find("expected an integer from 1 to 100000") != std::string::npos);
+}
+
+TEST_CASE("render checks every image file before it renders: none is written when one cannot be", "[cli][render]") {
+  const std::string png = temp_file("render-first.png", "");
+  std::remove(png.c_str());
+  for (const std::string& bad : {std::string("--ids /proc/no-such.png"), std::string("--ids ") + png + ".d/x/y.png"}) {
+    INFO(bad);
+    const RunBoth r = run_both("render " + scene("ball-lamp-floor.json") + " --out " + png + " " + bad);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("cannot write") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(png));
+  }
+}
+
 TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors, at every door", "[cli][status]") {
   const std::string zero = temp_file("zero-shapes.json", R"({"format": "qverify-scene/1", "name": "zero shapes",
     "quadrics": [{"id": "point", "sphere": {"center": [1, 2, 3], "radius": 0}},

@@ -252,3 +252,40 @@ TEST_CASE("usage errors of --candidate-cmd exit 2 before any work", "[cli][candi
   CHECK_FALSE(std::filesystem::exists(dir / "report.json"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("an interrupt of qverify kills the running candidate and removes its files", "[cli][candidate]") {
+  // A call runs in its own process group (so that a time-out kills the whole of it), which a terminal's
+  // Ctrl-C does not reach: interrupted, qverify left the candidate running, bounded by nothing, and its
+  // temporary directory behind.
+  for (const int sig : {SIGINT, SIGTERM}) {
+    INFO("signal " << sig);
+    const std::filesystem::path tmp = fresh_dir("interrupt-tmp-" + std::to_string(sig));
+    const std::filesystem::path out = fresh_dir("interrupt-out-" + std::to_string(sig));
+    const std::string pidfile = (out / "candidate.pid").string();
+    const std::string cmd = "echo $$ > " + pidfile + "; exec sleep 30 # {scene} {out}";
+    const pid_t q = ::fork();
+    REQUIRE(q >= 0);
+    if (q == 0) {
+      ::setenv("TMPDIR", tmp.c_str(), 1);
+      ::execl(QVERIFY_EXE, QVERIFY_EXE, "stress", "--family", "light-far", "--out", out.c_str(), "--candidate-cmd",
+              cmd.c_str(), "--candidate-timeout", "60", static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    pid_t candidate = 0;
+    for (int i = 0; i < 3000 && candidate == 0; ++i) {  // (the sweep's first call: within a minute)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      std::ifstream in(pidfile);
+      in >> candidate;
+    }
+    REQUIRE(candidate > 0);
+    CHECK(std::filesystem::directory_iterator(tmp) != std::filesystem::directory_iterator());  // its work directory
+    ::kill(q, sig);
+    int status = 0;
+    REQUIRE(::waitpid(q, &status, 0) == q);
+    CHECK(WIFSIGNALED(status));
+    if (WIFSIGNALED(status)) CHECK(WTERMSIG(status) == sig);  // ended by the signal, as it would have been
+    for (int i = 0; i < 100 && !gone(candidate); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(gone(candidate));
+    CHECK(std::filesystem::directory_iterator(tmp) == std::filesystem::directory_iterator());  // removed
+  }
+}

@@ -3,6 +3,7 @@
 #include <qverify/scene/json_tree.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -10,6 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <thread>
@@ -44,6 +47,88 @@ std::string safe_label(const std::string& label) {
     if (!safe_char(c)) c = '_';
   if (s[0] == '.' || s[0] == '-') s[0] = '_';
   return s;
+}
+
+// ------------------------------------------------------------------ interrupts
+//
+// A call runs in its own process group (so that a time-out kills the whole of it), which a terminal's
+// Ctrl-C does not reach, and it works in a private temporary directory. So an interrupt (SIGINT, SIGTERM,
+// SIGHUP) of qverify while candidates may run first kills every running call's group and removes the
+// calls' files and directories, then ends qverify by the same signal, as it would have ended. Only
+// async-signal-safe calls run in the handler: the groups, files and directories are registered in fixed
+// slots beforehand (a slot is read once it is `ready`). The handler is installed only where the signal's
+// disposition is the default: an ignored SIGHUP (nohup) stays ignored, and a host's own handler (Python's
+// SIGINT, which raises KeyboardInterrupt) stays its own.
+
+constexpr int kSlots = 64;
+constexpr std::size_t kPathBytes = 4096;
+
+/// One registered thing: a process group, a file or a directory (a path, written before `ready`).
+struct Slot {
+  std::atomic<int> state{0};  ///< 0 free, 1 being written, 2 ready
+  std::atomic<pid_t> group{0};
+  char path[kPathBytes] = {};
+};
+Slot g_groups[kSlots], g_files[kSlots], g_dirs[kSlots];
+
+/// Takes a free slot of `slots` and fills it (nullptr when all are taken: the thing is then not cleaned
+/// up at an interrupt, as before; 64 concurrent calls are far beyond the threads a run uses).
+Slot* take_slot(Slot (&slots)[kSlots], pid_t group, const std::string& path) {
+  if (path.size() >= kPathBytes) return nullptr;
+  for (Slot& s : slots) {
+    int expected = 0;
+    if (!s.state.compare_exchange_strong(expected, 1)) continue;
+    s.group.store(group);
+    std::memcpy(s.path, path.c_str(), path.size() + 1);
+    s.state.store(2);
+    return &s;
+  }
+  return nullptr;
+}
+
+/// Registers one thing for the handler while it exists.
+class Registered {
+ public:
+  Registered(Slot (&slots)[kSlots], pid_t group, const std::string& path = {}) : slot_(take_slot(slots, group, path)) {}
+  ~Registered() {
+    if (slot_) slot_->state.store(0);
+  }
+  Registered(const Registered&) = delete;
+  Registered& operator=(const Registered&) = delete;
+
+ private:
+  Slot* slot_;
+};
+
+extern "C" void on_interrupt(int sig) {
+  const int saved = errno;
+  for (Slot& s : g_groups)
+    if (s.state.load() == 2) ::kill(-s.group.load(), SIGKILL);
+  for (Slot& s : g_files)
+    if (s.state.load() == 2) ::unlink(s.path);
+  for (Slot& s : g_dirs)
+    if (s.state.load() == 2) ::rmdir(s.path);
+  ::signal(sig, SIG_DFL);
+  errno = saved;
+  ::raise(sig);  // delivered on return: qverify ends by the signal
+}
+
+/// Installs on_interrupt, once, for the interrupts whose disposition is the default.
+void install_interrupt_cleanup() {
+  static const bool installed = [] {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) != 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL) continue;
+      struct sigaction sa {};
+      sa.sa_handler = on_interrupt;
+      sigemptyset(&sa.sa_mask);
+      for (const int other : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, other);
+      sa.sa_flags = SA_RESTART;
+      ::sigaction(sig, &sa, nullptr);
+    }
+    return true;
+  }();
+  (void)installed;
 }
 
 /// The last lines of a program's output, on one line, at most `max` characters.
@@ -135,6 +220,8 @@ ProcessResult run_shell(const std::string& command, double timeout_seconds, std:
     ::_exit(127);
   }
   ::setpgid(pid, pid);  // also here: whichever runs first (EACCES once the child has exec'd is fine)
+  std::optional<Registered> running;
+  running.emplace(g_groups, pid);  // killed at an interrupt, until it is killed below
   close_fd(outp[1]), close_fd(errp[1]), close_fd(devnull);
 
   const auto deadline = t0 + std::chrono::duration_cast<clock_type::duration>(std::chrono::duration<double>(timeout_seconds));
@@ -183,6 +270,7 @@ ProcessResult run_shell(const std::string& command, double timeout_seconds, std:
   }
   // Whatever is left of the group (the whole of it at a time-out, background children after an exit) is killed.
   ::kill(-pid, SIGKILL);
+  running.reset();  // before the shell is reaped: then its pid, the group's id, may be another's
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -265,10 +353,14 @@ struct WorkDir {
       throw FileWriteError("cannot create directory " + templ + ": " + reason, templ, reason, code);
     }
     path = templ;
+    registered_ = std::make_unique<Registered>(g_dirs, 0, path.string());
+    install_interrupt_cleanup();
   }
   WorkDir(const WorkDir&) = delete;
   WorkDir& operator=(const WorkDir&) = delete;
+  std::unique_ptr<Registered> registered_;  ///< removed at an interrupt (once its files are)
   ~WorkDir() {
+    registered_.reset();
     std::error_code ec;
     std::filesystem::remove_all(path, ec);
   }
@@ -298,6 +390,7 @@ Candidate process_candidate(const std::string& name, const std::string& command,
     const std::filesystem::path scene = dir->path / (label + ".json"), out = dir->path / (label + ".out.json");
     std::error_code ec;
     std::filesystem::remove(out, ec);  // never read a stale document
+    const Registered scene_file(g_files, 0, scene.string()), out_file(g_files, 0, out.string());  // at an interrupt
     write_file(scene, in.scene_text);
     const std::string cmd = substitute_command(command, scene.string(), out.string());
     const ProcessResult p = run_shell(cmd, timeout_seconds);

@@ -256,7 +256,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
       rep.notes.push_back("P is measured on no terminator point: every point sampled is the cone's apex, where P's "
                           "gradient vanishes (take more samples)");
   }
-  if (got.R) onR = judged("on_R", measure_quadric(local, *got.R), local, pts.size, exact, T, !one_point);
+  if (got.R) {  // (not on R's second plane, where its gradient vanishes: ItemPoints::crossing)
+    const std::vector<RootPoint> at = R_points(local, pts);
+    onR = judged("on_R", measure_quadric(at, *got.R), at, pts.size, exact, T, !one_point);
+  }
   if (got.polar_plane)
     onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T, !one_point);
   if (got.P && !one_point) {  // P is *the* cone with apex L: exact points of its generator lines

@@ -39,6 +39,11 @@ FilterTarget::FilterTarget(double accuracy_, const Measure& size_)
             std::nextafter(c, std::numeric_limits<double>::infinity()));
 }
 
+/// A first-order fail is not the verdict: the point's second-order distance may still pass
+/// (measure_quadric's rule), which stage 3 decides. (Near where a result's gradient vanishes; a
+/// rounded candidate's points pass by first order almost everywhere.)
+static FilterVerdict first_order(FilterVerdict v) { return v == FilterVerdict::fail ? FilterVerdict::undecided : v; }
+
 FilterVerdict filter_quadric(const EnclosedPoint& x, const Mat4<double>& Q, const FilterTarget& t) {
   const auto& X = x.x;
   I y[4];
@@ -48,7 +53,7 @@ FilterVerdict filter_quadric(const EnclosedPoint& x, const Mat4<double>& Q, cons
   if (!t.residual_rule) {
     // |f| <= T size |w| 2 |g|, squared: f^2 <= 4 (T size)^2 w^2 |g|^2
     const I g2 = CGAL::square(y[0]) + CGAL::square(y[1]) + CGAL::square(y[2]);
-    return decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * g2 * 4.0);
+    return first_order(decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * g2 * 4.0));
   }
   // |f| <= T |Q|_F |x|^2, squared
   I q2(0);
@@ -279,7 +284,7 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
   mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);
   mpfr_sqr(s.hi[0], s.hi[0], MPFR_RNDU);
   bound_mp(s, t, 4.0);
-  return decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]);
+  return first_order(decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]));
 }
 
 FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, const FilterTarget& t) const {

@@ -7,8 +7,10 @@
 /// x = p + sqrt(d) q (RootPoint) passes a floating candidate quadric Q when its
 /// first-order distance
 ///   |x^T Q x| / (|w| 2 |(Q x)_xyz|)      (plane pi: |pi.x| / (|w| |pi_xyz|))
-/// is at most T * size (T the accuracy target, size the object size), or when
-/// x^T Q x is exactly 0; a point off Q where the gradient or w vanishes fails.
+/// is at most T * size (T the accuracy target, size the object size), or its
+/// second-order distance sqrt(|f| / kappa) / |w| is (a point of Q lies that
+/// close: measure_quadric), or when x^T Q x is exactly 0; a point off Q where
+/// neither exists fails.
 /// Where the object has no size (a terminator that is a single point) the
 /// rule is the relative residual |x^T Q x| / (|Q|_F |x|^2) <= T instead.
 ///
@@ -33,6 +35,9 @@
 ///     boundary (the enclosure of T * size is one ulp wide);
 ///  3. the verifier's own measure at that one point (measure_quadric /
 ///     measure_plane, Q(sqrt d) and 80 digits).
+/// Stages 1 and 2 decide a quadric's point `fail` by first order only where the
+/// residual rule applies; by the distance rule such a point goes on to stage 3,
+/// whose second-order distance may pass it.
 /// `exact_fallbacks` in reports counts the pairs stage 1 left to stages 2 and 3
 /// (`measured`: those that reached 3). tests/verify/test_point_filter.cpp checks the
 /// decisions of stages 1 and 2 against stage 3 on random and adversarial points.
