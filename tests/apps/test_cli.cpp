@@ -674,6 +674,21 @@ TEST_CASE("render checks every image file before it renders: none is written whe
   }
 }
 
+TEST_CASE("a light at 1e2500 gets finite double results: the float128 escalation scales its inputs", "[cli]") {
+  // binary128's exponents end at 2^16384: unscaled, the escalation's products of L overflowed beyond a
+  // light at about 1e2466, and every entry of P, the polar plane and R came out null (non-finite)
+  const std::string f = temp_file("light-1e2500.json", R"({"format": "qverify-scene/1", "name": "far light",
+    "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 2], "radius": 1}}],
+    "lights": [{"id": "lamp", "position": [3, 4, 1e2500]}]})");
+  const Run r = run("eval " + f + " --json");
+  REQUIRE(r.code == 0);
+  const auto item = nlohmann::json::parse(r.out)["shadows"][0];
+  CHECK(item["status"] == "ok");
+  for (const char* k : {"P", "polar_plane", "R"}) CHECK(item[k].dump().find("null") == std::string::npos);
+  const auto flags = item["flags"].get<std::vector<std::string>>();
+  CHECK(std::find(flags.begin(), flags.end(), "non-finite") == flags.end());
+}
+
 TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors, at every door", "[cli][status]") {
   const std::string zero = temp_file("zero-shapes.json", R"({"format": "qverify-scene/1", "name": "zero shapes",
     "quadrics": [{"id": "point", "sphere": {"center": [1, 2, 3], "radius": 0}},

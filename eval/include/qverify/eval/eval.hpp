@@ -61,9 +61,12 @@ template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded(const Eigen::Mat
 }
 
 /// Rounds an exact matrix to S, after an exact power-of-two scaling that keeps
-/// its largest entry near 1 (builtin floating types only).
+/// its largest entry near 1 (builtin floating types and binary128, whose
+/// exponents end at 2^+-16384: unscaled, a light at 1e2500 made its products of
+/// L overflow in the float128 escalation, and a double eval gave null results;
+/// MPFR's range is beyond any scene's numbers).
 template <class S, int R, int C> Eigen::Matrix<S, R, C> rounded_scaled(Eigen::Matrix<Rational, R, C> m) {
-  if constexpr (std::is_floating_point_v<S>) {
+  if constexpr (std::is_floating_point_v<S> || std::is_same_v<S, Float128>) {
     const Rational big = max_abs(m);
     if (big != 0) {
       const long e = floor_log2(big);
