@@ -53,7 +53,14 @@ FilterVerdict filter_quadric(const EnclosedPoint& x, const Mat4<double>& Q, cons
   if (!t.residual_rule) {
     // |f| <= T size |w| 2 |g|, squared: f^2 <= 4 (T size)^2 w^2 |g|^2
     const I g2 = CGAL::square(y[0]) + CGAL::square(y[1]) + CGAL::square(y[2]);
-    return first_order(decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * g2 * 4.0));
+    const FilterVerdict v = decide(f2, CGAL::square(t.bound) * CGAL::square(X[3]) * g2 * 4.0);
+    if (v != FilterVerdict::fail) return v;
+    // final where the second order cannot do better: d2 < d1 needs 4 |g|^2 < |f| kappa, and every
+    // curvature kappa is at most |K|_F (K the symmetrised spatial part)
+    I k2(0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) k2 += CGAL::square((I(Q(i, j)) + I(Q(j, i))) / 2.0);
+    return (g2 * 4.0).inf() >= (CGAL::abs(f) * CGAL::sqrt(k2)).sup() ? FilterVerdict::fail : FilterVerdict::undecided;
   }
   // |f| <= T |Q|_F |x|^2, squared
   I q2(0);
@@ -155,6 +162,11 @@ void bound_mp(Scratch& s, const FilterTarget& t, double k) {
 IntegerQuadric::IntegerQuadric(const Mat4<Rational>& Q) {
   BigInt D;
   clear_denominators(Q, q, D);
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      const BigInt e = q[4 * i + j] + q[4 * j + i];
+      spatial4 += e * e;
+    }
 }
 
 IntegerQuadric::IntegerQuadric(const Mat4<double>& Q)
@@ -284,7 +296,14 @@ FilterVerdict ClearedPoints::decide_quadric(std::size_t k, const IntegerQuadric&
   mpfr_sqr(s.lo[0], s.lo[0], MPFR_RNDD);
   mpfr_sqr(s.hi[0], s.hi[0], MPFR_RNDU);
   bound_mp(s, t, 4.0);
-  return first_order(decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]));
+  const FilterVerdict v = decide_mp(s.lo[0], s.hi[0], s.lo[3], s.hi[3]);
+  if (v != FilterVerdict::fail) return v;
+  // final where the second order cannot do better (as in stage 1): 4 |g|^2 >= |f| |K|_F, squared,
+  // 64 (|g|^2)^2 >= f^2 (4 |K|_F^2), in the integers' common scale
+  mpfr_sqr(s.lo[4], s.lo[2], MPFR_RNDD);
+  mpfr_mul_ui(s.lo[4], s.lo[4], 64, MPFR_RNDD);
+  mpfr_mul_z(s.hi[4], s.hi[0], mpz(Q.spatial4), MPFR_RNDU);
+  return mpfr_greaterequal_p(s.lo[4], s.hi[4]) ? FilterVerdict::fail : FilterVerdict::undecided;
 }
 
 FilterVerdict ClearedPoints::decide_plane(std::size_t k, const IntegerPlane& p, const FilterTarget& t) const {

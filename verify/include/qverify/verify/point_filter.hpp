@@ -35,9 +35,10 @@
 ///     boundary (the enclosure of T * size is one ulp wide);
 ///  3. the verifier's own measure at that one point (measure_quadric /
 ///     measure_plane, Q(sqrt d) and 80 digits).
-/// Stages 1 and 2 decide a quadric's point `fail` by first order only where the
-/// residual rule applies; by the distance rule such a point goes on to stage 3,
-/// whose second-order distance may pass it.
+/// By the distance rule, stage 1 decides a quadric's point `fail` only where the
+/// second order cannot pass it either (4 |grad|^2 >= |f| |K|_F, K the spatial
+/// part: no curvature exceeds |K|_F), and stage 2 likewise: the others go on to
+/// stage 3, whose second-order distance may pass them.
 /// `exact_fallbacks` in reports counts the pairs stage 1 left to stages 2 and 3
 /// (`measured`: those that reached 3). tests/verify/test_point_filter.cpp checks the
 /// decisions of stages 1 and 2 against stage 3 on random and adversarial points.
@@ -117,6 +118,7 @@ struct IntegerQuadric {
   explicit IntegerQuadric(const Mat4<Rational>& Q);
   explicit IntegerQuadric(const Mat4<double>& Q);
   std::array<BigInt, 16> q;  ///< row-major
+  BigInt spatial4;           ///< 4 |K|_F^2 of q's symmetrised spatial part K (stage 2's second-order test)
 };
 struct IntegerPlane {
   explicit IntegerPlane(const Vec4<Rational>& pi);
