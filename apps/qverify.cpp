@@ -202,7 +202,7 @@ int run_render(const Scene& sc, const RenderArgs& a, bool as_json) {
   if (!a.compare && a.out.empty()) throw UsageError("render: --out image.png is required (or --compare)");
   // every image's file before any work: an unwritable --ids must not leave --out written and exit 2
   for (const std::string* file : {&a.out, &a.ids, &a.diff})
-    if (!file->empty()) check_writable(*file);
+    if (!file->empty() && (a.compare || file != &a.diff)) check_writable(*file);  // (--diff: with --compare only)
   const render::Renderer r(sc, opt);
   if (!a.compare) {
     const auto method = a.method == "raytrace" ? render::RenderMethod::raytrace : render::RenderMethod::transforms;

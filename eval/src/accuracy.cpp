@@ -866,7 +866,7 @@ ItemAccuracy item_accuracy(const Measure& geometric, bool has_points, double tar
   if (!has_points) {
     acc.reason = "no real point to measure the result on";
   } else if (!(geometric < std::numeric_limits<Measure>::infinity())) {
-    acc.reason = "a sampled point lies off the result where its gradient vanishes: no first-order distance";
+    acc.reason = "a sampled point lies off the result where its gradient vanishes: no distance of either order";
     acc.inaccurate = true;
   } else {
     acc.bound = up_to_double(Measure(geometric * kBoundMargin));  // (up: a bound stays a bound)
@@ -1378,7 +1378,8 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
 }
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
-  return "error_bound: the geometric error (largest first-order distance |x^T Q x| / |grad| of exact points of the "
+  return "error_bound: the geometric error (largest distance, first-order |x^T Q x| / |grad| or second-order "
+      "sqrt(|x^T Q x| / kappa) where smaller, of exact points of the "
       "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
       "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and "
       "the polar plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), "
@@ -1390,7 +1391,7 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "vanishes on the geometry (a cone's apex; R where its plane h crosses the terminator) a first-order distance means "
       "nothing: there the shells bound the Euclidean distance to the result, by second order (sqrt(|x^T Q x| / c), c "
       "the result's curvature along a direction where it curves the other way), of the order of the square root of the "
-      "rounding, and the first-order distances measured at the " +
+      "rounding, and the distances measured at the " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + ") count as well; certified_for names what is bounded. What no bound covers (a "
       "terminator with too few real points) is measured on those points (near the target again on " +

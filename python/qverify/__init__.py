@@ -348,7 +348,7 @@ def stress(fn=None, *, shadow=None, reflection=None, families=None, out=None, na
         raise _argument_error("accuracy", "expected a number, found %s" % type(accuracy).__name__)
     if out is None:
         with _tempfile.TemporaryDirectory(prefix="qverify-stress-") as tmp:
-            return _stress(shadow, reflection, families, tmp, False, name, samples, accuracy)
+            return _stress(shadow, reflection, families, _os.fsencode(tmp), False, name, samples, accuracy)
     if not isinstance(out, (str, bytes, _os.PathLike)):
         raise _argument_error("out", "expected a directory path or None, found %s" % type(out).__name__)
     if b"\0" in _os.fsencode(out):  # (the system would cut the path there)

@@ -250,6 +250,16 @@ py::object json_to_fractions(const nlohmann::ordered_json& m) {
   return out;
 }
 
+namespace {
+/// Text from C++ as Python's str, bytes that are no UTF-8 (a file name's) escaped as os.fsdecode does
+/// (surrogateescape), not an error.
+py::str os_text(const std::string& s) {
+  PyObject* u = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "surrogateescape");
+  if (!u) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(u);
+}
+}  // namespace
+
 py::object json_to_python(const nlohmann::ordered_json& j) {
   switch (j.type()) {
     case nlohmann::ordered_json::value_t::null: return py::none();
@@ -257,7 +267,7 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
     case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<long long>());
     case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
     case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::ordered_json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::ordered_json::value_t::string: return os_text(j.get<std::string>());
     case nlohmann::ordered_json::value_t::array: {
       py::list out;
       for (const auto& x : j) out.append(json_to_python(x));
@@ -265,7 +275,7 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
     }
     case nlohmann::ordered_json::value_t::object: {
       py::dict out;
-      for (auto it = j.begin(); it != j.end(); ++it) out[py::str(it.key())] = json_to_python(it.value());
+      for (auto it = j.begin(); it != j.end(); ++it) out[os_text(it.key())] = json_to_python(it.value());
       return out;
     }
     default: return py::none();
@@ -309,7 +319,8 @@ class InputError(ValueError):
       std::rethrow_exception(p);
     } catch (const InputError& e) {
       const std::string msg = e.file.empty() ? (e.path.empty() ? e.problem : e.path + ": " + e.problem) : e.what();
-      py::object inst = py::reinterpret_borrow<py::object>(input_error_type)(msg, e.path, e.file, e.problem);
+      py::object inst =
+          py::reinterpret_borrow<py::object>(input_error_type)(os_text(msg), os_text(e.path), os_text(e.file), os_text(e.problem));
       PyErr_SetObject(input_error_type, inst.ptr());
     }
   });

@@ -284,6 +284,13 @@ def test_file_paths(tmp_path):
     f.write_bytes(good)
     raw = bytes(tmp_path) + b"/sc\xff.json"
     assert qverify.eval_scene(raw)["format"] == "qverify-eval/1"
+    cand = bytes(tmp_path) + b"/cand\xff.json"
+    with open(cand, "w") as out:
+        json.dump(qverify.eval_scene(raw), out)
+    assert qverify.verify_scene(raw, candidate=cand)["failed"] == 0  # (its name in the document: escaped)
+    with pytest.raises(qverify.InputError) as e:  # a missing one: its name in the error, as os.fsdecode gives it
+        qverify.eval_scene(bytes(tmp_path) + b"/missing\xff.json")
+    assert e.value.file.endswith("missing\udcff.json")
     assert path_of(lambda: qverify.eval_scene(str(SCENE_FILE) + "\0/etc/passwd")) == "scene"
     assert path_of(lambda: qverify.verify_scene(str(SCENE_FILE), candidate=str(SCENE_FILE) + "\0x")) == "candidate"
     assert path_of(lambda: qverify.stress(lambda A, L: None, families=["light-far"], out=str(tmp_path / "st\0x"))) == "out"

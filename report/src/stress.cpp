@@ -146,8 +146,9 @@ json stress_json(const StressReport& report) {
   json doc{{"format", "qverify-stress/1"},
            {"reference", "exact"},
            {"geometric_error", "max over exact sample points (terminator points for P, reflected points of A for B, "
-                               "sampled in Q(sqrt d)) of the first-order distance |x^T Q x| / |grad|, in the result's own "
-                               "frame, divided by the object's size"},
+                               "sampled in Q(sqrt d)) of the distance: first-order, |x^T Q x| / |grad|, or second-order, "
+                               "sqrt(|x^T Q x| / kappa), where smaller, in the result's own frame, divided by the object's "
+                               "size"},
            {"matrix_error", "projective error against the exact matrix (cross-multiplication, see qverify audit)"}};
   if (report.candidate) doc["candidate"] = candidate_json(*report.candidate);
   json families = json::array();

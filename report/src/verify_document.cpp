@@ -21,7 +21,7 @@ json metric_json(const QuadricCheck& c) {
   json j{{"max_residual", to_d(m.residual)}, {"max_distance", m.singular ? json(nullptr) : json(to_d(m.distance))}};
   if (!c.judged) j["judged"] = false;
   j["geometric_error"] = number_or_null(c.geometric_error);
-  if (m.singular) j["note"] = "a point lies off the result where its gradient vanishes: no first-order distance";
+  if (m.singular) j["note"] = "a point lies off the result where its gradient vanishes: no distance of either order";
   return j;
 }
 
@@ -114,8 +114,9 @@ json verify_document(const Scene& sc, const VerifyReport& report) {
   doc["accuracy"] = exact ? 0.0 : report.options.accuracy;
   doc["tolerance_rule"] =
       exact ? "exact: every residual must be exactly zero (a proof)"
-            : "pass: the geometric error of every checked result (largest first-order distance |x^T Q x| / |grad| of "
-              "exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
+            : "pass: the geometric error of every checked result (largest distance of exact points from P, R, the polar "
+              "plane or B: first-order, |x^T Q x| / |grad|, or second-order, sqrt(|x^T Q x| / kappa), where smaller; "
+              "of exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
               "largest distance of the points from A's centre) is at most the accuracy target; P also on exact points "
               "of its generator lines, R also on points of the polar plane, signs and M against references computed "
               "here from A, L and the mirror; and where certified, eval's certified bound over every point of the "

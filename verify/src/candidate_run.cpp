@@ -71,6 +71,9 @@ struct Slot {
 };
 Slot g_groups[kSlots], g_files[kSlots], g_dirs[kSlots];
 
+/// (A slot released and taken again while the handler reads it could give it a torn path: the window
+/// is a few instructions of another thread during an interrupt, and the worst case an unlinked path that
+/// is not the call's; left as it is.)
 /// Takes a free slot of `slots` and fills it (nullptr when all are taken: the thing is then not cleaned
 /// up at an interrupt, as before; 64 concurrent calls are far beyond the threads a run uses).
 Slot* take_slot(Slot (&slots)[kSlots], pid_t group, const std::string& path) {
@@ -103,7 +106,7 @@ class Registered {
 extern "C" void on_interrupt(int sig) {
   const int saved = errno;
   for (Slot& s : g_groups)
-    if (s.state.load() == 2) ::kill(-s.group.load(), SIGKILL);
+    if (s.state.load() == 2 && s.group.load() > 0) ::kill(-s.group.load(), SIGKILL);
   for (Slot& s : g_files)
     if (s.state.load() == 2) ::unlink(s.path);
   for (Slot& s : g_dirs)
@@ -196,9 +199,16 @@ ProcessResult run_shell(const std::string& command, double timeout_seconds, std:
   const char* cmd = command.c_str();
   [[maybe_unused]] const pid_t parent = ::getpid();
   const auto t0 = clock_type::now();
+  // The interrupts wait until the shell is registered (on_interrupt then kills its group); the child
+  // unblocks them before it runs the command.
+  sigset_t interrupts, before;
+  sigemptyset(&interrupts);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, sig);
+  ::pthread_sigmask(SIG_BLOCK, &interrupts, &before);
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int e = errno;
+    ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
     close_fd(outp[0]), close_fd(outp[1]), close_fd(errp[0]), close_fd(errp[1]), close_fd(devnull);
     throw std::system_error(e, std::generic_category(), "fork");
   }
@@ -222,6 +232,7 @@ ProcessResult run_shell(const std::string& command, double timeout_seconds, std:
   ::setpgid(pid, pid);  // also here: whichever runs first (EACCES once the child has exec'd is fine)
   std::optional<Registered> running;
   running.emplace(g_groups, pid);  // killed at an interrupt, until it is killed below
+  ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
   close_fd(outp[1]), close_fd(errp[1]), close_fd(devnull);
 
   const auto deadline = t0 + std::chrono::duration_cast<clock_type::duration>(std::chrono::duration<double>(timeout_seconds));
@@ -360,9 +371,9 @@ struct WorkDir {
   WorkDir& operator=(const WorkDir&) = delete;
   std::unique_ptr<Registered> registered_;  ///< removed at an interrupt (once its files are)
   ~WorkDir() {
-    registered_.reset();
     std::error_code ec;
     std::filesystem::remove_all(path, ec);
+    registered_.reset();  // (after: an interrupt meanwhile still removes what is left)
   }
 };
 

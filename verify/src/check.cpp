@@ -259,6 +259,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (got.R) {  // (not on R's second plane, where its gradient vanishes: ItemPoints::crossing)
     const std::vector<RootPoint> at = R_points(local, pts);
     onR = judged("on_R", measure_quadric(at, *got.R), at, pts.size, exact, T, !one_point);
+    if (at.empty() && !local.empty() && !one_point)
+      rep.notes.push_back("R is measured on no terminator point: every point sampled lies on R's second plane h, "
+                          "where R's gradient vanishes (R is still checked on h and, where certified, over the "
+                          "whole terminator)");
   }
   if (got.polar_plane)
     onPolar = judged("on_polar_plane", measure_plane(local, *got.polar_plane), local, pts.size, exact, T, !one_point);

@@ -39,11 +39,6 @@ FilterTarget::FilterTarget(double accuracy_, const Measure& size_)
             std::nextafter(c, std::numeric_limits<double>::infinity()));
 }
 
-/// A first-order fail is not the verdict: the point's second-order distance may still pass
-/// (measure_quadric's rule), which stage 3 decides. (Near where a result's gradient vanishes; a
-/// rounded candidate's points pass by first order almost everywhere.)
-static FilterVerdict first_order(FilterVerdict v) { return v == FilterVerdict::fail ? FilterVerdict::undecided : v; }
-
 FilterVerdict filter_quadric(const EnclosedPoint& x, const Mat4<double>& Q, const FilterTarget& t) {
   const auto& X = x.x;
   I y[4];

@@ -291,7 +291,11 @@ struct ItemAccuracy {
   /// A geometric error the result is known to reach (a lower bound of its true error, at most
   /// `bound`): the largest measured on the exact sample points, or, where the bound is certified,
   /// the distance the branch and bound certifies as attained, whichever is larger. The studies
-  /// judge a result by it (a sample alone may miss where the error is).
+  /// judge a result by it (a sample alone may miss where the error is). The branch and bound's is a
+  /// first-order distance, as its bound is: where that exceeds the point's second-order distance
+  /// (a result off by more than about its own size, or near a vanishing gradient) it is above what
+  /// verify measures at a sampled point (the stress report's item_geometric_error next to its
+  /// geometric_error).
   double attained = 0;
 };
 

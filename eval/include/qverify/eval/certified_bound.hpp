@@ -65,7 +65,7 @@ namespace qverify {
 /// The certified bound of one or more results over one piece of geometry.
 struct CertifiedBound {
   double upper = 0;     ///< sup of the relative first-order distance over the geometry <= upper (may be inf)
-  double attained = 0;  ///< a relative distance attained at a point of the geometry (sup >= attained)
+  double attained = 0;  ///< a relative first-order distance attained at a point of the geometry (sup >= attained)
   int boxes = 0;        ///< boxes evaluated
   /// Somewhere (near a point where the reference's gradient vanishes: a cone's apex, the line of a
   /// plane pair) `upper` bounds the Euclidean distance to the result, by second order or the root
