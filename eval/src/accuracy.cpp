@@ -610,6 +610,25 @@ struct PointDistances {
     return first ? first : second;
   }
 };
+/// |x^T Q x|, |(Q x)_xyz|^2 and |w| of a point, to 80 digits, from its exact values (Q = Qi / DQ).
+struct PointMagnitudes {
+  Measure f, g2, w;
+};
+PointMagnitudes magnitudes(const QuadricValues& v, const BigInt& DQ) {
+  const IntegerPoint& x = v.x;
+  const BigInt DpDv = x.den();
+  PointMagnitudes out;
+  out.f = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(DpDv * DpDv * DQ));
+  const BigInt den = DpDv * DQ;
+  out.g2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const Measure gi = root_magnitude(BigInt(v.y[i] * x.Dv), BigInt(v.z[i] * x.Dp), x.d, x.root(), den);
+    out.g2 += gi * gi;
+  }
+  out.w = x.magnitude(3);
+  return out;
+}
+
 PointDistances point_distances(const RootPoint& p, const std::array<BigInt, 16>& Qi, const BigInt& DQ,
                                const Curvatures& k) {
   PointDistances out;
@@ -618,22 +637,13 @@ PointDistances point_distances(const RootPoint& p, const std::array<BigInt, 16>&
     out.zero = true;
     return out;
   }
-  const IntegerPoint& x = v.x;
-  const BigInt DpDv = x.den();
-  const Measure fm = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(DpDv * DpDv * DQ));
-  const BigInt den = DpDv * DQ;
-  Measure g = 0;
-  for (int i = 0; i < 3; ++i) {
-    const Measure gi = root_magnitude(BigInt(v.y[i] * x.Dv), BigInt(v.z[i] * x.Dp), x.d, x.root(), den);
-    g += gi * gi;
-  }
-  const Measure w = x.magnitude(3);
-  if (!(w > 0)) return out;
-  if (g > 0) out.first = fm / (w * 2 * sqrt(g));
+  const PointMagnitudes a = magnitudes(v, DQ);
+  if (!(a.w > 0)) return out;
+  if (a.g2 > 0) out.first = a.f / (a.w * 2 * sqrt(a.g2));
   // Along a unit u with u^T K u = c, Q at the Cartesian point X / w + t u is f + 2 b t + c t^2 (f = x^T Q x
   // / w^2): where c > 0 >= f (or c < 0 <= f) it has a root with |t| <= sqrt(|f| / |c|), whatever b
-  const Measure kappa = root_sign(v.f0, v.f1, x.d) < 0 ? k.up : k.down;
-  if (kappa > 0) out.second = sqrt(fm / kappa) / w;
+  const Measure kappa = root_sign(v.f0, v.f1, v.x.d) < 0 ? k.up : k.down;
+  if (kappa > 0) out.second = sqrt(a.f / kappa) / a.w;
   return out;
 }
 
@@ -738,20 +748,11 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   filter.finish(m, [&](std::size_t k) {
     const QuadricValues v(pts[k], Qi);
     if (v.zero) return;
-    const IntegerPoint& x = v.x;
     m.all_zero = false;
-    const BigInt DpDv = x.den();
-    const Measure fm = root_magnitude(v.f0, v.f1, x.d, x.root(), BigInt(DpDv * DpDv * DQ));
-    if (with_residual) m.residual = mmax(m.residual, Measure(fm / (qnorm * norm2(x))));
-    const BigInt den = DpDv * DQ;
-    Measure g = 0;
-    for (int i = 0; i < 3; ++i) {
-      const Measure gi = root_magnitude(BigInt(v.y[i] * x.Dv), BigInt(v.z[i] * x.Dp), x.d, x.root(), den);
-      g += gi * gi;
-    }
-    const Measure w = x.magnitude(3);
-    add_distance(m, k, g > 0 && w > 0 ? std::optional<Measure>(fm / (w * 2 * sqrt(g))) : std::nullopt);
-    if (m.worst == k) worst_f = fm, worst_g2 = g;
+    const PointMagnitudes a = magnitudes(v, DQ);
+    if (with_residual) m.residual = mmax(m.residual, Measure(a.f / (qnorm * norm2(v.x))));
+    add_distance(m, k, a.g2 > 0 && a.w > 0 ? std::optional<Measure>(a.f / (a.w * 2 * sqrt(a.g2))) : std::nullopt);
+    if (m.worst == k) worst_f = a.f, worst_g2 = a.g2;
   });
   // The second order can beat the first at the worst point only where 4 |grad|^2 < |f| kappa, and every
   // kappa is at most |K|_F: not so at almost every item's worst point, whose measure then stands as it is
