@@ -3,8 +3,6 @@
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/root_enclosure.hpp>
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
@@ -165,60 +163,37 @@ std::vector<Q> generator_offsets(const std::vector<RootPoint>& terminator, const
   return {Q(1, 2) * sq, Q(-1, 2) * sq, Q(1, 4) * sq};
 }
 
-/// Is x a singular point of A (A x = 0: a cone's apex)?
-bool singular_point(const Mat4<Q>& A, const RootPoint& x) {
-  const auto c = x.coords();
-  for (int i = 0; i < 4; ++i) {
-    RootNumber r(0);
-    for (int j = 0; j < 4; ++j) r = r + RootNumber(to_gmpq(A(i, j))) * c[static_cast<std::size_t>(j)];
-    if (!CGAL::is_zero(r)) return false;
-  }
-  return true;
-}
-
-/// The indices of the points where A x = 0 (ItemPoints::singular). Filtered: a point whose
-/// enclosure, times A's entries enclosed, leaves some row of A x certainly non-zero is not
-/// singular; only the others (a cone's apex, and hardly any other) are decided exactly, in
-/// Q(sqrt d). (Deciding every point exactly cost verify 9% of its speed at 4096 points a pair.)
-std::vector<std::size_t> singular_points(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
+/// The indices of the points where every form of `rows` vanishes exactly (row . x = 0). Filtered: a
+/// point whose enclosure, times a row's entries enclosed, leaves that row's value certainly non-zero is
+/// not one; only the others are decided exactly, in Q(sqrt d). (Deciding every point exactly cost
+/// verify 9% of its speed at 4096 points a pair.)
+std::vector<std::size_t> common_zeros(const std::vector<RootPoint>& pts, const std::vector<Vec4<Q>>& rows) {
   std::vector<std::size_t> out;
-  FI a[4][4];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) a[i][j] = enclosed(A(i, j));
+  std::vector<std::array<FI, 4>> a(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (int j = 0; j < 4; ++j) a[i][static_cast<std::size_t>(j)] = enclosed(rows[i](j));
   for (std::size_t k = 0; k < pts.size(); ++k) {
     bool maybe = true;
     {
       CGAL::Protect_FPU_rounding<true> guard;
       const PointEnclosure& X = pts[k].enclosure();
-      for (int i = 0; i < 4 && maybe; ++i) {
-        FI row(0);
-        for (int j = 0; j < 4; ++j) row += a[i][j] * X[static_cast<std::size_t>(j)];
-        maybe = !(row.inf() > 0 || row.sup() < 0);  // (a NaN bound leaves it in doubt)
+      for (std::size_t i = 0; i < rows.size() && maybe; ++i) {
+        FI v(0);
+        for (std::size_t j = 0; j < 4; ++j) v += a[i][j] * X[j];
+        maybe = !(v.inf() > 0 || v.sup() < 0);  // (a NaN bound leaves it in doubt)
       }
     }
-    if (maybe && singular_point(A, pts[k])) out.push_back(k);
+    if (maybe && std::all_of(rows.begin(), rows.end(), [&](const Vec4<Q>& r) { return CGAL::is_zero(pts[k].linear(r)); }))
+      out.push_back(k);
   }
   return out;
 }
 
-/// The indices of the points on the plane h (h . x = 0 exactly; ItemPoints::crossing), filtered as
-/// singular_points: a point whose enclosure leaves h . x certainly non-zero is off it.
-std::vector<std::size_t> plane_hits(const std::vector<RootPoint>& pts, const Vec4<Q>& h) {
-  std::vector<std::size_t> out;
-  FI hh[4];
-  for (int j = 0; j < 4; ++j) hh[j] = enclosed(h(j));
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    bool maybe = true;
-    {
-      CGAL::Protect_FPU_rounding<true> guard;
-      const PointEnclosure& X = pts[k].enclosure();
-      FI v(0);
-      for (int j = 0; j < 4; ++j) v += hh[j] * X[static_cast<std::size_t>(j)];
-      maybe = !(v.inf() > 0 || v.sup() < 0);
-    }
-    if (maybe && CGAL::is_zero(pts[k].linear(h))) out.push_back(k);
-  }
-  return out;
+/// The indices of the points where A x = 0 (ItemPoints::singular: a cone's apex, and hardly any other).
+std::vector<std::size_t> singular_points(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
+  std::vector<Vec4<Q>> rows;
+  for (int i = 0; i < 4; ++i) rows.emplace_back(A.row(i).transpose());
+  return common_zeros(pts, rows);
 }
 
 /// `local` without the points whose indices (sorted) are `skip`.
@@ -333,7 +308,7 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.generator_offsets = generator_offsets(out.points, L, out.size);
   out.generators = generator_points(out.points, out.singular, L, out.generator_offsets);
   const Vec4<Q> h = reference_second_plane(L);
-  if (L(3) != 0) out.crossing = plane_hits(out.points, h);  // (a parallel light's h is the plane at infinity)
+  if (L(3) != 0) out.crossing = common_zeros(out.points, {h});  // (a parallel light's h is the plane at infinity)
   out.plane = plane_points(out.points, Vec4<Q>(A * L), h);
   // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
   // the ball reaches it too, so that every point R is measured on is one the bound covers)
@@ -569,28 +544,21 @@ void integer_norm(RefineScratch& s, int i, const BigInt* v, std::size_t count) {
   enclose_sqrt(s.lo[i], s.hi[i], sum);
 }
 
-/// The largest curvatures of a quadric's spatial part K = (Q_xyz,xyz + its transpose) / 2 found upward
-/// and downward: u^T K u / |u|^2 over K's eigenvectors (from a floating decomposition: any direction will
-/// do, the values are exact) and the axes; 0 where none curves that way.
+/// The largest curvatures of a quadric's spatial part K (spatial_part) found upward and downward:
+/// u^T K u / |u|^2 over K's eigenvectors (eigen_directions: any direction will do, the values are
+/// exact) and the axes; 0 where none curves that way.
 struct Curvatures {
   Measure up = 0, down = 0;
 };
 Curvatures curvatures_of(const Mat4<Q>& Qm) {
-  const Mat3<Q> K = Mat3<Q>(Qm.topLeftCorner<3, 3>() + Qm.topLeftCorner<3, 3>().transpose()) / 2;
+  const Mat3<Q> K = spatial_part(Qm);
   std::vector<Vec3<Q>> dirs = {Vec3<Q>(1, 0, 0), Vec3<Q>(0, 1, 0), Vec3<Q>(0, 0, 1)};
   Measure big = 0;  // (scaled to entries near 1 in double, neither overflowing nor underflowing)
   for (Eigen::Index i = 0; i < 9; ++i) big = mmax(big, abs(to_measure(K(i))));
   if (!(big > 0)) return {};
-  const Eigen::Matrix3d Kd = K.unaryExpr([&](const Q& q) { return Measure(to_measure(q) / big).convert_to<double>(); });
-  if (Kd.allFinite()) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
-    if (eig.info() == Eigen::Success)
-      for (int c = 0; c < 3; ++c) {
-        Vec3<Q> u;
-        for (int i = 0; i < 3; ++i) u(i) = to_rational(eig.eigenvectors()(i, c));
-        if (!u.isZero()) dirs.push_back(u);
-      }
-  }
+  if (const auto eig = eigen_directions(K.unaryExpr([&](const Q& q) { return Measure(to_measure(q) / big).convert_to<double>(); })))
+    for (const Vec3<Q>& u : *eig)
+      if (!u.isZero()) dirs.push_back(u);
   Curvatures out;
   for (const Vec3<Q>& u : dirs) {
     const Q c = u.dot(K * u) / u.squaredNorm();
@@ -645,17 +613,6 @@ PointDistances point_distances(const RootPoint& p, const std::array<BigInt, 16>&
   const Measure kappa = root_sign(v.f0, v.f1, v.x.d) < 0 ? k.up : k.down;
   if (kappa > 0) out.second = sqrt(a.f / kappa) / a.w;
   return out;
-}
-
-/// |K|_F of a quadric's symmetrised spatial part: at least every curvature |u^T K u| / |u|^2.
-Measure spatial_frobenius(const Mat4<Q>& Qm) {
-  Measure s = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const Measure v = to_measure(Q((Qm(i, j) + Qm(j, i)) / 2));
-      s += v * v;
-    }
-  return sqrt(s);
 }
 
 /// The metric with each point's distance the smaller of its first- and second-order ones
@@ -758,7 +715,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
   // kappa is at most |K|_F: not so at almost every item's worst point, whose measure then stands as it is
   // (the filtered verifier's stage 3 measures one point at a time: a curvature per point cost its
   // reflection row 3.7x)
-  if (!m.singular && m.worst && Measure(4 * worst_g2) >= worst_f * spatial_frobenius(Qm)) return m;
+  if (!m.singular && m.worst && Measure(4 * worst_g2) >= worst_f * frobenius(spatial_part(Qm))) return m;
   return second_order(m, pts, Qm, Qi, DQ);
 }
 

@@ -807,24 +807,33 @@ Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) co
 
 Measure gradient_floor(const Mat4<Q>& A, const Ball& ball) { return GradientFloor(A, ball)(0, to_measure(ball.reach)); }
 
-std::optional<SaddleDirections> saddle_directions(const Mat4<Q>& ref) {
-  const Mat3<Q> K = Mat3<Q>(ref.topLeftCorner<3, 3>() + ref.topLeftCorner<3, 3>().transpose()) * unit_scale(ref);
-  // candidates from a floating eigen-decomposition (any direction will do: the signs are checked exactly)
-  const Eigen::Matrix3d Kd = K.unaryExpr([](const Q& q) { return to_measure(q).convert_to<double>(); });
+Mat3<Q> spatial_part(const Mat4<Q>& Qm) {
+  return Mat3<Q>(Qm.topLeftCorner<3, 3>() + Qm.topLeftCorner<3, 3>().transpose()) / 2;
+}
+
+std::optional<std::array<Vec3<Q>, 3>> eigen_directions(const Eigen::Matrix3d& Kd) {
   if (!Kd.allFinite()) return std::nullopt;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
   if (eig.info() != Eigen::Success) return std::nullopt;
-  SaddleDirections d;
-  for (int i = 0; i < 3; ++i) {
-    d.up(i) = to_rational(eig.eigenvectors()(i, 2));
-    d.down(i) = to_rational(eig.eigenvectors()(i, 0));
-  }
+  std::array<Vec3<Q>, 3> out;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 3; ++i) out[static_cast<std::size_t>(c)](i) = to_rational(eig.eigenvectors()(i, c));
+  return out;
+}
+
+std::optional<SaddleDirections> saddle_directions(const Mat4<Q>& ref) {
+  // candidates from a floating eigen-decomposition (any direction will do: the signs are checked exactly)
+  const Mat3<Q> K = spatial_part(ref);
+  const Mat3<Q> Ks = K * unit_scale(ref);
+  const auto dirs = eigen_directions(Ks.unaryExpr([](const Q& q) { return to_measure(q).convert_to<double>(); }));
+  if (!dirs) return std::nullopt;
+  const SaddleDirections d{(*dirs)[2], (*dirs)[0]};
   if (d.up.dot(K * d.up) > 0 && d.down.dot(K * d.down) < 0) return d;
   return std::nullopt;
 }
 
 Measure saddle_curvature(const Mat4<Q>& hat, const SaddleDirections& d) {
-  const Mat3<Q> H = Mat3<Q>(hat.topLeftCorner<3, 3>() + hat.topLeftCorner<3, 3>().transpose()) / 2;
+  const Mat3<Q> H = spatial_part(hat);
   const Q up = d.up.dot(H * d.up) / d.up.squaredNorm(), down = -d.down.dot(H * d.down) / d.down.squaredNorm();
   if (!(up > 0 && down > 0)) return 0;
   return to_measure(up < down ? up : down);

@@ -55,6 +55,7 @@
 #include <qverify/exact/root_point.hpp>
 #include <qverify/exact/scalars.hpp>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -233,6 +234,12 @@ Measure gradient_floor(const Mat4<Rational>& A, const Ball& ball);
 struct SaddleDirections {
   Vec3<Rational> up, down;
 };
+/// The symmetrised spatial part (Q_xyz,xyz + its transpose) / 2 of a quadric: x^T Q x's quadratic part.
+Mat3<Rational> spatial_part(const Mat4<Rational>& Q);
+/// Eigenvectors of a floating symmetric matrix (a spatial part, scaled by the caller into double's
+/// range), by increasing eigenvalue, made exact: directions to try, whose curvatures are then computed
+/// exactly (saddle_directions; measure_quadric's second-order distance). None where it fails.
+std::optional<std::array<Vec3<Rational>, 3>> eigen_directions(const Eigen::Matrix3d& K);
 std::optional<SaddleDirections> saddle_directions(const Mat4<Rational>& ref);
 
 /// min(up^T H up / |up|^2, -down^T H down / |down|^2) for H = hat_xyz,xyz (symmetrised), where both
