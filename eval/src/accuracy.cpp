@@ -293,7 +293,10 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Ve
 ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int n, std::uint64_t seed) {
   const Mat4<Q> A = canonical_quadric(A_given);
   const Vec4<Q> L = canonical_light(L_given);
-  const SampleReport s = sample_section(A, Vec4<Q>(A * L), n, seed);
+  const Vec4<Q> pi = A * L;
+  // (no section where pi has no normal: A L = 0, or pi the plane at infinity)
+  const Q base_reach = pi.head<3>().isZero() ? Q(1) : reach_length(section_base(A, pi), L);
+  const SampleReport s = sample_section(A, pi, n, seed, base_reach);
   ItemPoints out;
   out.points = s.points;
   out.exhausted = s.exhausted;
@@ -320,7 +323,8 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
 
 ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std::uint64_t seed) {
   const Mat4<Q> A = canonical_quadric(A_given);
-  const SampleReport s = sample_quadric(A, n, seed);
+  const Vec4<Q> base = quadric_base(A);
+  const SampleReport s = sample_quadric(A, n, seed, reach_length(base, Vec4<Q>(M * base)));
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;

@@ -4,7 +4,9 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <random>
+#include <stdexcept>
 #include <utility>
 
 namespace qverify {
@@ -111,6 +113,11 @@ class Lines {
 
 Vec4<Q> finite(const Vec3<Q>& v) { return Vec4<Q>(v(0), v(1), v(2), Q(1)); }
 
+Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs(v(2)))}); }
+
+/// v (non-zero) scaled to L-infinity length `reach`.
+Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach / max_abs(v))); }
+
 /// A rational point at A's core, to draw lines through: its centre; a point of its axis of centres
 /// (a cylinder); for a paraboloid (K y = -k has no solution) a point inside it on its axis, a focal
 /// length or so beyond the vertex. Not the origin: lines drawn from a world origin 10^6 away from a
@@ -180,7 +187,20 @@ Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi) {
   return finite(Vec3<Q>(y - (normal.dot(y) + pi(3)) / normal.squaredNorm() * normal));
 }
 
-SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed) {
+Vec4<Q> quadric_base(const Mat4<Q>& A) { return finite(core_point(A)); }
+
+Q reach_length(const Vec4<Q>& b, const Vec4<Q>& far) {
+  const Vec3<Q> base = b.head<3>() / b(3);
+  if (far(3) != 0) {
+    const Q d = max_abs(Vec3<Q>(far.head<3>() / far(3) - base));
+    if (d > 0) return d;
+  }
+  const Q o = max_abs(base);
+  return o > 0 ? o : Q(1);
+}
+
+SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed, const Q& reach) {
+  if (!(reach > 0)) throw std::invalid_argument("sample_section: reach must be positive");
   SampleReport rep;
   const Vec3<Q> normal = pi.head<3>();
   if (normal.isZero() || n <= 0) {
@@ -232,7 +252,8 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     // every line through it only touches): move the base point within the plane
     if (rep.attempts % 8 == 0 && hits == 0) {
       const Vec3<Q> shift = shift_normal.cross(draw.vec3());
-      b.head<3>() += shift;
+      if (shift.isZero()) continue;
+      b.head<3>() += scaled_to(shift, reach);
       lines.set_base(b);
     }
   }
@@ -240,11 +261,12 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   return rep;
 }
 
-SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed) {
+SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q& reach) {
+  if (!(reach > 0)) throw std::invalid_argument("sample_quadric: reach must be positive");
   SampleReport rep;
   if (n <= 0) return rep;
   Draw draw(seed);
-  Vec4<Q> b = finite(core_point(A));
+  Vec4<Q> b = quadric_base(A);
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
@@ -252,7 +274,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed) {
     const Vec3<Q> d = draw.vec3();
     lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {  // (e.g. from a cone's apex: every line only touches)
-      b.head<3>() += draw.vec3();
+      b.head<3>() += scaled_to(draw.vec3(), reach);
       lines.set_base(b);
     }
   }

@@ -360,9 +360,10 @@ std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::
 
 std::string report_repr(const CheckReport& r) {
   std::string verdict = r.skipped ? "skipped" : r.passed ? "passed" : "FAILED";
-  char buf[160];
-  std::snprintf(buf, sizeof buf, ", geometric_error=%.3g, object_size=%.6g, points=%zu", r.geometric_error, r.object_size,
-                r.points);
+  char buf[160] = "";
+  if (!r.skipped)
+    std::snprintf(buf, sizeof buf, ", geometric_error=%.3g, object_size=%.6g, points=%zu", r.geometric_error,
+                  r.object_size, r.points);
   std::string s = "<qverify.CheckReport " + r.kind + " " + verdict + (r.exact ? " (proof mode)" : "") + buf;
   if (!r.problems.empty()) {
     s += ", problems=[";
@@ -420,7 +421,10 @@ Attributes:
       .def_readonly("item_status", &CheckReport::item_status, "The candidate's status (or the exact one).")
       .def_readonly("accuracy", &CheckReport::accuracy, "The accuracy target.")
       .def_readonly("object_size", &CheckReport::object_size, "Largest distance of the points from A's centre.")
-      .def_readonly("geometric_error", &CheckReport::geometric_error, "Largest judged geometric error (inf: unbounded).")
+      .def_property_readonly("geometric_error", [](const CheckReport& r) -> py::object {
+        // (a skipped check judged nothing: no error, as verify's JSON writes none, rather than 0.0)
+        return r.skipped ? py::none() : py::object(py::float_(r.geometric_error));
+      }, "Largest judged geometric error (inf: unbounded; None when skipped: nothing was judged).")
       .def_readonly("points", &CheckReport::points, "Exact sample points used.")
       .def_readonly("exhausted", &CheckReport::exhausted, "Fewer real points than asked.")
       .def_property_readonly("checks", [](const CheckReport& r) {

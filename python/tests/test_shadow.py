@@ -220,6 +220,8 @@ def test_special_statuses(sphere):
     assert "singular-frame" in paper.flags and paper.fallback
     rep = qverify.check_shadow(sphere, [0.25, 0, 0, 1], P=inside.P)
     assert rep.skipped and rep.exact_status == "no-real-silhouette"
+    # nothing judged: no error (verify's JSON writes none), not a perfect 0.0
+    assert rep.geometric_error is None and not rep.passed and "skipped" in repr(rep)
 
 
 def test_a_wrong_status_fails(sphere, light):

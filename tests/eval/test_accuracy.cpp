@@ -179,3 +179,29 @@ TEST_CASE("the object size a bound divides by lies below the 80-digit size by mo
   CHECK(size_down(tenth) >= std::nextafter(0.1, 0.0));
   CHECK(size_down(Measure(0)) == 0.0);
 }
+
+TEST_CASE("a cone's terminator is sampled within the item's own length - its points move with the scene", "[accuracy][sampling]") {
+  // A cone lit from outside has a line pair through its apex for a terminator, and lines drawn
+  // through the apex only touch it: the sampler moves its base. It moved it by the primitive
+  // integers of the polar plane's normal, whatever the scene's units: a 3-unit cone lit from 17
+  // units away was sampled 1e7 to 1e9 units out, and every result within 0.01 units of the
+  // terminator passed (audit 28a F1). The steps are now the light's distance from the apex, so a
+  // scaled and translated scene gets its points scaled and translated, and their size with them.
+  const Vec3<Q> apex(1, -2, 3), axis(1, 1, 2);
+  const Vec3<Q> lamp(Q(13, 3), Q(-27, 7), Q(31, 2));
+  Measure size1 = 0;
+  for (const Q& s : {Q(1), Q(1, 1000000), Q(1000000), Q(3, 7)}) {
+    const Vec3<Q> t(Q(1000001, 3), -5, Q(2, 9));
+    const Mat4<Q> A = cone_quadric<Q>(Vec3<Q>(s * apex + t), axis, Q(1, 2));
+    const Vec3<Q> l = s * lamp + t;
+    const ItemPoints pts = terminator_points(A, Vec4<Q>(l(0), l(1), l(2), 1), 32, 5);
+    REQUIRE(pts.points.size() == 32);
+    CHECK(pts.singular.size() == 1);  // the apex
+    const Measure size = pts.size / to_measure(s);
+    if (s == 1) size1 = size;
+    CHECK(abs(size - size1) <= Measure("1e-60") * size1);
+    // within a few of the lamp's distances from the apex (about 15 here)
+    CHECK(size < 100 * 15);
+    CHECK(size > Measure(15) / 100);
+  }
+}

@@ -507,7 +507,7 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
     const Ball ball{Vec3<Q>(1, -2, 3), Q(5)};
     const Measure floor = gradient_floor(A, ball);
     CHECK(floor > 0);
-    const SampleReport s = sample_quadric(A, 64, 5);
+    const SampleReport s = sample_quadric(A, 64, 5, Q(1));
     int inside = 0;
     for (const RootPoint& x : s.points) {
       const auto c = x.coords();

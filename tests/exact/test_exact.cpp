@@ -83,7 +83,7 @@ TEST_CASE("exact samples lie exactly on the terminator and on the quadric - same
   const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(Q(3, 2), Q(-1, 2), 3), Vec3<Q>(1, 2, Q(3, 4)), Mat3<Q>::Identity());
   const Vec4<Q> L(1, -2, 9, 1);
   const Vec4<Q> pi = A * L;
-  const SampleReport s = sample_section(A, pi, 32, 5);
+  const SampleReport s = sample_section(A, pi, 32, 5, Q(1));
   REQUIRE(s.points.size() == 32);
   for (const RootPoint& x : s.points) {
     CHECK(CGAL::is_zero(x.form(A)));
@@ -92,11 +92,11 @@ TEST_CASE("exact samples lie exactly on the terminator and on the quadric - same
     CHECK(CGAL::is_zero(x.form(terminator_quadric<Q>(A, L))));
     CHECK(!CGAL::is_zero(x.coords()[3]));
   }
-  const SampleReport again = sample_section(A, pi, 32, 5);
+  const SampleReport again = sample_section(A, pi, 32, 5, Q(1));
   CHECK(again.points[7].p() == s.points[7].p());
-  const SampleReport other = sample_section(A, pi, 32, 6);
+  const SampleReport other = sample_section(A, pi, 32, 6, Q(1));
   CHECK(!(other.points[7].p() == s.points[7].p() && other.points[7].q() == s.points[7].q()));
-  const SampleReport onA = sample_quadric(A, 16, 3);
+  const SampleReport onA = sample_quadric(A, 16, 3, Q(1));
   REQUIRE(onA.points.size() == 16);
   const Mat4<Q> M = mirror_matrix<Q>(Vec4<Q>(1, 1, 0, -10));
   const Mat4<Q> B = mirror_image<Q>(A, M);
@@ -109,11 +109,11 @@ TEST_CASE("exact samples lie exactly on the terminator and on the quadric - same
 TEST_CASE("no real terminator: nothing is sampled - a single real point is found exactly", "[exact][sampling]") {
   const Mat4<Q> S = sphere_quadric<Q>(Vec3<Q>::Zero(), Q(1));
   const Vec4<Q> inside(0, Q(1, 2), 0, 1);
-  CHECK(sample_section(S, Vec4<Q>(S * inside), 8, 1).points.empty());
+  CHECK(sample_section(S, Vec4<Q>(S * inside), 8, 1, Q(1)).points.empty());
   // cone lit along its axis from infinity: the terminator is the apex alone
   const Mat4<Q> cone = cone_quadric<Q>(Vec3<Q>(2, 2, 0), Vec3<Q>(0, 0, 1), Q(1, 3));
   const Vec4<Q> sun(0, 0, 1, 0);
-  const SampleReport s = sample_section(cone, Vec4<Q>(cone * sun), 8, 1);
+  const SampleReport s = sample_section(cone, Vec4<Q>(cone * sun), 8, 1, Q(1));
   REQUIRE(s.points.size() == 1);
   CHECK(s.points[0].p() == Vec4<Q>(2, 2, 0, 1));
 }
@@ -282,7 +282,7 @@ TEST_CASE("samples of unbounded quadrics far from the origin are found at the ob
     return std::sqrt(d2) < within;
   };
   for (const Mat4<Q>& A : {cylinder, cone, paraboloid}) {
-    const SampleReport s = sample_quadric(A, 32, 7);
+    const SampleReport s = sample_quadric(A, 32, 7, Q(1));
     REQUIRE(s.points.size() == 32);
     for (const RootPoint& x : s.points) {
       CHECK(CGAL::is_zero(x.form(A)));
@@ -290,7 +290,7 @@ TEST_CASE("samples of unbounded quadrics far from the origin are found at the ob
     }
   }
   const Vec4<Q> lamp(far(0) + 3, far(1) + 1, 2, 1);
-  const SampleReport t = sample_section(cylinder, Vec4<Q>(cylinder * lamp), 32, 7);
+  const SampleReport t = sample_section(cylinder, Vec4<Q>(cylinder * lamp), 32, 7, Q(1));
   REQUIRE(t.points.size() == 32);
   for (const RootPoint& x : t.points) CHECK(near(x, 1e3));
 }

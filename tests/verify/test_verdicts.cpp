@@ -831,3 +831,39 @@ TEST_CASE("eval flags a result that is wrongly zero or wrongly not, which verify
       }
     }
 }
+
+TEST_CASE("a cone's polar plane moved by a small part of its size fails - at any scale", "[verdicts][accuracy]") {
+  // A cone lit from 17 units away, 58 degrees off its axis (outside it: the terminator is two lines): its terminator was sampled up to 1e7 units out (the sampler's
+  // steps from the apex were the primitive integers of the plane's normal), so a polar plane moved by
+  // 0.01 units passed as 1e-10 object sizes (audit 28a F1). The steps now scale with the lamp's
+  // distance, and so do the points (each scale draws its own: the seed is a function of the exact
+  // inputs); the object size stays within a few hundred lamp distances.
+  for (const Q k : {Q(1), Q(1, 100000)}) {
+    INFO("scale " << k);
+    const Mat4<Q> A = cone_quadric<Q>(Vec3<Q>(k * Q(1, 3), k * Q(2, 7), k * Q(-5, 11)), Vec3<Q>(Q(3, 13), Q(-2, 9), 1), Q(4, 7));
+    std::string m = "[";
+    for (int i = 0; i < 4; ++i) {
+      m += i ? ", [" : "[";
+      for (int j = 0; j < 4; ++j) m += (j ? ", \"" : "\"") + A(i, j).str() + "\"";
+      m += "]";
+    }
+    m += "]";
+    auto num = [&](const Q& x) { return "\"" + Q(k * x).str() + "\""; };
+    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "cone", "matrix": )" + m +
+                                     R"(}], "lights": [{"id": "lamp", "position": [)" + num(Q(31, 2)) + ", " +
+                                     num(Q(-27, 7)) + ", " + num(Q(13, 3)) + "]}]}",
+                                 "cone.json");
+    ResultSet rs = computed_results(sc, *parse_precision("exact"), Method::direct);
+    REQUIRE(rs.shadows.size() == 1);
+    CHECK(verify_results(sc, rs, VerifyOptions{}).checks[0].passed());
+    Vec4<Q>& pi = rs.shadows[0].polar;
+    const Q n = std::max({Q(abs(pi(0))), Q(abs(pi(1))), Q(abs(pi(2)))});
+    pi(3) += k * n / 100;  // the plane moved by 0.6e-2 to 1e-2 of the scene's units, times the scale
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    CHECK_FALSE(v.checks[0].passed());
+    REQUIRE(v.checks[0].report);
+    INFO("object size " << v.checks[0].report->object_size);
+    CHECK(v.checks[0].report->geometric_error > 1e-7);
+    CHECK(v.checks[0].report->object_size < 1e4 * k.convert_to<double>());  // (the lamp is 17 k away)
+  }
+}

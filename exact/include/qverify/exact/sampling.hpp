@@ -55,10 +55,29 @@ Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
 /// eval/accuracy.hpp, second_plane_error.)
 Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi);
 
-/// Up to n points of A ∩ {pi . x = 0}, all finite.
-SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed);
+/// The point sample_quadric draws its lines through, a function of A alone: A's centre, a point of
+/// its axis of centres, a point inside a paraboloid on its axis. Finite.
+Vec4<Rational> quadric_base(const Mat4<Rational>& A);
 
-/// Up to n finite points of A.
-SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed);
+/// The item's own length, for the samplers' `reach`: the L-infinity distance of the base point b
+/// (finite) from `far`, a finite point of the item (a point light; b's mirror image), where they
+/// differ; else (a parallel light, a mirror through b) b's L-infinity distance from the world
+/// origin, or 1 at the origin. A cone lit by a parallel light, or mirrored in a plane through its
+/// apex, has no length of its own: the placement gives the one it is measured by. (Where there
+/// is one, moving the scene or changing its units moves the points with it; its sampled
+/// points once lay 1e7 to 1e9 units from a 3-unit cone's apex, a distance from the primitive
+/// integers of the plane's normal, and every result within 0.01 of the terminator passed.)
+Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& far);
+
+/// Up to n points of A ∩ {pi . x = 0}, all finite. Where no line through the base point meets the
+/// section (the base is a cone's apex, which every line through it only touches) the base moves
+/// within the plane by steps of L-infinity length `reach` (> 0: reach_length), so that the lines
+/// the points are drawn on pass within a few such lengths of it.
+SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed,
+                            const Rational& reach);
+
+/// Up to n finite points of A; the base point (quadric_base) moves by steps of L-infinity length
+/// `reach` (> 0) where no line through it meets A.
+SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach);
 
 }  // namespace qverify
