@@ -564,7 +564,9 @@ StressReport run_stress(const StressOptions& opt) {
     remove_candidate_reproducers(failures_dir, opt.candidate->name);
     // who it was, without its function (which may hold another language's objects: they stay with the caller)
     const Candidate& c = *opt.candidate;
-    report.candidate = StressCandidateSummary{Candidate{c.name, c.description, c.timeout_seconds, {}}, opt.accuracy, {}, 0, 0, {}};
+    report.candidate.emplace();
+    report.candidate->candidate = Candidate{c.name, c.description, c.timeout_seconds, {}};
+    report.candidate->accuracy = opt.accuracy;
   }
   for (const StressFamily& fam : stress_families()) {
     if (!opt.families.empty() && std::find(opt.families.begin(), opt.families.end(), fam.name) == opt.families.end())

@@ -170,6 +170,16 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
   static constexpr int width = static_cast<int>(DoublePack::size());
   template <int N> static void load(const double* row0, Eigen::Index stride, Pack (&v)[N]) {
     prefetch_rows<N, width>(row0, stride);
+#if QVERIFY_PACK_512 || defined(__AVX__)
+    if constexpr (whole_pairs<N>()) {
+      if (stride == N) {  // the W rows are one contiguous block: whole vectors
+        Pack a[N / 2], b[N / 2];
+        load_pair_rows<N / 2>(row0, a, b);
+        for (int k = 0; k < N / 2; ++k) v[2 * k] = a[k], v[2 * k + 1] = b[k];
+        return;
+      }
+    }
+#endif
 #if defined(__SSE2__)
     if constexpr (N % 2 == 0) {
       if (aligned_rows(row0, stride)) {
@@ -185,6 +195,16 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
     for (int k = 0; k < N; ++k) v[k] = Pack([&](auto j) { return row0[j * stride + k]; });
   }
   template <int N> static void store(double* row0, Eigen::Index stride, const Pack (&v)[N]) {
+#if QVERIFY_PACK_512 || defined(__AVX__)
+    if constexpr (whole_pairs<N>()) {
+      if (stride == N && pack_aligned(row0)) {  // the W rows are one contiguous block: whole vectors
+        Pack a[N / 2], b[N / 2];
+        for (int k = 0; k < N / 2; ++k) a[k] = v[2 * k], b[k] = v[2 * k + 1];
+        stream_pair_rows<N / 2>(row0, a, b);
+        return;
+      }
+    }
+#endif
 #if defined(__SSE2__)
     if constexpr (N % 2 == 0) {
       if (aligned_rows(row0, stride)) {
@@ -218,6 +238,19 @@ template <> struct BatchLanes<double> : ScalarLanes<double> {
   }
 
  private:
+  /// Whether a block of W rows of N doubles is read and written as whole vectors by their pairs
+  /// (entries 2k and 2k + 1: load_pair_rows and stream_pair_rows, pack.hpp): the block's 16-byte
+  /// pairs are moved within whole registers by shuffles, and every store is a whole vector. (The
+  /// pieces of to_lane_pairs and stream_pieces, below, let clang 14 split each 32-byte store of
+  /// two pieces into two 16-byte ones; README, "Whole-vector rows with clang's kernel".) Rows of 10 with 512-bit packs are 5
+  /// pairs, which do not fill whole vectors of 4 pairs: the pieces take them.
+  template <int N> static constexpr bool whole_pairs() {
+#if QVERIFY_PACK_512 || defined(__AVX__)
+    return N % 2 == 0 && (N / 2 * 2) % pair_rows::kChunks == 0;
+#else
+    return false;
+#endif
+  }
   static bool aligned_rows(const double* row0, Eigen::Index stride) {
     return (reinterpret_cast<std::uintptr_t>(row0) & 15) == 0 && stride % 2 == 0;
   }

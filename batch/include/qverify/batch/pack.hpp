@@ -205,7 +205,9 @@ template <int Count> inline void stream_pieces(double* dst, const __m128d (&seq)
 
 #if QVERIFY_PACK_512 || defined(__AVX__)
 /// W contiguous rows of N pairs, row j holding (a_k[j], b_k[j]) for k < N (a block of CGAL
-/// intervals {-lo, hi}), to and from the lanes, by whole vectors of the pack's width, N even:
+/// intervals {-lo, hi}; or of doubles, entries 2k and 2k + 1 of a row), to and from the lanes, by
+/// whole vectors of the pack's width, 2 N a multiple of the pairs a vector holds (any N with
+/// 256-bit packs, N even with 512-bit ones):
 /// stream_pair_rows streams them non-temporally (dst as pack_aligned requires),
 /// load_pair_rows reads them from anywhere. For 8 lanes and one entry, to/from_lane_pairs with
 /// 16-byte loads and stores took about 22 instructions, mostly moves between registers and
@@ -265,7 +267,7 @@ static_assert(sizeof(Vec) == sizeof(DoublePack), "one vector a pack");
 
 template <int N> inline void stream_pair_rows(double* dst, const DoublePack (&a)[N], const DoublePack (&b)[N]) {
   using namespace pair_rows;
-  static_assert(N % 2 == 0, "whole vectors: an even number of pairs a row");
+  static_assert(2 * N % kChunks == 0, "whole vectors: W rows of N pairs");
   constexpr int V = kChunks, G = 2 * N / V;  // G vectors for each chunk index c
   Vec u[2][N];
   for (int k = 0; k < N; ++k) {
@@ -289,7 +291,7 @@ template <int N> inline void stream_pair_rows(double* dst, const DoublePack (&a)
 
 template <int N> inline void load_pair_rows(const double* src, DoublePack (&a)[N], DoublePack (&b)[N]) {
   using namespace pair_rows;
-  static_assert(N % 2 == 0, "whole vectors: an even number of pairs a row");
+  static_assert(2 * N % kChunks == 0, "whole vectors: W rows of N pairs");
   constexpr int V = kChunks, G = 2 * N / V;
   Vec u[2][N];
   for (int g = 0; g < G; ++g) {
