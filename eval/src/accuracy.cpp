@@ -290,6 +290,19 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Ve
   return seed * 1000003ull + static_cast<std::uint64_t>(kind) * 7919ull + f.h;
 }
 
+namespace {
+/// The points an item's size is measured on where its own sample (fewer than the default count:
+/// `--samples 1`) has none, being one point: the default count with a seed of its own, as
+/// single_point takes, and its own points (which the ball must cover), so that a cylinder's size
+/// does not fall to 0 (and every relative error, every bound, to infinity) with the number of
+/// samples; a terminator that is one point keeps 0.
+std::vector<RootPoint> unsized_sample(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<RootPoint>& own) {
+  std::vector<RootPoint> more = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L)).points;
+  more.insert(more.end(), own.begin(), own.end());
+  return more;
+}
+}  // namespace
+
 ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int n, std::uint64_t seed) {
   const Mat4<Q> A = canonical_quadric(A_given);
   const Vec4<Q> L = canonical_light(L_given);
@@ -302,6 +315,8 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(out.points, A);
+  if (out.size == 0 && !out.points.empty() && n < kDefaultSamples)
+    std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
     if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u), Vec3<Q>(centre / u)))
@@ -329,6 +344,12 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(s.points, A);
+  if (out.size == 0 && !s.points.empty() && n < kDefaultSamples) {  // (as in terminator_points)
+    std::vector<RootPoint> more =
+        sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, base), reach_length(base, Vec4<Q>(M * base))).points;
+    more.insert(more.end(), s.points.begin(), s.points.end());
+    std::tie(out.size, centre) = object_size(more, A);
+  }
   if (!s.points.empty()) {
     const Q u = length_unit(out.size);
     if (const auto whole = ellipsoid_size(object_in_units(A, u))) out.size = std::max(out.size, Measure(Measure(*whole) * to_measure(u)));

@@ -205,3 +205,23 @@ TEST_CASE("a cone's terminator is sampled within the item's own length - its poi
     CHECK(size > Measure(15) / 100);
   }
 }
+
+TEST_CASE("an item's size does not fall to 0 with one sample - the default sample sizes it", "[accuracy][sampling]") {
+  // One point of a cylinder's terminator (two lines) or of a cylinder has no extent of its own:
+  // the size was 0, and every relative error and certified bound infinite (verify --samples 1,
+  // audit 28a F7). A terminator or quadric that is one point keeps 0.
+  const Mat4<Q> cyl = cylinder_quadric<Q>(Vec3<Q>(1, 2, 3), Vec3<Q>(0, 1, 2), Q(3, 2));
+  const Vec4<Q> lamp(9, -4, 5, 1);
+  const ItemPoints one = terminator_points(cyl, lamp, 1, 7);
+  REQUIRE(one.points.size() == 1);
+  CHECK(one.size > 0);
+  CHECK(one.size <= terminator_points(cyl, lamp, kDefaultSamples, item_seed(1, 1, cyl, lamp)).size * 2);
+  const Mat4<Q> M = mirror_matrix<Q>(Vec4<Q>(0, 0, 1, -10));
+  const ItemPoints mirrored = reflected_points(cyl, M, 1, 7);
+  REQUIRE(mirrored.points.size() == 1);
+  CHECK(mirrored.size > 0);
+  // a cone lit from inside: its terminator is its apex alone, of size 0 at any count
+  const Mat4<Q> cone = cone_quadric<Q>(Vec3<Q>(1, 2, 3), Vec3<Q>(0, 0, 1), Q(1, 2));
+  const ItemPoints apex = terminator_points(cone, Vec4<Q>(1, 2, 10, 1), 1, 7);
+  CHECK(apex.size == 0);
+}

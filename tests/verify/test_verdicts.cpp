@@ -577,6 +577,36 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
   }
 }
 
+TEST_CASE("a far quadric without a centre gets a frame on its axis, and verify passes it", "[verdicts][frames]") {
+  // the cylinder (x - a)^2 + (y + 2)^2 = 1/4 and the paraboloid z - 1 = (x - a)^2 + (y + 2)^2,
+  // a = 3e7 + 1/2, given as a matrix and as coefficients: no centre, and they were computed in
+  // world coordinates (audit 28a F4)
+  const std::string cylinder = R"({"id": "pipe", "matrix": [[1, 0, 0, "-60000001/2"], [0, 1, 0, 2], [0, 0, 0, 0],
+      ["-60000001/2", 2, 0, "900000030000004"]]})";
+  const std::string paraboloid = R"({"id": "bowl", "coefficients": {"xx": 1, "yy": 1, "x": -60000001, "y": 4,
+      "z": -1, "c": "3600000120000021/4"}})";
+  for (const std::string& q : {cylinder, paraboloid}) {
+    INFO(q);
+    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [)" + q +
+                                     R"(], "lights": [{"id": "lamp", "position": [30000003, 2, 5]}],
+                                     "mirrors": [{"id": "m", "plane": [1, 0, 0, -30000010]}]})",
+                                 "far.json");
+    const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+    REQUIRE(rs.shadows.size() == 1);
+    REQUIRE(rs.shadows[0].origin);
+    CHECK(abs(Q(rs.shadows[0].origin->x() - Q(60000001, 2))) < 1);  // on the axis
+    CHECK(abs(Q(rs.shadows[0].origin->y() + 2)) < 1);
+    REQUIRE(rs.reflections.size() == 1);
+    CHECK(rs.reflections[0].origin);
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    CHECK(v.failed == 0);
+    for (const VerifyCheck& c : v.checks) {
+      REQUIRE(c.report);
+      CHECK(c.report->geometric_error < 1e-12);
+    }
+  }
+}
+
 TEST_CASE("a terminator of one point: the results are judged as matrices, by verify and eval alike",
           "[verdicts][verify][accuracy]") {
   // A cone lit along its axis (the terminator is the apex) and a light on a sphere at a point no double

@@ -8,6 +8,7 @@
 #include <qverify/exact/statuses.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/exact/precision.hpp>
+#include <qverify/exact/sampling.hpp>
 #include <qverify/eval/number.hpp>
 #include <qverify/eval/frames.hpp>
 #include <qverify/scene/scene.hpp>
@@ -181,6 +182,7 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
   using Q = Rational;
   std::vector<Mat4<Q>> A_exact;
   std::vector<std::optional<Vec3<Q>>> origin, center;
+  std::vector<Vec3<Q>> core;  // the point each frame is about: the centre, else quadric_base
   std::vector<Q> size2;
   for (const QuadricSpec& q : sc.quadrics) {
     std::vector<Q> params;
@@ -189,9 +191,14 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     A_exact.push_back(A);
     const auto c = natural_center(q, A);
     center.push_back(c);
-    const Q s2 = c ? size_squared(quadric_to_local(A, *c)) : Q(1);
+    // Without a centre (a cylinder or a paraboloid given as a matrix) the frame is about a point of
+    // A's core, quadric_base: a point of its axis, or inside a paraboloid on its axis. (Such a
+    // quadric 1e6 from the world origin was computed there, and lost what a centred one kept.)
+    core.push_back(c ? *c : Vec3<Q>(quadric_base(A).template head<3>()));
+    const Q s2 = size_squared(quadric_to_local(A, core.back()));
     size2.push_back(s2);
-    origin.push_back(c && wants_local_frame(*c, s2) ? std::optional<Vec3<Q>>(rounded_to_double(*c)) : std::nullopt);
+    origin.push_back(wants_local_frame(core.back(), s2) ? std::optional<Vec3<Q>>(rounded_to_double(core.back()))
+                                                        : std::nullopt);
   }
   std::vector<Vec4<Q>> L_exact, planes_exact;
   for (const LightSpec& l : sc.lights)
@@ -225,9 +232,9 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     const Mat4<Q> M = mirror_matrix<Q>(planes_exact[p.other]);  // exact, rational in n and d
     const Vec3<Q> oA = origin[p.quadric] ? *origin[p.quadric] : Vec3<Q>::Zero();
     std::optional<Vec3<Q>> oB;
-    if (center[p.quadric]) {
-      const Vec4<Q> c(center[p.quadric]->x(), center[p.quadric]->y(), center[p.quadric]->z(), Q(1));
-      const Vec3<Q> mc = (M * c).template head<3>();
+    {  // about the image of the point A's frame is about
+      const Vec3<Q>& k = core[p.quadric];
+      const Vec3<Q> mc = (M * Vec4<Q>(k.x(), k.y(), k.z(), Q(1))).template head<3>();
       if (wants_local_frame(mc, size2[p.quadric])) oB = rounded_to_double(mc);
     }
     const Vec3<Q> ob = oB ? *oB : Vec3<Q>::Zero();
