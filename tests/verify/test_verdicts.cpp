@@ -554,6 +554,17 @@ TEST_CASE("verify: a far-away candidate computed naively in world coordinates fa
   CHECK(verify_results(sc, computed_results(sc, *parse_precision("double"), Method::direct), {}).failed == 0);
 }
 
+namespace {
+/// A scene of the quadric q (its JSON object) 3e7 from the world origin, a lamp beside it and a mirror
+/// beyond it.
+Scene far_scene(const std::string& q) {
+  return parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [)" + q +
+                         R"(], "lights": [{"id": "lamp", "position": [30000003, 2, 5]}],
+                         "mirrors": [{"id": "m", "plane": [1, 0, 0, -30000010]}]})",
+                     "far.json");
+}
+}  // namespace
+
 TEST_CASE("a far object given as a matrix or as coefficients gets its local frame, and verify passes it",
           "[verdicts][frames]") {
   // the sphere |x - c|^2 = 1/4 with c = (3e7 + 1/2, -2, 1), written as a matrix and as coefficients
@@ -563,10 +574,7 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
       "y": 4, "z": -2, "c": "900000030000005"}})";
   for (const std::string& q : {matrix, coefficients}) {
     INFO(q);
-    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [)" + q +
-                                     R"(], "lights": [{"id": "lamp", "position": [30000003, 2, 5]}],
-                                     "mirrors": [{"id": "m", "plane": [1, 0, 0, -30000010]}]})",
-                                 "far.json");
+    const Scene sc = far_scene(q);
     const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
     REQUIRE(rs.shadows[0].origin);
     CHECK(*rs.shadows[0].origin == Vec3<Q>(Q(60000001, 2), -2, 1));  // the centre, not its mirror image
@@ -587,10 +595,7 @@ TEST_CASE("a far quadric without a centre gets a frame on its axis, and verify p
       "z": -1, "c": "3600000120000021/4"}})";
   for (const std::string& q : {cylinder, paraboloid}) {
     INFO(q);
-    const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "far", "quadrics": [)" + q +
-                                     R"(], "lights": [{"id": "lamp", "position": [30000003, 2, 5]}],
-                                     "mirrors": [{"id": "m", "plane": [1, 0, 0, -30000010]}]})",
-                                 "far.json");
+    const Scene sc = far_scene(q);
     const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
     REQUIRE(rs.shadows.size() == 1);
     REQUIRE(rs.shadows[0].origin);
