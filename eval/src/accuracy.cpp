@@ -339,14 +339,16 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
 ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std::uint64_t seed) {
   const Mat4<Q> A = canonical_quadric(A_given);
   const Vec4<Q> base = quadric_base(A);
-  const SampleReport s = sample_quadric(A, n, seed, reach_length(base, Vec4<Q>(M * base)));
+  // (a quadric whose base no line meets, a cone's apex, has no length of its own, and the mirror's
+  // distance is not one of A's: unit steps: sampling.hpp, reach_length, says why)
+  const SampleReport s = sample_quadric(A, n, seed, Q(1));
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(s.points, A);
   if (out.size == 0 && !s.points.empty() && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
-        sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, base), reach_length(base, Vec4<Q>(M * base))).points;
+        sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, base), Q(1)).points;
     more.insert(more.end(), s.points.begin(), s.points.end());
     std::tie(out.size, centre) = object_size(more, A);
   }

@@ -140,6 +140,19 @@ Vec3<Q> core_point(const Mat4<Q>& A) {
   return Vec3<Q>(vertex + side / big * core.kn);
 }
 
+/// Once the base has stepped off a cone's apex, lines through it meet the cone (or its section, a
+/// line pair) as far out as they are close to parallel to a generator: of 64 chords of a cone's
+/// terminator the farthest lay about 270 steps out, and the object size with it, which divided every
+/// error by as much. Points out[from..] farther than kReachCap steps from the base b (L-infinity,
+/// judged on their double approximations: a sampling choice, not a measure) are dropped.
+constexpr int kReachCap = 16;
+void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, const Q& reach) {
+  const double cap = kReachCap * reach.convert_to<double>();
+  const Vec3<double> base(b(0).convert_to<double>(), b(1).convert_to<double>(), b(2).convert_to<double>());
+  const auto far = [&](const RootPoint& x) { return !((x.approx_cartesian() - base).cwiseAbs().maxCoeff() <= cap); };
+  out.erase(std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(from), out.end(), far), out.end());
+}
+
 }  // namespace
 
 QuadricCore quadric_core(const Mat4<Q>& A) {
@@ -189,14 +202,12 @@ Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi) {
 
 Vec4<Q> quadric_base(const Mat4<Q>& A) { return finite(core_point(A)); }
 
-Q reach_length(const Vec4<Q>& b, const Vec4<Q>& far) {
-  const Vec3<Q> base = b.head<3>() / b(3);
-  if (far(3) != 0) {
-    const Q d = max_abs(Vec3<Q>(far.head<3>() / far(3) - base));
+Q reach_length(const Vec4<Q>& b, const Vec4<Q>& light) {
+  if (light(3) != 0) {
+    const Q d = max_abs(Vec3<Q>(light.head<3>() / light(3) - b.head<3>() / b(3)));
     if (d > 0) return d;
   }
-  const Q o = max_abs(base);
-  return o > 0 ? o : Q(1);
+  return Q(1);
 }
 
 SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed, const Q& reach) {
@@ -243,11 +254,14 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
     return Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2]));
   }();
+  bool stepped = false;
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = normal.cross(draw.vec3());  // a direction inside the plane
     if (d.isZero()) continue;
+    const std::size_t had = rep.points.size();
     hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
+    if (stepped) keep_near(rep.points, had, b, reach);
     // no line has met the section yet (the base may be its singular point, a cone's apex, which
     // every line through it only touches): move the base point within the plane
     if (rep.attempts % 8 == 0 && hits == 0) {
@@ -255,6 +269,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
       if (shift.isZero()) continue;
       b.head<3>() += scaled_to(shift, reach);
       lines.set_base(b);
+      stepped = true;
     }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;
@@ -269,13 +284,17 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   Vec4<Q> b = quadric_base(A);
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
+  bool stepped = false;
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = draw.vec3();
+    const std::size_t had = rep.points.size();
     lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+    if (stepped) keep_near(rep.points, had, b, reach);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {  // (e.g. from a cone's apex: every line only touches)
       b.head<3>() += scaled_to(draw.vec3(), reach);
       lines.set_base(b);
+      stepped = true;
     }
   }
   rep.exhausted = static_cast<int>(rep.points.size()) < n;

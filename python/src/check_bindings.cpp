@@ -395,7 +395,7 @@ Attributes:
         exact one.
     geometric_error: the largest over the judged quadrics (distance of the
         exact points from the result over the object size; inf where a
-        point lies off a result at a vanishing gradient).
+        point lies off a result at a vanishing gradient; None when skipped).
     object_size: the largest distance of the points from A's centre.
     points: exact sample points used.
     checks: one dict per checked quadric: name (on_P, on_polar_plane, on_R,

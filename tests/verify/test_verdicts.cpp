@@ -876,19 +876,14 @@ TEST_CASE("a cone's polar plane moved by a small part of its size fails - at any
   for (const Q k : {Q(1), Q(1, 100000)}) {
     INFO("scale " << k);
     const Mat4<Q> A = cone_quadric<Q>(Vec3<Q>(k * Q(1, 3), k * Q(2, 7), k * Q(-5, 11)), Vec3<Q>(Q(3, 13), Q(-2, 9), 1), Q(4, 7));
-    std::string m = "[";
-    for (int i = 0; i < 4; ++i) {
-      m += i ? ", [" : "[";
-      for (int j = 0; j < 4; ++j) m += (j ? ", \"" : "\"") + A(i, j).str() + "\"";
-      m += "]";
-    }
-    m += "]";
-    auto num = [&](const Q& x) { return "\"" + Q(k * x).str() + "\""; };
+    const std::string m = matrix_text(A);
+    auto num = [&](const Q& x) { return text(Q(k * x)); };
     const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "cone", "matrix": )" + m +
                                      R"(}], "lights": [{"id": "lamp", "position": [)" + num(Q(31, 2)) + ", " +
                                      num(Q(-27, 7)) + ", " + num(Q(13, 3)) + "]}]}",
                                  "cone.json");
     ResultSet rs = computed_results(sc, *parse_precision("exact"), Method::direct);
+    rs.precision = *parse_precision("double");  // judged against the accuracy target, not in proof mode
     REQUIRE(rs.shadows.size() == 1);
     CHECK(verify_results(sc, rs, VerifyOptions{}).checks[0].passed());
     Vec4<Q>& pi = rs.shadows[0].polar;
@@ -900,5 +895,49 @@ TEST_CASE("a cone's polar plane moved by a small part of its size fails - at any
     INFO("object size " << v.checks[0].report->object_size);
     CHECK(v.checks[0].report->geometric_error > 1e-7);
     CHECK(v.checks[0].report->object_size < 1e4 * k.convert_to<double>());  // (the lamp is 17 k away)
+  }
+}
+
+TEST_CASE("a cone with no length of its own is sampled by unit steps - its placement and the mirror's excuse no error",
+          "[verdicts][accuracy]") {
+  // Under a parallel light, or in a mirror, a cone has no length: its steps were its apex's distance
+  // from the origin (a polar plane moved by 0.01 units passed with the apex at 1e6) or the mirror's
+  // distance (B moved by 0.02 units passed with the mirror at 1e7), the object size 4e7 to 2e9.
+  for (const Q& far : {Q(0), Q(1000000)}) {
+    INFO("apex offset " << far);
+    const Mat4<Q> A = cone_quadric<Q>(Vec3<Q>(Q(1, 3) + far, Q(2, 7), Q(-5, 11)), Vec3<Q>(Q(3, 13), Q(-2, 9), 1), Q(4, 7));
+    for (const bool mirror : {false, true}) {
+      INFO((mirror ? "mirror" : "parallel light"));
+      const Vec4<Q> plane(1, 0, 0, -(Q(1, 3) + far + (mirror ? Q(10000000) : Q(5))));
+      const Scene sc = parse_scene(
+          R"({"format": "qverify-scene/1", "quadrics": [{"id": "cone", "matrix": )" + matrix_text(A) +
+              R"(}], "lights": [{"id": "sun", "direction": [31, -8, 4]}], "mirrors": [{"id": "m", "plane": [)" +
+              text(plane(0)) + ", " + text(plane(1)) + ", " + text(plane(2)) + ", " + text(plane(3)) + "]}]}",
+          "cone.json");
+      ResultSet rs = computed_results(sc, *parse_precision("exact"), Method::direct);
+      rs.precision = *parse_precision("double");  // judged against the accuracy target, not in proof mode
+      REQUIRE(rs.shadows.size() == 1);
+      REQUIRE(rs.reflections.size() == 1);
+      CHECK(verify_results(sc, rs, VerifyOptions{}).failed == 0);
+      std::size_t k = 0;
+      if (mirror) {  // B moved by 0.02 units along x
+        Mat4<Q>& B = rs.reflections[0].B;
+        const Mat4<Q> T = translation<Q>(Vec3<Q>(Q(-1, 50), 0, 0));
+        B = T.transpose() * B * T;
+        k = 1;
+      } else {  // the polar plane moved by 0.01 of its normal's largest entry
+        Vec4<Q>& pi = rs.shadows[0].polar;
+        pi(3) += std::max({Q(abs(pi(0))), Q(abs(pi(1))), Q(abs(pi(2)))}) / 100;
+      }
+      const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+      REQUIRE(v.checks.size() == 2);
+      const VerifyCheck& c = v.checks[k];
+      CHECK(c.kind == (mirror ? "reflection" : "shadow"));
+      CHECK_FALSE(c.passed());
+      REQUIRE(c.report);
+      INFO("object size " << c.report->object_size);
+      CHECK(c.report->geometric_error > 1e-6);
+      CHECK(c.report->object_size < 1e4);  // unit steps from the apex: within a few hundred units
+    }
   }
 }

@@ -1,3 +1,4 @@
+#include <qverify/exact/sampling.hpp>
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/check.hpp>
 #include <qverify/eval/frames.hpp>
@@ -415,8 +416,9 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   Measure kappa = 1;
   if (!exact) {
     // Conditioning of B in its own frame: B_local = G^T A_c G with A_c the quadric in the frame of its
-    // own centre c (when it has one) and G = T_c^-1 M T_o mapping the image frame into it.
-    const Vec3<Q> cc = center ? *center : Vec3<Q>::Zero();
+    // own centre c (else the point of its core eval's frame is about, quadric_base) and
+    // G = T_c^-1 M T_o mapping the image frame into it.
+    const Vec3<Q> cc = center ? *center : Vec3<Q>(quadric_base(Aw).head<3>());
     const Mat4<Q> G = translation<Q>(Vec3<Q>(-cc)) * Mw * translation<Q>(o);
     const Mat4<Q> absG = abs_matrix(G);
     const Measure nB = frobenius(B_ref);

@@ -194,7 +194,7 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     // Without a centre (a cylinder or a paraboloid given as a matrix) the frame is about a point of
     // A's core, quadric_base: a point of its axis, or inside a paraboloid on its axis. (Such a
     // quadric 1e6 from the world origin was computed there, and lost what a centred one kept.)
-    core.push_back(c ? *c : Vec3<Q>(quadric_base(A).template head<3>()));
+    core.push_back(c ? *c : Vec3<Q>(quadric_base(canonical_quadric(A)).template head<3>()));
     const Q s2 = size_squared(quadric_to_local(A, core.back()));
     size2.push_back(s2);
     origin.push_back(wants_local_frame(core.back(), s2) ? std::optional<Vec3<Q>>(rounded_to_double(core.back()))

@@ -59,25 +59,31 @@ Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi);
 /// its axis of centres, a point inside a paraboloid on its axis. Finite.
 Vec4<Rational> quadric_base(const Mat4<Rational>& A);
 
-/// The item's own length, for the samplers' `reach`: the L-infinity distance of the base point b
-/// (finite) from `far`, a finite point of the item (a point light; b's mirror image), where they
-/// differ; else (a parallel light, a mirror through b) b's L-infinity distance from the world
-/// origin, or 1 at the origin. A cone lit by a parallel light, or mirrored in a plane through its
-/// apex, has no length of its own: the placement gives the one it is measured by. (Where there
-/// is one, moving the scene or changing its units moves the points with it; its sampled
-/// points once lay 1e7 to 1e9 units from a 3-unit cone's apex, a distance from the primitive
-/// integers of the plane's normal, and every result within 0.01 of the terminator passed.)
-Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& far);
+/// The length the samplers step by (`reach`) where no line through their base point meets the
+/// geometry (the base is a cone's apex, which every line through it only touches): for a point
+/// light (w != 0) the L-infinity distance of the base b (finite) from it, a length of the item
+/// (moving the scene or changing its units moves the points with it); else 1, in the scene's units.
+/// A cone under a parallel light, or a cone's reflection (the mirror's distance is not a length of
+/// A), has no length of its own: it is sampled by unit steps from its apex, so that its object
+/// size, and the relative errors, do not move with its placement (a step of its apex's distance
+/// from the origin passed a polar plane moved by 0.01 units at apex 1e6, failed it at the origin)
+/// nor with the mirror's (a reflection stepped by the mirror's distance passed B moved by 0.02
+/// units with the mirror at 1e7). Its steps once came from the primitive integers of the plane's
+/// normal, whatever the units: points 1e7 to 1e9 units from a 3-unit cone's apex, where every
+/// result within 0.01 of the terminator passed.
+Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& light);
 
 /// Up to n points of A ∩ {pi . x = 0}, all finite. Where no line through the base point meets the
 /// section (the base is a cone's apex, which every line through it only touches) the base moves
-/// within the plane by steps of L-infinity length `reach` (> 0: reach_length), so that the lines
-/// the points are drawn on pass within a few such lengths of it.
+/// within the plane by steps of L-infinity length `reach` (> 0: reach_length), and the points kept
+/// lie within 16 such lengths of the moved base (lines nearly parallel to a generator meet it
+/// far out: the object size would be theirs).
 SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed,
                             const Rational& reach);
 
 /// Up to n finite points of A; the base point (quadric_base) moves by steps of L-infinity length
-/// `reach` (> 0) where no line through it meets A.
+/// `reach` (> 0; eval takes 1: reach_length) where no line through it meets A, and the points
+/// kept then lie within 16 such lengths of the moved base.
 SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach);
 
 }  // namespace qverify
