@@ -292,7 +292,8 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Ve
 
 namespace {
 /// The points an item's size is measured on where its own sample (fewer than the default count:
-/// `--samples 1`) has none, being one point: the default count with a seed of its own, as
+/// `--samples 1`) has none, being one point, and was not exhausted (a terminator of one point,
+/// a cone lit from inside, exhausts any larger count, and its default sample spends 3250 attempts): the default count with a seed of its own, as
 /// single_point takes, and its own points (which the ball must cover), so that a cylinder's size
 /// does not fall to 0 (and every relative error, every bound, to infinity) with the number of
 /// samples; a terminator that is one point keeps 0.
@@ -307,15 +308,20 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   const Mat4<Q> A = canonical_quadric(A_given);
   const Vec4<Q> L = canonical_light(L_given);
   const Vec4<Q> pi = A * L;
-  // (no section where pi has no normal: A L = 0, or pi the plane at infinity)
-  const Q base_reach = pi.head<3>().isZero() ? Q(1) : reach_length(section_base(A, pi), L);
+  // (no section where pi has no normal: A L = 0, or pi the plane at infinity) The step is rounded down
+  // to a power of two: the exact lamp distance has the base's long denominators, and a cone lit from
+  // inside, whose sampler spends its every attempt stepping, took seconds on them (a fuzz seed's 1e89
+  // apex); a power of two keeps the steps short, and the points still scale with the scene by powers
+  // of two exactly, by other factors within 2.
+  const Q base_reach =
+      pi.head<3>().isZero() ? Q(1) : exact_pow2(floor_log2(reach_length(section_base(A, pi), L)));
   const SampleReport s = sample_section(A, pi, n, seed, base_reach);
   ItemPoints out;
   out.points = s.points;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(out.points, A);
-  if (out.size == 0 && !out.points.empty() && n < kDefaultSamples)
+  if (out.size == 0 && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
     std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
@@ -346,7 +352,7 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(s.points, A);
-  if (out.size == 0 && !s.points.empty() && n < kDefaultSamples) {  // (as in terminator_points)
+  if (out.size == 0 && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
         sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, base), Q(1)).points;
     more.insert(more.end(), s.points.begin(), s.points.end());

@@ -243,6 +243,14 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
       }
     }
   }
+  // A section of rank 2 is a pair of lines through its singular point: adj(K) = l1 l2 v v^T (v the
+  // kernel, l1 l2 the product of the other eigenvalues), so a positive trace is a pair of complex
+  // lines, whose one real point is that singular point, found above (a cone lit from inside: its
+  // terminator is its apex). No line meets the section elsewhere: every attempt would be spent.
+  if (K.determinant() == 0 && adj.trace() > 0) {
+    rep.exhausted = static_cast<int>(rep.points.size()) < n;
+    return rep;
+  }
   Vec4<Q> b = section_base(A, pi);
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
