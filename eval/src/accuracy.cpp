@@ -117,7 +117,9 @@ Mat4<Q> map_in_units(const Mat4<Q>& M, const Q& u) {
   Dinv.topLeftCorner<3, 3>() /= u;
   return Dinv * M * D;
 }
-Ball ball_in_units(const Ball& b, const Q& u) { return {Vec3<Q>(b.centre / u), Q(b.reach / u)}; }
+Ball ball_in_units(const Ball& b, const Q& u) {
+  return {Vec3<Q>(b.centre / u), Q(b.reach / u), b.half ? std::optional<Vec3<Q>>(Vec3<Q>(*b.half / u)) : std::nullopt};
+}
 std::optional<Vec3<Q>> origin_in_units(const std::optional<Vec3<Q>>& o, const Q& u) {
   return o ? std::optional<Vec3<Q>>(Vec3<Q>(*o / u)) : std::nullopt;
 }
@@ -128,7 +130,7 @@ double size_in_units(double size, const Q& u) { return size_down(Measure(Measure
 /// (at least) the size and a margin (2^-64 of it) for the last of its 80 digits.
 Ball counted_ball(const Vec3<Q>& centre, const Measure& reach) {
   const Q s = exact_measure(reach);
-  return {centre, Q(s + s / Q(BigInt(1) << 64))};
+  return {centre, Q(s + s / Q(BigInt(1) << 64)), std::nullopt};
 }
 
 /// The offsets rho of the generator points (ItemPoints::generator_offsets): x + rho d,
@@ -1074,7 +1076,8 @@ ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_worl
   // for B in the reflected ball
   floor_ = GradientFloor(A, ball);
   floored_ = floor_(0, to_measure(ball.reach)) > 0 || saddle_directions(B_ref_).has_value();
-  ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(ball.centre(0), ball.centre(1), ball.centre(2), Q(1))).head<3>()), ball.reach};
+  // (the mirror turns the axes: a box, where the ball had one, is not carried)
+  ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(ball.centre(0), ball.centre(1), ball.centre(2), Q(1))).head<3>()), ball.reach, std::nullopt};
 }
 
 CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin_world, const Mat4<Q>& B_world,

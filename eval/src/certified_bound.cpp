@@ -660,10 +660,25 @@ std::optional<ShadowGeometry> shadow_geometry(const Mat4<Q>& A, const Vec4<Q>& L
   disc->filled = true;
   g.polar_disc = disc;
   // where h meets the terminator, R is bounded in a ball about the terminator (ShadowBounds): its
-  // expansion point and the largest offset from above, which holds for the disc (its convex hull) too
+  // expansion point and the largest offset from above, which holds for the disc (its convex hull) too;
+  // and in the box of the ellipse y0 + B R u, |u| <= 1, whose half-width along axis i is |y0_i| + |(B R)_i|
   if (!(g.R_floor > 0)) {
     const double reach = offset_range(t).second;
-    if (std::isfinite(reach)) g.R_ball = Ball{t.e, to_rational(reach)};
+    if (std::isfinite(reach)) {
+      Ball ball{t.e, to_rational(reach), std::nullopt};
+      const std::array<double, 3> half = upward([&] {
+        std::array<double, 3> out{};
+        for (int i = 0; i < 3; ++i) {
+          IA row(0);
+          for (int j = 0; j < t.k; ++j) row += CGAL::square(t.BR[i][j]);
+          out[static_cast<std::size_t>(i)] = (CGAL::abs(t.y0_box[i]) + CGAL::sqrt(row)).sup();
+        }
+        return out;
+      });
+      if (std::isfinite(half[0]) && std::isfinite(half[1]) && std::isfinite(half[2]))
+        ball.half = Vec3<Q>(to_rational(half[0]), to_rational(half[1]), to_rational(half[2]));
+      g.R_ball = std::move(ball);
+    }
   }
   return cone;
 }
@@ -736,7 +751,11 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
   return branch_and_bound(*g.surface, {&bb}, size, target);
 }
 
-Ball moved(const Ball& b, const Q& a, const Vec3<Q>& t) { return {Vec3<Q>(a * b.centre + t), Q(abs(a) * b.reach)}; }
+Ball moved(const Ball& b, const Q& a, const Vec3<Q>& t) {
+  Ball out{Vec3<Q>(a * b.centre + t), Q(abs(a) * b.reach), std::nullopt};
+  if (b.half) out.half = Vec3<Q>(abs(a) * *b.half);
+  return out;
+}
 
 namespace {
 
@@ -852,6 +871,44 @@ IA norm_of(const Vec3<Q>& v) {
   return CGAL::sqrt(CGAL::square(enc(v(0))) + CGAL::square(enc(v(1))) + CGAL::square(enc(v(2))));
 }
 
+/// The per-axis reaches of the points of a ball's shell of outer radius r: min(r, half_i) where
+/// the ball has a box (Ball::half), else r.
+std::array<IA, 3> axis_reach(const Ball& ball, const IA& r) {
+  std::array<IA, 3> out{r, r, r};
+  if (ball.half)
+    for (int i = 0; i < 3; ++i) {
+      const IA h = enc((*ball.half)(i));
+      if (h.sup() < r.sup()) out[static_cast<std::size_t>(i)] = h;
+    }
+  return out;
+}
+
+/// Of two upper enclosures of one non-negative quantity, the one with the smaller upper bound.
+IA tighter(const IA& a, const IA& b) { return b.sup() < a.sup() ? b : a; }
+
+/// Entry-wise |m| and |v|, enclosed.
+std::array<std::array<IA, 3>, 3> abs_entries(const Mat3<Q>& m) {
+  std::array<std::array<IA, 3>, 3> out;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = CGAL::abs(enc(m(i, j)));
+  return out;
+}
+std::array<IA, 3> abs_entries(const Vec3<Q>& v) { return {CGAL::abs(enc(v(0))), CGAL::abs(enc(v(1))), CGAL::abs(enc(v(2)))}; }
+
+/// sum_i |v_i| rho_i >= |v . y| and (quadratic) sum_ij |m_ij| rho_i rho_j >= |y^T m y|, and
+/// |(|m| rho)| >= |m y|, for |y_i| <= rho_i.
+IA box_linear(const std::array<IA, 3>& v, const std::array<IA, 3>& rho) { return v[0] * rho[0] + v[1] * rho[1] + v[2] * rho[2]; }
+IA box_quadratic(const std::array<std::array<IA, 3>, 3>& m, const std::array<IA, 3>& rho) {
+  IA s(0);
+  for (std::size_t i = 0; i < 3; ++i) s += rho[i] * box_linear(m[i], rho);
+  return s;
+}
+IA box_image(const std::array<std::array<IA, 3>, 3>& m, const std::array<IA, 3>& rho) {
+  IA s(0);
+  for (std::size_t i = 0; i < 3; ++i) s += CGAL::square(box_linear(m[i], rho));
+  return CGAL::sqrt(s);
+}
+
 CertifiedBound relative_bound(const IA& distance, double size) {
   CertifiedBound out;
   out.boxes = 1;
@@ -902,20 +959,24 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     };
     const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
     const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
+    // (a ball with a box: each of the terms below also from the box's per-axis reaches)
+    const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s);
+    const auto gsa = abs_entries(gs);
     double worst = 0;
     bool euclidean = euclidean_only;
     for (std::size_t j = 0; j <= kShells; ++j) {
       const IA r = enc(radius[j]);
-      const IA value = fa + r * gsn + CGAL::square(r) * e3;
+      const std::array<IA, 3> rho = axis_reach(ball, r);
+      const IA value = fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho));
       if (value.sup() == 0) continue;
       double d = kInf;
       if (!euclidean_only) {
-        const IA gradient = IA(floors[j]) - gn - r * e3;
+        const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
         if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
       } else {
         // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
         // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b
-        const IA gradient = IA(floors[j]) - gsn / IA(2) - r * e3s;
+        const IA gradient = IA(floors[j]) - gsn / IA(2) - tighter(r * e3s, box_image(E3sa, rho));
         if (gradient.inf() > 0 && (CGAL::square(gradient) - value * h3).inf() >= 0) d = (value / gradient).sup();
       }
       if (curvature > 0) {
@@ -943,7 +1004,9 @@ CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, co
   const Vec4<Q> eps = hat - best_scale(hat, ref_o) * ref_o;
   const Q a = eps.dot(ball_base(ball, o));
   return upward([&] {
-    const IA value = CGAL::abs(enc(a)) + enc(ball.reach) * norm_of(Vec3<Q>(eps.head<3>()));
+    const IA r = enc(ball.reach);
+    const IA value = CGAL::abs(enc(a)) + tighter(r * norm_of(Vec3<Q>(eps.head<3>())),
+                                                 box_linear(abs_entries(Vec3<Q>(eps.head<3>())), axis_reach(ball, r)));
     return relative_bound(value / norm_of(Vec3<Q>(hat.head<3>())), size);
   });
 }
@@ -952,8 +1015,20 @@ ShellFloor plane_pair_floor(const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball
   const Measure q_centre = abs(to_measure(Q(Vec3<Q>(q.head<3>()).dot(ball.centre) + q(3))));
   const Measure q_normal = sqrt(to_measure(Q(q.head<3>().squaredNorm())));
   const Measure p_normal = sqrt(to_measure(Q(p.head<3>().squaredNorm())));
+  // with a box: |q_xyz . y| <= sum_i |q_i| min(outer, half_i) as well
+  std::optional<std::array<Measure, 3>> q_abs, half;
+  if (ball.half) {
+    q_abs = std::array<Measure, 3>{abs(to_measure(q(0))), abs(to_measure(q(1))), abs(to_measure(q(2)))};
+    half = std::array<Measure, 3>{to_measure((*ball.half)(0)), to_measure((*ball.half)(1)), to_measure((*ball.half)(2))};
+  }
   return [=](const Measure&, const Measure& outer) {
-    const Measure gap = q_centre - outer * q_normal;
+    Measure spread = outer * q_normal;
+    if (half) {
+      Measure s = 0;
+      for (std::size_t i = 0; i < 3; ++i) s += (*q_abs)[i] * ((*half)[i] < outer ? (*half)[i] : outer);
+      if (s < spread) spread = s;
+    }
+    const Measure gap = q_centre - spread;
     return gap > 0 ? Measure(gap * p_normal) : Measure(0);
   };
 }
@@ -979,7 +1054,8 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
   // in the ball grown by step 1; its gradient on p' is (q . y) p'_xyz
   const Mat4<Q> Ti = translation_of(o ? std::optional<Vec3<Q>>(Vec3<Q>(-*o)) : std::nullopt);
   const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(p1 * q_o.transpose() + q_o * p1.transpose()) * Ti;
-  const Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper))};
+  Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper)), std::nullopt};
+  if (ball.half) grown.half = Vec3<Q>(ball.half->array() + to_rational(d1.upper));
   const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, plane_pair_floor(p1, q, grown), 1.0, true);
   if (!(d2.upper < kInf)) return {kInf, 0, 1};
   return upward([&] {

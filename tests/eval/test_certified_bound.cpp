@@ -579,6 +579,46 @@ TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points"
   CHECK(b.bound.upper < 1e-5);
 }
 
+TEST_CASE("ball bound: R where h crosses a needle's terminator, in the box about it", "[accuracy][certified]") {
+  // A needle ellipsoid, radii (1, 1, 10^8), lit from (3, 4, 5 10^7): h (z = 5 10^7) crosses the
+  // terminator, and R is bounded as a plane pair about the whole terminator. The ball about it holds
+  // 10^8 in x and y too, where the terminator holds 1: the cross terms of a rounded R (its entry
+  // (x, z) off by eps, times x z) were bounded at 10^8 x 10^8, and R rounded from 7/5 R_ref, accurate
+  // to about 10^-12 of the size, was bounded at 8e-9 and flagged (audit 30b F1; the same R scaled
+  // by 1 came out 1e-13). The box of the terminator (Ball::half) bounds them at 1 x 10^8.
+  const Mat4<Q> A = quadric_of({1, 1, Q(1, 10000000000000000)}, {0, 0, 0}, -1);
+  const Vec4<Q> L(3, 4, 50000000, 1);
+  const ItemPoints pts = terminator_points(A, L, 64, 5);
+  REQUIRE(shadow_geometry(A, L));
+  REQUIRE(shadow_geometry(A, L)->R_ball);
+  const ShadowBounds bounds(A, L, pts);
+  REQUIRE(bounds.cover().R);
+  const Vec4<Q> pi_ref = A * L, h = reference_second_plane(L);
+  const Mat4<Q> R_ref = pi_ref * h.transpose() + h * pi_ref.transpose();
+  const Mat4<Q> P_ref = L.dot(pi_ref) * A - pi_ref * pi_ref.transpose();
+  for (const Q& scale : {Q(1), Q(7, 5), Q(1, 3)}) {
+    INFO("R rounded from " << scale << " R_ref");
+    Mat4<Q> R;
+    for (Eigen::Index i = 0; i < 16; ++i) R(i) = to_rational(Q(scale * R_ref(i)).convert_to<double>());
+    const CoveredBound b = bounds(std::nullopt, nullptr, nullptr, &R, size_down(pts.size), 1e-9);
+    // the crossing points: 3x + 4y = 3/4 and x^2 + y^2 = 3/4 at z = 5 10^7
+    Measure worst = 0;
+    const Measure s = sqrt(Measure(2910)) / 200;  // sqrt(3/4 - (3/20)^2)
+    for (int sign : {1, -1}) {
+      const Vec3<Measure> x0(Measure(9) / 100 - sign * s * 4 / 5, Measure(12) / 100 + sign * s * 3 / 5, Measure(50000000));
+      worst = std::max(worst, Measure(distance_floor(R, x0) / pts.size));
+    }
+    INFO("bound " << b.bound.upper << ", the crossing points at least " << worst.str(6) << " away");
+    CHECK(worst <= Measure(b.bound.upper));
+    CHECK(b.bound.upper < 1e-11);
+    ShadowMeter meter(A, L, AccuracyOptions{});
+    const ItemAccuracy acc = meter(std::nullopt, P_ref, pi_ref, R);
+    REQUIRE(acc.bound);
+    CHECK(Measure(*acc.bound) >= worst);
+    CHECK_FALSE(acc.inaccurate);
+  }
+}
+
 TEST_CASE("eval: a light beside the object, R in the frame at the light's height", "[accuracy][certified][frames]") {
   // A sphere and a light beside it at height 3/10 (not a double), in a scene: the default path computes the item in a frame at the
   // light's height (light_plane_meets_terminator), where h = (0, 0, 1, 0) and R = pi h^T + h pi^T rounds

@@ -91,7 +91,7 @@ struct ItemPoints {
   /// points a ball bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball;
   /// an ellipse's R is bounded in ShadowGeometry::R_ball, about all of it).
   /// For a reflection, about A's points before the mirror.
-  Ball ball{Vec3<Rational>::Zero(), Rational(0)};
+  Ball ball{Vec3<Rational>::Zero(), Rational(0), std::nullopt};
   bool exhausted = false;         ///< fewer real points than asked
 };
 
@@ -241,7 +241,7 @@ class ShadowBounds {
   std::optional<ShadowGeometry> geo_;
   std::vector<ShadowGeometry> generators_;
   // the ball bounds, where geo_ is empty
-  Ball ball_{Vec3<Rational>::Zero(), Rational(0)};
+  Ball ball_{Vec3<Rational>::Zero(), Rational(0), std::nullopt};
   Mat4<Rational> P_ref_, R_ref_;
   Vec4<Rational> pi_ref_, h_;
   GradientFloor P_floor_;
@@ -265,7 +265,7 @@ class ReflectionBounds {
   Rational unit_{1};  ///< as ShadowBounds::unit_
   std::optional<ReflectionGeometry> geo_;
   Mat4<Rational> B_ref_;
-  Ball ball_{Vec3<Rational>::Zero(), Rational(0)};  ///< reflected
+  Ball ball_{Vec3<Rational>::Zero(), Rational(0), std::nullopt};  ///< reflected
   GradientFloor floor_;
   bool floored_ = false;
 };

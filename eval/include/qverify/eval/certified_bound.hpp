@@ -89,6 +89,13 @@ class Geometry;
 struct Ball {
   Vec3<Rational> centre;
   Rational reach;
+  /// Where known, half-widths of a box about the centre that holds the geometry too (upper bounds,
+  /// per axis): the bounds below use, on each shell, the smaller of the ball's and the box's
+  /// enclosures. A thin object 10^8 long (a needle ellipsoid's terminator, as the ball about it
+  /// holds 10^8 in every direction) had its cross terms, the error x z of an entry of R, bounded
+  /// with |x| <= 10^8 where |x| <= 1: a world-frame R accurate to 10^-13 of the object's size
+  /// was bounded at 8e-9 and failed (audit 30b F1).
+  std::optional<Vec3<Rational>> half;
 };
 
 /// The geometry of a shadow item where the terminator is a real ellipse (any quadric; A's
@@ -193,7 +200,7 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
 
 
 /// The ball mapped by x -> a x + t (a homothety or translation, as generator_map and the mirror's
-/// linear part times its offset are): centre a c + t, reach |a| reach.
+/// linear part times its offset are): centre a c + t, reach |a| reach (and the box's half-widths).
 Ball moved(const Ball& b, const Rational& a, const Vec3<Rational>& t);
 
 /// Lower bounds of |(A (x, 1))_xyz| over the points x of A in a shell of a ball, inner <= |x - c| <=
