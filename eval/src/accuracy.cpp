@@ -998,7 +998,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   for (const Q& rho : pts.generator_offsets) {
     const Q a = 1 - rho * L(3);
     const Mat4<Q> Ar = generator_quadric(A, L, rho);
-    BallPart part{reference_cone(Ar, L), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
+    BallPart part{reference_cone(Ar, L), Vec4<Q>(Ar * L), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
     if (a > 0) part.floor = GradientFloor(Ar, part.ball, L.dot(Vec4<Q>(Ar * L)));
     if (!(a > 0) || !(part.floor(0, to_measure(part.ball.reach)) > 0 || saddle_directions(part.ref))) {
       generator_balls_.clear();
@@ -1043,12 +1043,12 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
           "R");
     return out;
   }
-  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size), "P");
+  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size, false, &pi_ref_), "P");
   if (polar && cover_.polar) add(ball_plane_bound(*polar, pi_ref_, ball_, origin, size), "polar_plane");
   if (P && cover_.generators) {
     CertifiedBound g;
     for (const BallPart& part : generator_balls_)
-      g = combined(g, ball_quadric_bound(*P, part.ref, part.ball, origin, part.floor, size));
+      g = combined(g, ball_quadric_bound(*P, part.ref, part.ball, origin, part.floor, size, false, &part.plane));
     add(g, "P_generators");
   }
   if (R && cover_.R) add(R_ball_bound(*R, origin, size), "R");
@@ -1058,7 +1058,7 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
 CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
   if (!crosses(h_, ball_)) {
     // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz
-    return ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size);
+    return ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size, false, &pi_ref_);
   }
   return ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
 }

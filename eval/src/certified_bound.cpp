@@ -919,9 +919,14 @@ CertifiedBound relative_bound(const IA& distance, double size) {
 
 }  // namespace
 
+Vec4<Q> plane_pair_part(const Mat4<Q>& E, const Vec4<Q>& w) {
+  const Q ww = w.squaredNorm();
+  return (E * w - w * Q(w.dot(E * w) / (2 * ww))) / ww;
+}
+
 CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Ball& ball,
                                   const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size,
-                                  bool euclidean_only) {
+                                  bool euclidean_only, const Vec4<Q>* within) {
   if (hat_in.isZero() && !ref_in.isZero()) return {kInf, 0, 1};  // vanishes everywhere, and is no quadric
   // as quadric_result: both scaled exactly to entries near 1, the reference moved into the frame
   const Mat4<Q> T = translation_of(o);
@@ -931,11 +936,23 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   const Q lambda = best_scale(hat, ref_o);
   const Mat4<Q> E = hat - lambda * ref_o;
   const Vec4<Q> z0 = ball_base(ball, o);
-  const Q a = z0.dot(E * z0);
-  // z^T E z = a + y . ((E + E^T) z0)_xyz + y^T E3 y: a candidate's matrix need not be exactly
-  // symmetric (verify accepts an asymmetry within the target), so the linear part is E + E^T's
+  // The value: on the geometry x^T hat x = x^T Ev x, Ev = E, or where the geometry lies in the plane
+  // `within` (w in the frame), E less its plane-pair part w e^T + e w^T, which vanishes there: a
+  // translated cone's error is mostly such a part (its polar plane's), which the shells multiplied
+  // by their radius while the distance it makes is the translation (audit 30b F2).
+  Mat4<Q> Ev = E;
+  if (within && !within->isZero()) {
+    const Vec4<Q> w = T.transpose() * *within;
+    const Vec4<Q> e = plane_pair_part(E, w);
+    Ev = E - (w * e.transpose() + e * w.transpose());
+  }
+  const Q a = z0.dot(E * z0), av = z0.dot(Ev * z0);
+  // z^T Ev z = a + y . ((Ev + Ev^T) z0)_xyz + y^T Ev3 y: a candidate's matrix need not be exactly
+  // symmetric (verify accepts an asymmetry within the target), so the linear part is Ev + Ev^T's;
+  // the gradient (hat z)_xyz = lambda (ref z)_xyz + (E z)_xyz, E whole
   const Vec3<Q> g = Vec4<Q>(E * z0).head<3>(), gs = Vec4<Q>(Mat4<Q>(E + E.transpose()) * z0).head<3>();
-  const Mat3<Q> E3 = E.topLeftCorner<3, 3>();
+  const Vec3<Q> gv = Vec4<Q>(Mat4<Q>(Ev + Ev.transpose()) * z0).head<3>();
+  const Mat3<Q> E3 = E.topLeftCorner<3, 3>(), Ev3 = Ev.topLeftCorner<3, 3>();
   const Measure lambda_scale = abs(to_measure(Q(lambda * ref_scale)));
   // the shells' radii reach (3/4)^j, j = 0..kShells, and 0; the floors in 80 digits, then below in double
   constexpr int kShells = 64;
@@ -959,15 +976,18 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     };
     const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
     const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
+    const IA gvn = norm_of(gv), ev3 = frobenius(Ev3), fav = CGAL::abs(enc(av));
     // (a ball with a box: each of the terms below also from the box's per-axis reaches)
-    const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s);
-    const auto gsa = abs_entries(gs);
+    const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s), Ev3a = abs_entries(Ev3);
+    const auto gva = abs_entries(gv), gsa = abs_entries(gs);
     double worst = 0;
     bool euclidean = euclidean_only;
     for (std::size_t j = 0; j <= kShells; ++j) {
       const IA r = enc(radius[j]);
       const std::array<IA, 3> rho = axis_reach(ball, r);
-      const IA value = fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho));
+      // (from E and from Ev: the part removed from Ev is not always the one whose removal helps)
+      const IA value = tighter(fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho)),
+                               fav + tighter(r * gvn, box_linear(gva, rho)) + tighter(CGAL::square(r) * ev3, box_quadratic(Ev3a, rho)));
       if (value.sup() == 0) continue;
       double d = kInf;
       if (!euclidean_only) {
@@ -1043,8 +1063,7 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
   const Q lambda = best_scale(hat, ref_o);
   // p' = lambda p + e, e the part of E = hat - lambda ref_o of the form e q^T + q e^T (exact when E is)
   const Mat4<Q> E = hat - lambda * ref_o;
-  const Q qq = q_o.squaredNorm();
-  const Vec4<Q> e = (E * q_o - q_o * Q(q_o.dot(E * q_o) / (2 * qq))) / qq;
+  const Vec4<Q> e = plane_pair_part(E, q_o);
   const Vec4<Q> p1 = lambda * p_o + e;
   if (p1.head<3>().isZero()) return {kInf, 0, 1};
   // step 1: the geometry's points (on p) from the plane p', absolute (size 1)
@@ -1056,7 +1075,8 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
   const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(p1 * q_o.transpose() + q_o * p1.transpose()) * Ti;
   Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper)), std::nullopt};
   if (ball.half) grown.half = Vec3<Q>(ball.half->array() + to_rational(d1.upper));
-  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, plane_pair_floor(p1, q, grown), 1.0, true);
+  const Vec4<Q> p1_world = Ti.transpose() * p1;  // (the points step 2 bounds lie on p')
+  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, plane_pair_floor(p1, q, grown), 1.0, true, &p1_world);
   if (!(d2.upper < kInf)) return {kInf, 0, 1};
   return upward([&] {
     CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);

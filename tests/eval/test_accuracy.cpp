@@ -7,6 +7,7 @@
 #include <qverify/core/core.hpp>
 #include <qverify/eval/accuracy.hpp>
 #include <qverify/eval/certified_bound.hpp>
+#include <qverify/eval/frames.hpp>
 #include <qverify/eval/results.hpp>
 #include <qverify/scene/scene.hpp>
 #include <qverify/exact/rounding.hpp>
@@ -237,4 +238,61 @@ TEST_CASE("an item's size does not fall to 0 with one sample - the default sampl
   CHECK(all.points.size() == 1);
   CHECK(all.exhausted);
   CHECK(all.size == 0);
+}
+
+TEST_CASE("a thin ellipsoid is sampled all over - its rim sizes it and its reflection is checked there",
+          "[accuracy][sampling]") {
+  // A tilted coin, radius 1 and thickness 2e-9: lines through its centre in random directions met it
+  // within about 1e-8 of the centre, so the object size was 2.6e-8, the rim never checked, and a
+  // double B 0.73 object sizes off at the rim was certified at 9.5e-15 and passed (audit 30a F1). The
+  // directions are now shaped by its axes (sampling.cpp, shaped_directions).
+  Mat3<Q> axes;
+  axes << 1, 0, 0, 0, Q(3, 5), Q(4, 5), 0, Q(-4, 5), Q(3, 5);
+  const Mat4<Q> coin = ellipsoid_quadric<Q>(Vec3<Q>::Zero(), Vec3<Q>(1, 1, Q(1, 1000000000)), axes);
+  const Mat4<Q> M = mirror_matrix<Q>(Vec4<Q>(0, 0, 1, -1));
+  const ItemPoints pts = reflected_points(coin, M, 64, 7);
+  REQUIRE(pts.points.size() == 64);
+  CHECK(pts.size > Measure(99) / 100);  // the rim: 1
+  CHECK(pts.size <= 1);
+  // many sampled points lie far out on the coin, not near its centre
+  int far = 0;
+  for (const RootPoint& x : reflected_points(coin, Mat4<Q>::Identity(), 64, 7).points)
+    if (x.approx_cartesian().norm() > 0.3) ++far;
+  CHECK(far > 32);
+  // the terminator of a needle lit from its side: an ellipse 1e6 long and 1 wide, sampled along it
+  const Mat4<Q> needle = ellipsoid_quadric<Q>(Vec3<Q>::Zero(), Vec3<Q>(1, 1, 1000000), Mat3<Q>::Identity());
+  const ItemPoints t = terminator_points(needle, Vec4<Q>(3, 4, 0, 1), 64, 7);
+  REQUIRE(t.points.size() == 64);
+  int along = 0;
+  for (const RootPoint& x : t.points)
+    if (std::abs(x.approx_cartesian()(2)) > 1e5) ++along;
+  CHECK(along > 16);
+  // and a coin's double reflection, as eval computes it, is flagged and fails verify
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "coin",
+      "quadrics": [{"id": "tilted", "ellipsoid": {"center": [0, 0, 0], "radii": [1, 1, "1e-9"],
+                    "axes": [[1, 0, 0], [0, "3/5", "4/5"], [0, "-4/5", "3/5"]]}}],
+      "mirrors": [{"id": "floor", "plane": [0, 0, 1, -1]}]})",
+                               "coin.json");
+  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct, Frame::local, AccuracyOptions{});
+  REQUIRE(rs.reflections.size() == 1);
+  REQUIRE(rs.reflections[0].accuracy);
+  CHECK(rs.reflections[0].accuracy->inaccurate);
+}
+
+TEST_CASE("a section or quadric without a real point is not sampled at all", "[accuracy][sampling]") {
+  // a definite conic has no real point: every attempt was spent, on coordinates that grew with each
+  // (a sphere of radius 1e300 through the origin, lit from 1e-300 inside it: 77 s; audit 30a F2)
+  const Q big = Q(boost::multiprecision::pow(boost::multiprecision::mpz_int(10), 300)), tiny = 1 / big;
+  const Mat4<Q> sphere = sphere_quadric<Q>(Vec3<Q>(big, 0, 0), big);
+  const Vec4<Q> inside(tiny, 2 * tiny, 3 * tiny, 1);
+  const SampleReport s = sample_section(sphere, Vec4<Q>(sphere * inside), 64, 7, Q(1));
+  CHECK(s.points.empty());
+  CHECK(s.exhausted);
+  CHECK(s.attempts == 0);
+  Mat4<Q> imaginary = Mat4<Q>::Zero();  // x^2 + 2y^2 + 3z^2 = -1
+  imaginary.diagonal() << 1, 2, 3, 1;
+  const SampleReport none = sample_quadric(imaginary, 64, 7, Q(1));
+  CHECK(none.points.empty());
+  CHECK(none.exhausted);
+  CHECK(none.attempts == 0);
 }

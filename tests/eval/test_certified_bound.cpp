@@ -498,6 +498,43 @@ TEST_CASE("ball bound: unbounded terminators and other quadrics reflected, over 
   }
 }
 
+TEST_CASE("ball bound: a translated P is bounded by about its translation", "[accuracy][certified]") {
+  // P moved rigidly by d is within |d| of every point of the exact cone. The ball bound took the
+  // error's value as |E z0| times the shell's radius, and E is mostly the moved polar plane's part,
+  // pi (d . pi) e4^T + ..., which vanishes on the terminator (in pi): a hyperboloid lit from (3, 4, 5)
+  // had P moved by 3.4e-11 of its size bounded at 2.2e-9 and failed (audit 30b F2). The value is now
+  // bounded from E less its part along the plane that holds the geometry (`within`).
+  const Mat4<Q> hyperboloid = quadric_of({1, 1, -1}, {0, 0, 0}, -1);
+  const Mat4<Q> paraboloid = quadric_of({1, 1, 0}, {0, 0, -1}, 0);
+  const Mat4<Q> cylinder = quadric_of({1, 1, 0}, {0, 0, 0}, -1);
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"hyperboloid, a parabola", hyperboloid, {3, 4, 5, 1}},
+                                   {"hyperboloid, a hyperbola", hyperboloid, {5, 0, 0, 1}},
+                                   {"paraboloid", paraboloid, {3, 4, -5, 1}},
+                                   {"cylinder", cylinder, {3, 4, 5, 1}}}) {
+    INFO(name);
+    const ItemPoints pts = terminator_points(A, L, 64, 5);
+    REQUIRE(!pts.points.empty());
+    const ShadowBounds bounds(A, L, pts);
+    REQUIRE(bounds.cover().P);
+    const Vec4<Q> pi_ref = A * L;
+    const Mat4<Q> P_ref = L.dot(pi_ref) * A - pi_ref * pi_ref.transpose();
+    const double size = size_down(pts.size);
+    for (const Q& k : {Q(3, 100000000000), Q(3, 10000000000)}) {
+      // d = k size (3/5, 4/5, 0), size rounded to a rational: P_d(x) = P(x - d)
+      const Q length = k * to_rational(size);
+      const Vec3<Q> d(length * 3 / 5, length * 4 / 5, 0);
+      const Mat4<Q> S = translation<Q>(Vec3<Q>(-d));
+      const Mat4<Q> P = S.transpose() * P_ref * S;
+      const CoveredBound b = bounds(std::nullopt, &P, nullptr, nullptr, size, 1e-9);
+      const ShadowError e = shadow_error(pts, std::nullopt, P, pi_ref, P_ref);
+      const Measure sampled = std::max(relative(e.P, pts.size), relative(e.generators, pts.size));
+      INFO("moved by " << k.convert_to<double>() << " sizes: sampled " << sampled.str(6) << ", bound " << b.bound.upper);
+      CHECK(sampled <= Measure(b.bound.upper));
+      CHECK(b.bound.upper <= 4 * k.convert_to<double>());
+    }
+  }
+}
+
 TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in the ball", "[accuracy][certified]") {
   // |(A x)_xyz| >= gradient_floor(A, ball) at every sampled point of A within the ball, for central
   // quadrics, cylinders (an axis of centres) and paraboloids (none); 0 for a cone (its apex)

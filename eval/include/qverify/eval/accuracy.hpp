@@ -231,6 +231,7 @@ class ShadowBounds {
  private:
   struct BallPart {
     Mat4<Rational> ref;
+    Vec4<Rational> plane;  ///< the plane of the moved terminator, A_rho L
     Ball ball;
     GradientFloor floor;
   };

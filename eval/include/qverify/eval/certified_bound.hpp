@@ -280,9 +280,14 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// |(hat + hat^T)_xyz,xyz / 2|_F give G^2 >= V h (V the value's
 /// bound; then a root lies within V / G along the gradient: along a unit u the form is a + 2 b t +
 /// c t^2, |c| <= h, b >= G), else second order.
+/// `within`: a plane (world frame) that holds every point of the geometry (the terminator's polar
+/// plane): the value is bounded from E less its part w e^T + e w^T (plane_pair_part), which
+/// vanishes on the plane; the gradient from E whole.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
                                   const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size,
-                                  bool euclidean_only = false);
+                                  bool euclidean_only = false, const Vec4<Rational>* within = nullptr);
+/// The e of E's part w e^T + e w^T nearest E (Frobenius), exact: e = (E w - w (w.E w) / (2 w.w)) / w.w.
+Vec4<Rational> plane_pair_part(const Mat4<Rational>& E, const Vec4<Rational>& w);
 CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
                                 const std::optional<Vec3<Rational>>& origin, double size);
 
