@@ -1292,6 +1292,14 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
     bool zero = true;
     return second_plane_error(in_frame(p.points, origin), p.size, Ae, Le, R, zero);
   };
+  // A terminator whose real points all lie at infinity (a cylinder lit from inside: its axis's
+  // direction; an imaginary cylinder's) has no finite point to measure a distance at: the results are
+  // measured against the exact ones as matrices (the cross residual, as a one-point terminator's
+  // below), so that a result far off is flagged: a paper-route polar plane z = 158.6 for the plane
+  // y = 1e15 + 4 had no bound and no flag (audit 30a F3). A terminator without any real point keeps
+  // none (no-real-silhouette).
+  if (pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no)
+    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
   // (a cone lit from 1e12 along its axis: R's h is 2e-8 of its height off in float, which the matrices'
   // cross residual, relative to their largest entry, does not see)
   if (single_point(A_, L_, pts_.points))
@@ -1361,6 +1369,10 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
   if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_result(sign);
   if (const std::string zero = reflection_zero_problem(A_, B); !zero.empty()) return wrong_result(zero);
+  // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as a
+  // shadow's terminator at infinity (ShadowMeter)
+  if (pts_.points.empty() && !without_real_points(A_))
+    return measured_exactly(to_measure(cross_residual(B, B_ref)), {"B"}, opt_.target);
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },

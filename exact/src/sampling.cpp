@@ -173,10 +173,15 @@ template <int k> std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const E
   if (hi <= 256 * lo) return std::nullopt;  // axes within a factor 16
   Eigen::Matrix<Q, k, k> W;
   for (int c = 0; c < k; ++c) {
-    // the semi-axis relative to the longest, 1 / sqrt(|rq| / lo), in double (lo / |rq| in (0, 1])
+    // the semi-axis relative to the longest, 1 / sqrt(|rq| / lo), in double (lo / |rq| in (0, 1]);
+    // each entry rounded to 40 bits of its column's largest (smaller numbers in every sampled point,
+    // and the last bits of the decomposition, which may differ between builds, mostly gone; 40 bits
+    // keep a column's error along an axis 10^9 shorter below a thousandth of that axis)
     const double axis = std::sqrt(Q(lo / abs(rq[static_cast<std::size_t>(c)])).template convert_to<double>());
     if (!(axis > 0) || !std::isfinite(axis)) return std::nullopt;
-    for (int i = 0; i < k; ++i) W(i, c) = Q(eig.eigenvectors()(i, c) * axis);
+    const int top = std::ilogb(eig.eigenvectors().col(c).cwiseAbs().maxCoeff() * axis);
+    for (int i = 0; i < k; ++i)
+      W(i, c) = Q(std::ldexp(std::round(std::ldexp(eig.eigenvectors()(i, c) * axis, 40 - top)), top - 40));
   }
   if (W.determinant() == 0) return std::nullopt;
   return W;
@@ -335,13 +340,14 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   }();
   bool stepped = false;
   // an elliptic section: in-plane directions shaped by its axes (shaped_directions), in the plane's
-  // basis a = n x e_j, n x a
+  // basis a = n x e_j, n x a, n the normal's primitive integers (the same basis for every positive
+  // multiple of A and L, as the shifts below)
   Eigen::Matrix<Q, 3, 2> in_plane;
   for (int j = 0; j < 3; ++j) {
-    in_plane.col(0) = normal.cross(Vec3<Q>::Unit(j));
+    in_plane.col(0) = shift_normal.cross(Vec3<Q>::Unit(j));
     if (!in_plane.col(0).isZero()) break;
   }
-  in_plane.col(1) = normal.cross(Vec3<Q>(in_plane.col(0)));
+  in_plane.col(1) = shift_normal.cross(Vec3<Q>(in_plane.col(0)));
   const auto shape = shaped_directions<2>(
       Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane));
   const auto direction = [&]() -> Vec3<Q> {
@@ -371,11 +377,13 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   return rep;
 }
 
+bool without_real_points(const Mat4<Q>& A) { return definite<4>(A); }
+
 SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q& reach) {
   if (!(reach > 0)) throw std::invalid_argument("sample_quadric: reach must be positive");
   SampleReport rep;
   if (n <= 0) return rep;
-  if (definite<4>(A)) {  // no real point (an imaginary ellipsoid): as sample_section
+  if (without_real_points(A)) {  // (an imaginary ellipsoid): as sample_section
     rep.exhausted = true;
     return rep;
   }

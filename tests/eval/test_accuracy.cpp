@@ -296,3 +296,44 @@ TEST_CASE("a section or quadric without a real point is not sampled at all", "[a
   CHECK(none.exhausted);
   CHECK(none.attempts == 0);
 }
+
+TEST_CASE("a terminator whose real points are all at infinity: the results measured as matrices", "[accuracy]") {
+  // An imaginary cylinder x^2 + y^2 = -1 has one real point, (0, 0, 1, 0); a cylinder lit from inside
+  // has its terminator's real points at infinity only. No finite point to measure a distance at: the
+  // item had no bound and no flag, whatever its results (a paper-route polar plane z = 158.6 for the
+  // plane y = 1e15 + 4; audit 30a F3). They are measured against the exact ones as matrices.
+  Mat4<Q> imaginary = Mat4<Q>::Zero();
+  imaginary.diagonal() << 1, 1, 0, 1;
+  const Mat4<Q> cylinder = cylinder_quadric<Q>(Vec3<Q>(0, 0, 0), Vec3<Q>(0, 0, 1), Q(1));
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"imaginary cylinder", imaginary, {3, 4, 7, 1}},
+                                   {"cylinder lit from inside", cylinder, {Q(1, 4), 0, 3, 1}}}) {
+    INFO(name);
+    REQUIRE(silhouette_empty<Q>(A, L) == Truth::no);
+    REQUIRE(terminator_points(A, L, 64, 7).points.empty());
+    const Vec4<Q> pi = A * L;
+    const Mat4<Q> P = L.dot(pi) * A - pi * pi.transpose();
+    const Vec4<Q> h(0, 0, L(3), -L(2));
+    const Mat4<Q> R = pi * h.transpose() + h * pi.transpose();
+    ShadowMeter meter(A, L, AccuracyOptions{});
+    const ItemAccuracy exact = meter(std::nullopt, P, pi, R);
+    REQUIRE(exact.bound);
+    CHECK(*exact.bound == 0);
+    CHECK_FALSE(exact.inaccurate);
+    const Vec4<Q> tilted = pi + Vec4<Q>(0, 0, Q(1, 1000), 0);  // the point at infinity (0, 0, 1, 0) is off it
+    CHECK(meter(std::nullopt, P, tilted, R).inaccurate);
+  }
+  // its reflection: B as a matrix too; a quadric without any real point (definite) keeps no bound
+  const Vec4<Q> mirror(1, 2, 2, -9);
+  ReflectionMeter reflect(imaginary, mirror, AccuracyOptions{});
+  const Mat4<Q> M = reference_mirror(mirror);
+  const Mat4<Q> B = M.transpose() * imaginary * M;
+  const ItemAccuracy b = reflect(std::nullopt, B, nullptr);
+  REQUIRE(b.bound);
+  CHECK(*b.bound == 0);
+  Mat4<Q> B_off = B;
+  B_off(2, 2) += Q(1, 100);
+  CHECK(reflect(std::nullopt, B_off, nullptr).inaccurate);
+  Mat4<Q> none = Mat4<Q>::Identity();  // x^2 + y^2 + z^2 = -1
+  REQUIRE(without_real_points(none));
+  CHECK_FALSE(ReflectionMeter(none, mirror, AccuracyOptions{})(std::nullopt, Mat4<Q>(M.transpose() * none * M), nullptr).bound);
+}

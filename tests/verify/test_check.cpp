@@ -349,7 +349,8 @@ TEST_CASE("bad input at the check door: an InputError naming the argument, nothi
 TEST_CASE("an error between the samples fails the check: certified over the whole terminator", "[check][certified]") {
   // An ellipsoid 10^4 long, 1 wide and 10^-4 thin (x^2 10^8 + y^2 + z^2 10^-8 = 1, centred at
   // (1/2, 1/4, 1/8)) lit from close by: the paper route in double is far off near the terminator's tips,
-  // which random chords rarely reach (eval's samples miss them: test_stress.cpp, mixed magnitudes).
+  // which the certified bound covers whatever the samples reach (random chords rarely reached them; the
+  // chords are shaped by the terminator's axes since session 30: test_stress.cpp, mixed magnitudes).
   Mat4<double> A = Mat4<double>::Zero();
   const double c[3] = {0.5, 0.25, 0.125}, k[3] = {1e8, 1, 1e-8};
   A(3, 3) = -1;

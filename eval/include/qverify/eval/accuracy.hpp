@@ -84,8 +84,9 @@ struct ItemPoints {
   /// Largest distance of the object's points from A's centre: over all of them where A is an
   /// ellipsoid or the terminator a real ellipse (terminator_size, ellipsoid_size: a certified lower
   /// bound within 2^-19), else over the sampled points. (64 random chords of a terminator 1400 times
-  /// longer than wide reach 7 units of its 10^4: a size from the samples alone made every relative
-  /// error 1400 times too large.)
+  /// longer than wide reached 7 units of its 10^4, before the chords were shaped by its axes
+  /// (sampling.cpp, shaped_directions): a size from the samples alone made every relative error 1400
+  /// times too large.)
   Measure size = 0;
   /// A's centre (the points' centroid where K is singular) and a reach of at least `size`: the
   /// points a ball bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball;

@@ -86,4 +86,9 @@ SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, i
 /// kept then lie within 16 such lengths of the moved base.
 SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach);
 
+/// Whether A has no real point at all, not even at infinity: A definite (exactly, Sylvester's leading
+/// minors; x^T A x = 0 has a real solution x != 0 exactly where A is not definite). A quadric with
+/// real points at infinity only (an imaginary cylinder x^2 + y^2 = -1: (0, 0, 1, 0)) is not.
+bool without_real_points(const Mat4<Rational>& A);
+
 }  // namespace qverify
