@@ -136,7 +136,10 @@ template <int k> bool definite(const Eigen::Matrix<Q, k, k>& M) {
 }
 
 /// Directions shaped by a definite form G (k x k, exact; the quadratic part of an ellipsoid, or of
-/// an elliptic section in two in-plane coordinates): W = V |D|^-1/2, V the eigenvectors of G from a
+/// an elliptic section in two in-plane coordinates of an orthogonal basis whose squared lengths are m:
+/// the axes are G's in that metric, so that a basis of unequal lengths is not taken for an
+/// anisotropic section; the first form of this, without m, shaped every section of a plane with a
+/// long normal and made verify 10% slower): W = V |D|^-1/2, V the eigenvectors of G from a
 /// floating decomposition of G scaled into double's range, D their exact Rayleigh quotients (exact,
 /// so that an axis 10^9 shorter than the others, whose eigenvalue the double decomposition does not
 /// resolve, still has its own), W made exact from doubles. A line through the centre along W v, v
@@ -146,24 +149,35 @@ template <int k> bool definite(const Eigen::Matrix<Q, k, k>& M) {
 /// object sizes off at the rim passed verify (audit 30a F1). nullopt where G is not definite, or its
 /// axes are within a factor 16 of each other (random directions sample such a shape well, and a
 /// sample stays as it was).
-template <int k> std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k, k>& G) {
+template <int k>
+std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k, k>& G, const Eigen::Matrix<Q, k, 1>& m) {
   // (exactly: a parabola's in-plane form is singular, and the Rayleigh quotient of its null vector as
   // a double decomposition gives it is some tiny number of either sign)
   if (!definite<k>(G)) return std::nullopt;
   Q big = 0;
   for (Eigen::Index i = 0; i < G.size(); ++i) big = std::max(big, Q(abs(G(i))));
   if (big == 0) return std::nullopt;
-  const Eigen::Matrix<double, k, k> Gd = G.unaryExpr([&big](const Q& g) { return Q(g / big).template convert_to<double>(); });
+  // in the basis's own metric M = diag(m) (an orthogonal basis whose vectors' squared lengths are m):
+  // the decomposition of S^-1 G S^-1, S = sqrt(M / max m) in double, its eigenvectors y taken back as
+  // S^-1 y; the Rayleigh quotients u^T G u / u^T M u exact
+  const Q mmax = m.maxCoeff();
+  Eigen::Matrix<double, k, 1> sd;
+  for (int i = 0; i < k; ++i) sd(i) = std::sqrt(Q(m(i) / mmax).template convert_to<double>());
+  if (!sd.allFinite() || !(sd.minCoeff() > 0)) return std::nullopt;
+  Eigen::Matrix<double, k, k> Gd;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) Gd(i, j) = Q(G(i, j) / big).template convert_to<double>() / (sd(i) * sd(j));
   if (!Gd.allFinite()) return std::nullopt;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, k, k>> eig(Gd);
   if (eig.info() != Eigen::Success) return std::nullopt;
-  std::array<Eigen::Matrix<Q, k, 1>, k> v;
+  const Eigen::Matrix<double, k, k> U = sd.cwiseInverse().asDiagonal() * eig.eigenvectors();
+  if (!U.allFinite()) return std::nullopt;
   std::array<Q, k> rq;
   for (int c = 0; c < k; ++c) {
-    for (int i = 0; i < k; ++i) v[static_cast<std::size_t>(c)](i) = Q(eig.eigenvectors()(i, c));
-    const Eigen::Matrix<Q, k, 1>& u = v[static_cast<std::size_t>(c)];
+    Eigen::Matrix<Q, k, 1> u;
+    for (int i = 0; i < k; ++i) u(i) = Q(U(i, c));
     if (u.isZero()) return std::nullopt;
-    rq[static_cast<std::size_t>(c)] = Q(u.dot(Eigen::Matrix<Q, k, 1>(G * u)) / u.squaredNorm());
+    rq[static_cast<std::size_t>(c)] = Q(u.dot(Eigen::Matrix<Q, k, 1>(G * u)) / u.dot(Eigen::Matrix<Q, k, 1>(m.cwiseProduct(u))));
   }
   Q lo = abs(rq[0]), hi = abs(rq[0]);
   for (const Q& r : rq) {
@@ -179,9 +193,8 @@ template <int k> std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const E
     // keep a column's error along an axis 10^9 shorter below a thousandth of that axis)
     const double axis = std::sqrt(Q(lo / abs(rq[static_cast<std::size_t>(c)])).template convert_to<double>());
     if (!(axis > 0) || !std::isfinite(axis)) return std::nullopt;
-    const int top = std::ilogb(eig.eigenvectors().col(c).cwiseAbs().maxCoeff() * axis);
-    for (int i = 0; i < k; ++i)
-      W(i, c) = Q(std::ldexp(std::round(std::ldexp(eig.eigenvectors()(i, c) * axis, 40 - top)), top - 40));
+    const int top = std::ilogb(U.col(c).cwiseAbs().maxCoeff() * axis);
+    for (int i = 0; i < k; ++i) W(i, c) = Q(std::ldexp(std::round(std::ldexp(U(i, c) * axis, 40 - top)), top - 40));
   }
   if (W.determinant() == 0) return std::nullopt;
   return W;
@@ -348,8 +361,10 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     if (!in_plane.col(0).isZero()) break;
   }
   in_plane.col(1) = shift_normal.cross(Vec3<Q>(in_plane.col(0)));
+  // (the basis is orthogonal, its vectors' lengths |a| and |n| |a|: the form's axes in that metric)
   const auto shape = shaped_directions<2>(
-      Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane));
+      Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane),
+      Eigen::Matrix<Q, 2, 1>(in_plane.col(0).squaredNorm(), in_plane.col(1).squaredNorm()));
   const auto direction = [&]() -> Vec3<Q> {
     if (!shape || stepped) return normal.cross(draw.vec3());
     Vec3<Q> r = draw.vec3();
@@ -392,7 +407,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   const int max_attempts = 50 * n + 50;
   Lines lines(A, b);
   bool stepped = false;
-  const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()));
+  const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
     const Vec3<Q> d = shape && !stepped ? Vec3<Q>(*shape * draw.vec3()) : draw.vec3();
