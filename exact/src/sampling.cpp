@@ -1,3 +1,4 @@
+#include <qverify/core/predicates.hpp>
 #include <qverify/core/quadric.hpp>
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/sampling.hpp>
@@ -123,8 +124,9 @@ Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs
 Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach / max_abs(v))); }
 
 /// Whether a symmetric form is definite (Sylvester: its leading principal minors all positive, or
-/// alternating from negative), exactly. A definite conic or quadric has no real point, not even at
-/// infinity.
+/// alternating from negative), exactly, for any size (an in-plane 2 x 2 form, a 4 x 4 quadric; a
+/// section's 3 x 3 conic goes through core's conic_definite, the status predicate). A definite
+/// conic or quadric has no real point, not even at infinity.
 template <int k> bool definite(const Eigen::Matrix<Q, k, k>& M) {
   bool positive = true, negative = true;
   for (int i = 1; i <= k; ++i) {
@@ -307,10 +309,10 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     const Vec4<Q> x = E * s;
     if (x(3) != 0 && !x.isZero()) out.emplace_back(Vec4<Q>(x / x(3)), Vec4<Q>::Zero(), Q(0));
   };
-  // A definite section has no real point (a light inside an ellipsoid): every attempt would be
-  // spent, on coordinates that grow with each (a sphere of radius 1e300 with the light 1e-300 inside
-  // its surface took 77 s; audit 30a F2).
-  if (definite<3>(K)) {
+  // A definite section has no real point (a light inside an ellipsoid; the status predicate's own
+  // test, core/predicates.hpp): every attempt would be spent, on coordinates that grow with each (a
+  // sphere of radius 1e300 with the light 1e-300 inside its surface took 77 s; audit 30a F2).
+  if (conic_definite<Q>(K) == Truth::yes) {
     rep.exhausted = true;
     return rep;
   }
