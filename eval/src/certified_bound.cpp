@@ -954,63 +954,108 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   const Vec3<Q> gv = Vec4<Q>(Mat4<Q>(Ev + Ev.transpose()) * z0).head<3>();
   const Mat3<Q> E3 = E.topLeftCorner<3, 3>(), Ev3 = Ev.topLeftCorner<3, 3>();
   const Measure lambda_scale = abs(to_measure(Q(lambda * ref_scale)));
-  // the shells' radii reach (3/4)^j, j = 0..kShells, and 0; the floors in 80 digits, then below in double
-  constexpr int kShells = 64;
-  std::vector<Q> radius(kShells + 2);
-  radius[0] = ball.reach;
-  for (int j = 1; j <= kShells; ++j) radius[static_cast<std::size_t>(j)] = radius[static_cast<std::size_t>(j - 1)] * Q(3, 4);
-  radius[kShells + 1] = 0;
-  std::vector<double> floors(kShells + 1);
-  for (std::size_t j = 0; j <= kShells; ++j)
-    floors[j] = lower_double(lambda_scale * floor(to_measure(radius[j + 1]), to_measure(radius[j])));
   // the curvature of hat along directions where the reference curves up and down (second order)
   const auto saddle = saddle_directions(ref_in);
   const double curvature = saddle ? lower_double(saddle_curvature(hat, *saddle)) : 0.0;
   const Mat3<Q> H3s = Mat3<Q>(hat.topLeftCorner<3, 3>() + hat.topLeftCorner<3, 3>().transpose()) / 2;
   const Mat3<Q> E3s = Mat3<Q>(E3 + E3.transpose()) / 2;
-  return upward([&] {
-    const auto frobenius = [](const Mat3<Q>& m) {
-      IA n(0);
-      for (Eigen::Index i = 0; i < 9; ++i) n += CGAL::square(enc(m(i)));
-      return CGAL::sqrt(n);
-    };
-    const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
-    const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
-    const IA gvn = norm_of(gv), ev3 = frobenius(Ev3), fav = CGAL::abs(enc(av));
-    // (a ball with a box: each of the terms below also from the box's per-axis reaches)
-    const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s), Ev3a = abs_entries(Ev3);
-    const auto gva = abs_entries(gv), gsa = abs_entries(gs);
-    double worst = 0;
-    bool euclidean = euclidean_only;
-    for (std::size_t j = 0; j <= kShells; ++j) {
-      const IA r = enc(radius[j]);
-      const std::array<IA, 3> rho = axis_reach(ball, r);
-      // (from E and from Ev: the part removed from Ev is not always the one whose removal helps)
-      const IA value = tighter(fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho)),
-                               fav + tighter(r * gvn, box_linear(gva, rho)) + tighter(CGAL::square(r) * ev3, box_quadratic(Ev3a, rho)));
-      if (value.sup() == 0) continue;
-      double d = kInf;
-      if (!euclidean_only) {
-        const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
-        if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
-      } else {
-        // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
-        // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b
-        const IA gradient = IA(floors[j]) - gsn / IA(2) - tighter(r * e3s, box_image(E3sa, rho));
-        if (gradient.inf() > 0 && (CGAL::square(gradient) - value * h3).inf() >= 0) d = (value / gradient).sup();
-      }
-      if (curvature > 0) {
-        const double second = CGAL::sqrt(value / IA(curvature)).sup();
-        if (second < d) {
-          d = second;
-          euclidean = true;
+  // The shells come in batches of kShells, radii (3/4)^j of the batch's outer one, and the ball of
+  // the last radius within (floor 0 there: where the reference's gradient vanishes at the centre, a
+  // cone's apex, only the second order bounds it). The inner ball's value is about r |(E z0)_xyz|,
+  // and its second-order bound sqrt of that: for a cone moved by d, 64 shells stopped at (3/4)^64 of
+  // the reach with a bound of sqrt(1e-8 d), 9x d at d = 3e-10 (audit 30b F2), where shells further in
+  // reach about d (the first order holds down to r ~ d). So while the inner ball is the worst and its
+  // value still shrinks with its radius, the next batch splits it, up to kBatches.
+  constexpr int kShells = 64, kBatches = 4;
+  struct Batch {
+    double worst = 0, inner = 0;  // over the shells; the inner ball's
+    bool euclidean = false, inner_euclidean = false, shrinks = false, finite = true;
+  };
+  const auto run_batch = [&](const std::vector<Q>& radius, const std::vector<double>& floors) {
+    return upward([&] {
+      const auto frobenius = [](const Mat3<Q>& m) {
+        IA n(0);
+        for (Eigen::Index i = 0; i < 9; ++i) n += CGAL::square(enc(m(i)));
+        return CGAL::sqrt(n);
+      };
+      const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
+      const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
+      const IA gvn = norm_of(gv), ev3 = frobenius(Ev3), fav = CGAL::abs(enc(av));
+      // (a ball with a box: each of the terms below also from the box's per-axis reaches)
+      const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s), Ev3a = abs_entries(Ev3);
+      const auto gva = abs_entries(gv), gsa = abs_entries(gs);
+      Batch out;
+      for (std::size_t j = 0; j <= kShells; ++j) {
+        const bool inner = j == kShells;
+        const IA r = enc(radius[j]);
+        const std::array<IA, 3> rho = axis_reach(ball, r);
+        // (from E and from Ev: the part removed from Ev is not always the one whose removal helps)
+        const IA constant = tighter(fa, fav);
+        const IA value = tighter(fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho)),
+                                 fav + tighter(r * gvn, box_linear(gva, rho)) + tighter(CGAL::square(r) * ev3, box_quadratic(Ev3a, rho)));
+        if (value.sup() == 0) continue;
+        double d = kInf;
+        bool euclidean = euclidean_only;
+        if (!euclidean_only) {
+          const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
+          if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
+        } else {
+          // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
+          // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b
+          const IA gradient = IA(floors[j]) - gsn / IA(2) - tighter(r * e3s, box_image(E3sa, rho));
+          if (gradient.inf() > 0 && (CGAL::square(gradient) - value * h3).inf() >= 0) d = (value / gradient).sup();
+        }
+        if (curvature > 0) {
+          const double second = CGAL::sqrt(value / IA(curvature)).sup();
+          if (second < d) {
+            d = second;
+            euclidean = true;
+          }
+        }
+        if (!(d < kInf)) {
+          out.finite = false;
+          return out;
+        }
+        if (inner) {
+          out.inner = d;
+          out.inner_euclidean = euclidean;
+          out.shrinks = value.sup() > 2 * constant.sup();  // (a smaller ball's value would be smaller)
+        } else {
+          out.worst = std::max(out.worst, d);
+          out.euclidean = out.euclidean || euclidean;
         }
       }
-      if (!(d < kInf)) return CertifiedBound{kInf, 0, kShells + 1};
-      worst = std::max(worst, d);
+      return out;
+    });
+  };
+  double worst = 0;
+  bool euclidean = euclidean_only;
+  int boxes = 0;
+  Q outer = ball.reach;
+  for (int batch = 1;; ++batch) {
+    // the radii and their floors (in 80 digits, then below in double)
+    std::vector<Q> radius(kShells + 2);
+    radius[0] = outer;
+    for (std::size_t j = 1; j <= kShells; ++j) radius[j] = radius[j - 1] * Q(3, 4);
+    radius[kShells + 1] = 0;
+    std::vector<double> floors(kShells + 1);
+    for (std::size_t j = 0; j <= kShells; ++j)
+      floors[j] = lower_double(lambda_scale * floor(to_measure(radius[j + 1]), to_measure(radius[j])));
+    const Batch b = run_batch(radius, floors);
+    boxes += kShells + 1;
+    if (!b.finite) return CertifiedBound{kInf, 0, boxes};
+    worst = std::max(worst, b.worst);
+    euclidean = euclidean || b.euclidean;
+    if (batch == kBatches || b.inner <= worst || !b.shrinks) {
+      worst = std::max(worst, b.inner);
+      euclidean = euclidean || b.inner_euclidean;
+      break;
     }
+    outer = radius[kShells];
+  }
+  return upward([&] {
     CertifiedBound out = relative_bound(IA(worst), size);
-    out.boxes = kShells + 1;
+    out.boxes = boxes;
     out.euclidean = euclidean;
     return out;
   });

@@ -508,7 +508,9 @@ TEST_CASE("ball bound: a translated P is bounded by about its translation", "[ac
   const Mat4<Q> hyperboloid = quadric_of({1, 1, -1}, {0, 0, 0}, -1);
   const Mat4<Q> paraboloid = quadric_of({1, 1, 0}, {0, 0, -1}, 0);
   const Mat4<Q> cylinder = quadric_of({1, 1, 0}, {0, 0, 0}, -1);
+  const Mat4<Q> cone = quadric_of({1, 1, -1}, {0, 0, 0}, 0);
   for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"hyperboloid, a parabola", hyperboloid, {3, 4, 5, 1}},
+                                   {"cone lit from outside: a line pair", cone, {3, 0, 1, 1}},
                                    {"hyperboloid, a hyperbola", hyperboloid, {5, 0, 0, 1}},
                                    {"paraboloid under a sun: a parabola", paraboloid, {1, 2, 0, 0}},
                                    {"cylinder", cylinder, {3, 4, 5, 1}}}) {
