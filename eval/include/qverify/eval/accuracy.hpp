@@ -216,8 +216,9 @@ struct CoveredBound {
 ///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
 ///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
 ///    A's gradient has a floor on the terminator there, or P is indefinite (a cone's plane pair: second
-///    order near its apex); P on the generator lines, in the ball carried along them; R where h misses
-///    the ball or R's planes cross (second order near their line).
+///    order near its apex, in shells split while the innermost ball bounds the most); P on the
+///    generator lines, in the ball carried along them; R where h misses the ball or R's planes cross
+///    (second order near their line).
 /// Nothing where the terminator has too few points to sample (ItemPoints::exhausted).
 class ShadowBounds {
  public:
@@ -248,7 +249,8 @@ class ShadowBounds {
   Vec4<Rational> pi_ref_, h_;
   GradientFloor P_floor_;
   std::vector<BallPart> generator_balls_;
-  /// R in the ball: against R_ref where h misses it, else as a plane pair (ball_plane_pair_bound).
+  /// R in the ball as a plane pair (ball_plane_pair_bound: the terminator from R's first plane, then
+  /// R from that plane's points); where h misses the ball also against R_ref in one step, the smaller.
   CertifiedBound R_ball_bound(const Mat4<Rational>& R, const std::optional<Vec3<Rational>>& origin, double size) const;
 };
 
