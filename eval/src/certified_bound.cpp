@@ -1,3 +1,4 @@
+#include <qverify/core/predicates.hpp>
 #include <qverify/eval/certified_bound.hpp>
 
 #include <qverify/exact/interval.hpp>
@@ -417,14 +418,6 @@ CertifiedBound branch_and_bound(const Geometry& geo, const std::vector<const Bou
   return out;
 }
 
-/// Signs of the leading principal minors: +1 positive definite, -1 negative definite, 0 neither.
-int definiteness(const Mat3<Q>& K) {
-  const Q d1 = K(0, 0), d2 = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0), d3 = K.determinant();
-  if (d1 > 0 && d2 > 0 && d3 > 0) return 1;
-  if (d1 < 0 && d2 > 0 && d3 < 0) return -1;
-  return 0;
-}
-
 struct EllipsoidParts {
   Vec3<Q> c;  ///< centre
   Q r;        ///< A(c)
@@ -441,14 +434,14 @@ Q eigen_floor(const Mat3<Q>& S) {
   double m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d, Eigen::EigenvaluesOnly).eigenvalues()(0) / 2;
   for (int k = 0; k < 40 && m > 0 && std::isfinite(m); ++k, m /= 16) {
     const Q mu = to_rational(m);
-    if (definiteness(Mat3<Q>(S - mu * Mat3<Q>::Identity())) == 1) return mu;
+    if (*definiteness<Q, 3>(Mat3<Q>(S - mu * Mat3<Q>::Identity())) == 1) return mu;
   }
   return Q(0);
 }
 /// The centre of A and its value there, when A is an ellipsoid with real points (not a single point).
 std::optional<EllipsoidParts> ellipsoid(const Mat4<Q>& A) {
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const int s = definiteness(K);
+  const int s = *definiteness<Q, 3>(K);
   if (s == 0) return std::nullopt;
   EllipsoidParts p;
   p.c = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));

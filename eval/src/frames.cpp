@@ -1,3 +1,4 @@
+#include <qverify/core/predicates.hpp>
 #include <qverify/exact/rounding.hpp>
 #include <qverify/eval/frames.hpp>
 
@@ -85,10 +86,7 @@ bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::opt
   if (!double_holds(Q(L(2) / L(3)))) return false;  // (a height no double holds: no frame there)
   const bool meets = light_plane_meets_terminator(A, L);
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const auto definite = [](const Mat3<Q>& M) {
-    return M(0, 0) > 0 && Q(M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0)) > 0 && M.determinant() > 0;
-  };
-  if (definite(K) || definite(Mat3<Q>(-K))) return meets;  // an ellipsoid: its terminator is bounded
+  if (*definiteness<Q, 3>(K) != 0) return meets;  // an ellipsoid: its terminator is bounded
   // No centre (a paraboloid): the frame where h meets the terminator, at its height (near the object's
   // part that matters). A centre: wherever the light's height is within 4 sizes of it, also where h misses
   // the terminator: an unbounded terminator is bounded in a ball about the sampled points, and where R's

@@ -123,20 +123,6 @@ Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs
 /// v (non-zero) scaled to L-infinity length `reach`.
 Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach / max_abs(v))); }
 
-/// Whether a symmetric form is definite (Sylvester: its leading principal minors all positive, or
-/// alternating from negative), exactly, for any size (an in-plane 2 x 2 form, a 4 x 4 quadric; a
-/// section's 3 x 3 conic goes through core's conic_definite, the status predicate). A definite
-/// conic or quadric has no real point, not even at infinity.
-template <int k> bool definite(const Eigen::Matrix<Q, k, k>& M) {
-  bool positive = true, negative = true;
-  for (int i = 1; i <= k; ++i) {
-    const Q m = Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>(M.topLeftCorner(i, i)).determinant();
-    positive = positive && m > 0;
-    negative = negative && (i % 2 ? m < 0 : m > 0);
-  }
-  return positive || negative;
-}
-
 /// Directions shaped by a definite form G (k x k, exact; the quadratic part of an ellipsoid, or of
 /// an elliptic section in two in-plane coordinates of an orthogonal basis whose squared lengths are m:
 /// the axes are G's in that metric, so that a basis of unequal lengths is not taken for an
@@ -155,7 +141,7 @@ template <int k>
 std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k, k>& G, const Eigen::Matrix<Q, k, 1>& m) {
   // (exactly: a parabola's in-plane form is singular, and the Rayleigh quotient of its null vector as
   // a double decomposition gives it is some tiny number of either sign)
-  if (!definite<k>(G)) return std::nullopt;
+  if (*definiteness<Q, k>(G) == 0) return std::nullopt;
   Q big = 0;
   for (Eigen::Index i = 0; i < G.size(); ++i) big = std::max(big, Q(abs(G(i))));
   if (big == 0) return std::nullopt;
@@ -394,7 +380,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   return rep;
 }
 
-bool without_real_points(const Mat4<Q>& A) { return definite<4>(A); }
+bool without_real_points(const Mat4<Q>& A) { return *definiteness<Q, 4>(A) != 0; }
 
 SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q& reach) {
   if (!(reach > 0)) throw std::invalid_argument("sample_quadric: reach must be positive");

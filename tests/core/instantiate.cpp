@@ -29,6 +29,8 @@
   template Eigen::Matrix<S, 4, 3> plane_basis<S>(const Vec4<S>&);                                           \
   template Mat3<S> conic_on_plane<S>(const Mat4<S>&, const Vec4<S>&);                                        \
   template Truth conic_definite<S>(const Mat3<S>&);                                                          \
+  template std::optional<int> definiteness<S, 2>(const Eigen::Matrix<S, 2, 2>&);                                \
+  template std::optional<int> definiteness<S, 4>(const Mat4<S>&);                                            \
   template bool is_symmetric<S>(const Mat4<S>&, const S&);                                                   \
   template Vec4<S> polar_plane<S>(const Mat4<S>&, const Vec4<S>&);                                           \
   template Mat4<S> tangent_cone<S>(const Mat4<S>&, const Vec4<S>&);                                          \

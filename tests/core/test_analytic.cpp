@@ -181,3 +181,55 @@ TEST_CASE("shapes: matrices built without square roots", "[analytic][shapes]") {
     CHECK(A(3, 3) == Q(1, 10));
   }
 }
+
+namespace {
+/// V^T D V for an integer V with |det V| > 0: by Sylvester's law of inertia it has D's signs.
+template <int k> Eigen::Matrix<Q, k, k> congruent_form(std::mt19937_64& g, const std::array<int, k>& signs) {
+  std::uniform_int_distribution<int> entry(-6, 6), size(1, 9);
+  Eigen::Matrix<Q, k, k> V, D = Eigen::Matrix<Q, k, k>::Zero();
+  do {
+    for (Eigen::Index i = 0; i < V.size(); ++i) V(i) = Q(entry(g));
+  } while (Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>(V).determinant() == 0);
+  for (int i = 0; i < k; ++i) D(i, i) = Q(signs[static_cast<std::size_t>(i)] * size(g), size(g));
+  return V.transpose() * D * V;
+}
+
+template <int k> void check_definiteness(std::mt19937_64& g) {
+  for (int trial = 0; trial < 200; ++trial) {
+    std::array<int, k> signs{};
+    std::uniform_int_distribution<int> sign(-1, 1), mode(0, 2);
+    const int m = mode(g);  // all positive, all negative, or mixed (zeros included)
+    for (int& s : signs) s = m == 0 ? 1 : m == 1 ? -1 : sign(g);
+    const int expected = m == 0 ? 1 : m == 1 ? -1
+                         : std::all_of(signs.begin(), signs.end(), [](int s) { return s > 0; })  ? 1
+                         : std::all_of(signs.begin(), signs.end(), [](int s) { return s < 0; }) ? -1
+                                                                                                  : 0;
+    const Eigen::Matrix<Q, k, k> M = congruent_form<k>(g, signs);
+    INFO("k = " << k << ", signs " << signs[0] << " ..., M =\n" << M);
+    CHECK(definiteness<Q, k>(M) == std::optional<int>(expected));
+    // a rounding scalar behind its filter: the exact answer or none, never another
+    using F = PredicateScalar<double>;
+    Eigen::Matrix<double, k, k> Md;
+    for (Eigen::Index i = 0; i < M.size(); ++i) Md(i) = M(i).template convert_to<double>();
+    const bool representable = Eigen::Matrix<Q, k, k>(Md.template cast<Q>()) == M;
+    const auto filtered = definiteness<F, k>(to_predicate<F>(Md));
+    if (representable) CHECK((!filtered || *filtered == expected));
+  }
+}
+}  // namespace
+
+TEST_CASE("definiteness: Sylvester's test gives the inertia's answer, for 2, 3 and 4 variables", "[analytic][status]") {
+  // The one definiteness test (core/predicates.hpp): the no-real-silhouette predicate's conic, the
+  // sampler's sections and quadrics without real points, eval's ellipsoids. Forms V^T D V, D of known
+  // signs (Sylvester's law of inertia), exact; a double's filter answers the same or not at all.
+  std::mt19937_64 g(20261204);
+  check_definiteness<2>(g);
+  check_definiteness<3>(g);
+  check_definiteness<4>(g);
+  // a zero leading entry: neither, though the rest is definite on its own
+  Mat3<Q> K = Mat3<Q>::Identity();
+  K(0, 0) = 0;
+  CHECK(definiteness<Q, 3>(K) == std::optional<int>(0));
+  CHECK(conic_definite<Q>(Mat3<Q>(-Mat3<Q>::Identity())) == Truth::yes);
+  CHECK(conic_definite<Q>(Mat3<Q>(Vec3<Q>(1, 1, -1).asDiagonal())) == Truth::no);
+}

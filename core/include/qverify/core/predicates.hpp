@@ -158,14 +158,51 @@ template <class S> Truth light_on_surface(const Mat4<S>& A, const Vec4<S>& L) {
   return *s == 0 ? Truth::yes : Truth::no;
 }
 
-/// The conic x^T K x = 0 has no real point: K is definite (Sylvester:
-/// m2 > 0 and sign m1 = sign m3 != 0; m2 > 0 already forces m1 != 0).
+/// The leading principal minor of order i (1 <= i <= k) of a k x k matrix, by cofactors (a fixed
+/// evaluation for every scalar, no division).
+template <class S, int k> S leading_minor(const Eigen::Matrix<S, k, k>& M, int i) {
+  static_assert(k >= 1 && k <= 4, "leading minors of orders 1 to 4");
+  if (i == 1) return M(0, 0);
+  if constexpr (k >= 2) {
+    if (i == 2) return S(M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0));
+  }
+  if constexpr (k >= 3) {
+    if (i == 3) return det3<S>(Mat3<S>(M.template topLeftCorner<3, 3>()));
+  }
+  if constexpr (k == 4) {
+    const Mat4<S> adj = adjugate4<S>(M);
+    return S(M(0, 0) * adj(0, 0) + M(0, 1) * adj(1, 0) + M(0, 2) * adj(2, 0) + M(0, 3) * adj(3, 0));
+  }
+  return S(0);  // (not reached for 1 <= i <= k)
+}
+
+/// Sylvester's test of a symmetric form M (k x k, k <= 4): +1 where it is positive definite (its
+/// leading principal minors m_i all positive), -1 negative definite (sign m_i = (-1)^i), 0 neither;
+/// nullopt where the signs the scalar can tell leave both open (a rounding or an interval scalar;
+/// an exact one always tells). A definite conic or quadric has no real point, not even at infinity.
+/// The one test of definiteness in the project: the no-real-silhouette predicate (conic_definite),
+/// the sampler's sections and quadrics without real points, eval's ellipsoids and frames.
+template <class S, int k> std::optional<int> definiteness(const Eigen::Matrix<S, k, k>& M) {
+  bool positive = true, negative = true, known = true;
+  for (int i = 1; i <= k; ++i) {
+    const auto s = certain_sign<S>(leading_minor<S, k>(M, i));
+    if (!s) {
+      known = false;
+      continue;
+    }
+    positive = positive && *s > 0;
+    negative = negative && *s == (i % 2 ? -1 : 1);
+    if (!positive && !negative) return 0;
+  }
+  if (!known) return std::nullopt;
+  return positive ? 1 : negative ? -1 : 0;
+}
+
+/// The conic x^T K x = 0 has no real point: K is definite (definiteness).
 template <class S> Truth conic_definite(const Mat3<S>& K) {
-  const auto m2 = certain_sign<S>(S(K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0)));
-  if (m2 && *m2 <= 0) return Truth::no;
-  const auto m1 = certain_sign<S>(K(0, 0)), m3 = certain_sign<S>(det3<S>(K));
-  if (!m2 || !m1 || !m3) return Truth::unknown;
-  return *m3 != 0 && *m1 == *m3 ? Truth::yes : Truth::no;
+  const auto d = definiteness<S, 3>(K);
+  if (!d) return Truth::unknown;
+  return *d != 0 ? Truth::yes : Truth::no;
 }
 
 /// no-real-silhouette: the conic A ∩ {pi . x = 0}, pi = A L, is definite.
