@@ -830,7 +830,7 @@ ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& or
   e.R = measure_quadric(R_points(local, pts), R);
   e.generators = measure_quadric(in_frame(pts.generators, origin), P);
   e.R_plane = measure_quadric(in_frame(pts.plane, origin), R);
-  for (const Metric* m : {&e.P, &e.polar, &e.R, &e.generators, &e.R_plane}) e.geometric = mmax(e.geometric, relative(*m, pts.size));
+  for (const Metric* m : {&e.P, &e.polar, &e.R}) e.geometric = mmax(e.geometric, relative(*m, pts.size));
   return e;
 }
 
@@ -915,26 +915,9 @@ double up_to_double(const Measure& e) {
   return Measure(d) < Measure(e * (1 + kMeasureSlack)) ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
 }
 
-/// An item's accuracy with an error measured at fixed points (R on h) counted as it is, not times the
-/// margin of sampled errors: the larger of the two, up; no bound where h's error is not finite.
-ItemAccuracy with_measured(ItemAccuracy acc, const Measure& measured, double target) {
-  if (!acc.bound) return acc;  // (no point, or already no finite bound: flagged as it is)
-  if (!(measured < std::numeric_limits<Measure>::infinity())) {
-    acc.bound.reset();
-    acc.reason = "R off its second plane h where R's gradient vanishes: no first-order distance";
-    acc.inaccurate = true;
-    return acc;
-  }
-  acc.bound = std::max(*acc.bound, up_to_double(measured));
-  acc.attained = std::max(acc.attained, measured.convert_to<double>());
-  acc.inaccurate = *acc.bound > target;
-  return acc;
-}
-
 /// Combines a certified bound with the largest sampled error of the same results (the larger counts:
-/// CoveredBound::check has checked a first-order bound against them) and with errors measured at
-/// fixed points (R on h), both as they are, and the sampled error of the results it does not cover
-/// (times the margin).
+/// CoveredBound::check has checked a first-order bound against them), as it is, and the sampled error
+/// of the results it does not cover (times the margin).
 ItemAccuracy combined_accuracy(const CertifiedBound& cb, const Measure& sampled_covered, const Measure& sampled_other,
                                std::vector<std::string> certified, double target) {
   // (checked part by part before, CoveredBound::check; a bound of the Euclidean distance near a point
@@ -981,10 +964,8 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   const bool R_crossing = saddle_directions(R_ref_).has_value();
   geo_ = shadow_geometry(A, L);
   if (geo_) {
-    generators_ = generator_geometries(A, L, pts.generator_offsets);
     if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
-    cover_ = {true, true, !generators_.empty(),
-              geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
+    cover_ = {true, true, geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
     return;
   }
   ball_ = ball_in_units(pts.ball, unit_);
@@ -993,21 +974,11 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   P_ref_ = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
   P_floor_ = GradientFloor(A, ball_, s);
-  // P on its generator lines at offset rho: the terminator of A_rho = N^T A N (generator_geometries)
-  // in the ball carried by x -> a x + rho L_xyz, a = 1 - rho L_w
-  for (const Q& rho : pts.generator_offsets) {
-    const Q a = 1 - rho * L(3);
-    const Mat4<Q> Ar = generator_quadric(A, L, rho);
-    BallPart part{reference_cone(Ar, L), Vec4<Q>(Ar * L), moved(ball_, a, Vec3<Q>(rho * L.head<3>())), {}};
-    if (a > 0) part.floor = GradientFloor(Ar, part.ball, L.dot(Vec4<Q>(Ar * L)));
-    if (!(a > 0) || !(part.floor(0, to_measure(part.ball.reach)) > 0 || saddle_directions(part.ref))) {
-      generator_balls_.clear();
-      break;
-    }
-    generator_balls_.push_back(std::move(part));
-  }
-  cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true, !generator_balls_.empty(),
-            !crosses(h_, ball_) || R_crossing};
+  // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
+  const std::optional<Measure> hf = terminator_h_floor(A, L);
+  if (hf) R_floor_ = *hf * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
+  cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,
+            !crosses(h_, ball_) || R_crossing || R_floor_ > 0};
 }
 
 CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world, const Mat4<Q>* P_world,
@@ -1036,7 +1007,6 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
     }
     if (P) out.certified.emplace_back("P"), out.parts.back().names.emplace_back("P");
     if (polar) out.certified.emplace_back("polar_plane"), out.parts.back().names.emplace_back("polar_plane");
-    if (P && cover_.generators) add(generators_bound(generators_, origin, *P, size, target), "P_generators");
     // where h meets the terminator, R in the ball about the whole of it (ShadowGeometry::R_ball)
     if (R && cover_.R)
       add(geo_->R_floor > 0 ? *terminator_quadric_bound(*geo_, origin, *R, size, target) : R_ball_bound(*R, origin, size),
@@ -1045,26 +1015,34 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
   }
   if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size, false, &pi_ref_), "P");
   if (polar && cover_.polar) add(ball_plane_bound(*polar, pi_ref_, ball_, origin, size), "polar_plane");
-  if (P && cover_.generators) {
-    CertifiedBound g;
-    for (const BallPart& part : generator_balls_)
-      g = combined(g, ball_quadric_bound(*P, part.ref, part.ball, origin, part.floor, size, false, &part.plane));
-    add(g, "P_generators");
-  }
   if (R && cover_.R) add(R_ball_bound(*R, origin, size), "R");
   return out;
 }
 
 CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
-  const CertifiedBound pair = ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
-  if (crosses(h_, ball_)) return pair;
-  // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz, and R is also
-  // bounded against R_ref in one step. Each holds; the two steps are tighter where h passes near the
-  // ball (the one step divides the value's largest over a shell by the gradient's smallest, and |h . x|
-  // spans 0 to the ball's width there: a cylinder's R moved by 3e-10 of its size was bounded at 1.2e-9),
-  // the one step where R is rounded more than it is moved.
-  const CertifiedBound one = ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size, false, &pi_ref_);
-  return one.upper <= pair.upper ? one : pair;
+  // Each bound holds over the terminator in the ball (the first two over all of the polar plane in it);
+  // the smallest counts.
+  const auto smaller = [](const CertifiedBound& a, const CertifiedBound& b) { return b.upper < a.upper ? b : a; };
+  std::optional<CertifiedBound> best;
+  const auto take = [&](const CertifiedBound& b) { best = best ? smaller(*best, b) : b; };
+  // Where h . x keeps away from 0 on the terminator, R_ref's gradient there does too (R_floor_): the
+  // line where R's planes cross may pass through the ball, off the terminator, where a rounded R is
+  // truly about sqrt(eps) off, but no terminator point is near it (a hyperbolic paraboloid's R was
+  // flagged at 6.7e-9, 1.3e-16 off on the terminator: audit 31a F2).
+  if (R_floor_ > 0) {
+    const Measure floor = R_floor_;
+    take(ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; }, size,
+                            false, &pi_ref_));
+  }
+  // As a plane pair in two steps; where h misses the ball also in one step, R's reference gradient on
+  // the polar plane being (h . x) pi_xyz: the two steps are tighter where h passes near the ball (the
+  // one step divides the value's largest over a shell by the gradient's smallest, and |h . x| spans 0
+  // to the ball's width there: a cylinder's R moved by 3e-10 of its size was bounded at 1.2e-9), the
+  // one step where R is rounded more than it is moved.
+  take(ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size));
+  if (!crosses(h_, ball_))
+    take(ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size, false, &pi_ref_));
+  return *best;
 }
 
 ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_world, const ItemPoints& pts)
@@ -1288,14 +1266,6 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const Vec4<Q> Le = point_to_local(L_, o);
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
   if (const auto zero = shadow_zero_problems(Ae, Le, &P, &R); !zero.empty()) return wrong_result(zero.front());
-  // R on its second plane h, which verify judges (R_on_second_plane) and no bound covers: measured at
-  // the points of h verify takes (second_plane_error), counted as measured. They are fixed points of
-  // h, not samples of a geometry with points between them, so no margin: with one (kBoundMargin),
-  // eval flagged what verify passed, an error between T / 2 and T on h.
-  const auto on_h = [&](const ItemPoints& p) {
-    bool zero = true;
-    return second_plane_error(in_frame(p.points, origin), p.size, Ae, Le, R, zero);
-  };
   // A terminator whose real points all lie at infinity (a cylinder lit from inside: its axis's
   // direction; an imaginary cylinder's) has no finite point to measure a distance at: the results are
   // measured against the exact ones as matrices (the cross residual, as a one-point terminator's
@@ -1305,24 +1275,28 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   if (pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no)
     return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
   // (a cone lit from 1e12 along its axis: R's h is 2e-8 of its height off in float, which the matrices'
-  // cross residual, relative to their largest entry, does not see)
-  if (single_point(A_, L_, pts_.points))
-    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h(pts_)), {"P", "polar_plane"},
-                            opt_.target);  // (R: also on h, at points: measured, not certified)
+  // cross residual, relative to their largest entry, does not see: R also on h, at the points of h
+  // verify takes (second_plane_error), measured, not certified; fixed points, not samples of a
+  // geometry with points between them, so no margin)
+  if (single_point(A_, L_, pts_.points)) {
+    bool zero = true;
+    const Measure on_h = second_plane_error(in_frame(pts_.points, origin), pts_.size, Ae, Le, R, zero);
+    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h), {"P", "polar_plane"},
+                            opt_.target);
+  }
+  // The geometric error of P, the polar plane and R on the terminator (cli.md), not verify's checks of
+  // their shapes beyond it (P on its generator lines, R on the polar plane and on h: ShadowBounds).
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, A_, L_)); };
   const ShadowCover& c = bounds_.cover();
-  if (!c.P && !c.polar && !c.generators && !c.R)
-    return with_measured(refined_accuracy(pts_, dense_, opt_,
-                                          [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; },
-                                          dense),
-                         on_h(pts_), opt_.target);
+  if (!c.P && !c.polar && !c.R)
+    return refined_accuracy(pts_, dense_, opt_,
+                            [&](const ItemPoints& p) { return shadow_error(p, origin, P, polar, R).geometric; }, dense);
   const ShadowError e = shadow_error(pts_, origin, P, polar, R);  // once: both parts are read from it
   const auto sampled = [](const ShadowError& err, const Measure& size) {
     return [p = &err, size](const std::string& name) {  // (err: the caller's, alive while this is used)
       if (name == "P") return relative(p->P, size);
       if (name == "polar_plane") return relative(p->polar, size);
-      if (name == "P_generators") return relative(p->generators, size);
-      return std::max(relative(p->R, size), relative(p->R_plane, size));  // "R"
+      return relative(p->R, size);  // "R"
     };
   };
   // (a part whose bound is not finite, a result so far off that its gradient bound is swamped, leaves
@@ -1330,23 +1304,21 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const CoveredBound b = bounds_(origin, &P, &polar, &R, size_down(pts_.size), opt_.target);
   b.check(sampled(e, pts_.size));
   const auto has = [&](const char* n) { return std::find(b.certified.begin(), b.certified.end(), n) != b.certified.end(); };
-  // What a bound covers counts its certified bound and its sampled errors; the rest its errors on
-  // samples. (The denser points' generator points lie at other offsets, which the bound does not cover.)
-  const auto uncovered = [&](const ShadowError& err, const Measure& size, bool same_offsets) {
+  // What a bound covers counts its certified bound and its sampled errors; the rest its errors on samples.
+  const auto uncovered = [&](const ShadowError& err, const Measure& size) {
     const auto at = sampled(err, size);
     Measure r = 0;
     for (const char* n : {"P", "polar_plane", "R"})
       if (!has(n)) r = std::max(r, at(n));
-    if (!has("P_generators") || !same_offsets) r = std::max(r, at("P_generators"));
     return r;
   };
-  Measure covered = on_h(pts_);  // (measured, as verify measures it)
+  Measure covered = 0;
   for (const std::string& n : b.certified) covered = std::max(covered, sampled(e, pts_.size)(n));
-  Measure other = uncovered(e, pts_.size, true);
+  Measure other = uncovered(e, pts_.size);
   if (in_gray_zone(other, opt_.target)) {
     if (!dense_) dense_ = dense();
     const ShadowError d = shadow_error(*dense_, origin, P, polar, R);
-    other = std::max(other, uncovered(d, dense_->size, false));
+    other = std::max(other, uncovered(d, dense_->size));
   }
   return combined_accuracy(b.bound, covered, other, b.certified, opt_.target);
 }
@@ -1389,29 +1361,29 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
 
 std::string error_bound_rule(const AccuracyOptions& accuracy) {
   return "error_bound: the geometric error (largest distance, first-order |x^T Q x| / |grad| or second-order "
-      "sqrt(|x^T Q x| / kappa) where smaller, of exact points of the "
-      "terminator, or of A reflected, from the returned P, polar plane, R or B, in the item's frame, divided by the "
-      "object size, the largest distance of those points from A's centre). Where the terminator is a real ellipse, P and "
-      "the polar plane on the terminator, P on its generator lines (the terminator moved along them by three offsets), "
-      "R on the terminator and the polar plane inside it, and, where A is an ellipsoid, B are bounded over every point "
-      "of their geometry by interval branch and bound; other terminators (hyperbolas, parabolas, line pairs) and other "
-      "quadrics reflected are unbounded, and there the object size is the largest distance of the sampled points from "
-      "A's centre (their centroid where A has none) and the same results are bounded over every point of their geometry "
-      "within that distance of the centre, by interval bounds over shells of that ball. Where the reference's gradient "
-      "vanishes on the geometry (a cone's apex; R where its plane h crosses the terminator) a first-order distance means "
-      "nothing: there the shells bound the Euclidean distance to the result, by second order (sqrt(|x^T Q x| / c), c "
-      "the result's curvature along a direction where it curves the other way), of the order of the square root of the "
-      "rounding, and the distances measured at the " +
+      "sqrt(|x^T Q x| / kappa) where smaller, of exact points of the terminator from the returned P, polar plane and "
+      "R, or of A reflected from B, in the item's frame, divided by the object size, the largest distance of those "
+      "points from A's centre). Where the terminator is a real ellipse, P, the polar plane and R on the terminator "
+      "(R also on the polar plane inside it where h does not meet the terminator), and, where A is an ellipsoid, B "
+      "are bounded over every point of their geometry by interval branch and bound; other terminators (hyperbolas, "
+      "parabolas, line pairs) and other quadrics reflected are unbounded, and there the object size is the largest "
+      "distance of the sampled points from A's centre (their centroid where A has none) and the same results are "
+      "bounded over every point of their geometry within that distance of the centre, by interval bounds over shells "
+      "of that ball. Where the reference's gradient vanishes on the geometry (a cone's apex; R where its plane h "
+      "crosses the terminator) a first-order distance means nothing: there the shells bound the Euclidean distance to "
+      "the result, by second order (sqrt(|x^T Q x| / c), c the result's curvature along a direction where it curves "
+      "the other way), of the order of the square root of the rounding, and the distances measured at the " +
       std::to_string(accuracy.samples) + " seeded exact sample points (the points of verify --seed " +
       std::to_string(accuracy.seed) + ") count as well; certified_for names what is bounded. What no bound covers (a "
       "terminator with too few real points) is measured on those points (near the target again on " +
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
-      " times, a margin that is not a proof. R also on its second plane h, at three points of h above the "
-      "centre of the terminator's plane section, kept away from the line where R's planes cross (verify's R_on_second_plane), counted as measured. "
-      "Where the terminator is a single real point, P, the polar plane and R are measured as matrices instead, their "
-      "largest relative cross residual against the exact ones, exactly (verify's as_matrices). For a reflection, M's "
-      "error (its largest entry off the exact reflection, relative to the larger of 1 and the reflection's largest "
-      "entry) is counted exactly (certified_for M). Flag inaccurate when error_bound > accuracy";
+      " times, a margin that is not a proof. Where the terminator is a single real point, P, the polar plane and R are "
+      "measured as matrices instead, their largest relative cross residual against the exact ones, exactly (verify's "
+      "as_matrices; R also on its second plane h, at three points of h above the point), and likewise where its real "
+      "points all lie at infinity. For a reflection, M's error (its largest entry off the exact reflection, relative "
+      "to the larger of 1 and the reflection's largest entry) is counted exactly (certified_for M). verify's checks of "
+      "the results' shapes beyond the geometric error (P on its generator lines, R on the polar plane and on h) are "
+      "not counted. Flag inaccurate when error_bound > accuracy";
 }
 
 }  // namespace qverify

@@ -588,12 +588,6 @@ Mat4<Q> reference_plane_pair(const Mat4<Q>& A, const Vec4<Q>& L) {
   return pi * h.transpose() + h * pi.transpose();
 }
 
-Mat4<Q> generator_quadric(const Mat4<Q>& A, const Vec4<Q>& L, const Q& rho) {
-  Mat4<Q> N = Mat4<Q>::Identity();
-  N.col(3) -= rho * L;
-  return N.transpose() * A * N;
-}
-
 namespace {
 
 /// The terminator and P's parts of a shadow geometry (shadow_geometry adds R's).
@@ -707,6 +701,38 @@ std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g, 
                   branch_and_bound(*g.polar_disc, {&on_disc}, size, target));
 }
 
+std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L) {
+  const Vec4<Q> pi = A * L, h = reference_second_plane(L);
+  const Vec3<Q> n = pi.head<3>(), m = h.head<3>();
+  const Vec3<Q> u = n.cross(m);
+  if (u.isZero()) return std::nullopt;  // (parallel planes, or h at infinity)
+  // p0 on both planes and w with n . w = 0, m . w = 1, both in the span of n and m (Gram system)
+  const Q nn = n.squaredNorm(), nm = n.dot(m), mm = m.squaredNorm(), det = nn * mm - nm * nm;  // |u|^2 > 0
+  const auto in_span = [&](const Q& at_n, const Q& at_m) {  // the v = a n + b m with n . v, m . v given
+    const Q a = (at_n * mm - at_m * nm) / det, b = (at_m * nn - at_n * nm) / det;
+    return Vec3<Q>(a * n + b * m);
+  };
+  const Vec3<Q> p0 = in_span(-pi(3), -h(3)), w = in_span(Q(0), Q(1));
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> k = A.topRightCorner<3, 1>();
+  const Q alpha = u.dot(K * u);
+  if (alpha == 0) return std::nullopt;  // (a line along h's direction meets A once for almost every t)
+  // beta(t) = u . (K (p0 + t w) + k) = b0 + b1 t; gamma(t) = A(p0 + t w) = g0 + g1 t + g2 t^2
+  const Q b0 = u.dot(Vec3<Q>(K * p0 + k)), b1 = u.dot(Vec3<Q>(K * w));
+  const Q g0 = p0.dot(Vec3<Q>(K * p0)) + 2 * k.dot(p0) + A(3, 3), g1 = 2 * (w.dot(Vec3<Q>(K * p0)) + k.dot(w)),
+          g2 = w.dot(Vec3<Q>(K * w));
+  const Q a = b1 * b1 - alpha * g2, b = 2 * b0 * b1 - alpha * g1, c = b0 * b0 - alpha * g0;
+  if (!(c < 0)) return std::nullopt;  // the line h . x = 0 meets (or touches) the terminator
+  const Q disc = b * b - 4 * a * c;
+  if (disc < 0) return std::nullopt;  // (no line of the family meets A: no finite terminator point)
+  const double t0 = upward([&] {
+    const IA num = IA(2) * CGAL::abs(enc(c)), den = CGAL::abs(enc(b)) + CGAL::sqrt(enc(disc));
+    return (num / den).inf();
+  });
+  if (!(t0 > 0) || !std::isfinite(t0)) return std::nullopt;
+  return Measure(t0);
+}
+
 Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {
   Mat4<Q> M = Mat4<Q>::Identity();
   for (int k = 0; k < 3; ++k) {
@@ -716,38 +742,14 @@ Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {
   return M;
 }
 
-std::vector<ShadowGeometry> generator_geometries(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<Q>& offsets) {
-  std::vector<ShadowGeometry> out;
-  for (const Q& rho : offsets) {
-    if (!(1 - rho * L(3) > 0)) return {};
-    auto g = cone_geometry(generator_quadric(A, L, rho), L);  // P alone is bounded there
-    if (!g) return {};
-    out.push_back(std::move(*g));
-  }
-  return out;
-}
-
 CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b) {
   return {std::max(a.upper, b.upper), std::max(a.attained, b.attained), a.boxes + b.boxes, a.euclidean || b.euclidean};
-}
-
-CertifiedBound generators_bound(const std::vector<ShadowGeometry>& g, const std::optional<Vec3<Q>>& origin,
-                                const Mat4<Q>& P, double size, double target) {
-  CertifiedBound out;
-  for (const ShadowGeometry& piece : g) out = combined(out, shadow_bound(piece, origin, &P, nullptr, size, target));
-  return out;
 }
 
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Q>>& origin, const Mat4<Q>& B,
                                 double size, double target) {
   const BoundedResult bb = quadric_result(B, g.B_ref, *g.surface, origin, g.grad_floor);
   return branch_and_bound(*g.surface, {&bb}, size, target);
-}
-
-Ball moved(const Ball& b, const Q& a, const Vec3<Q>& t) {
-  Ball out{Vec3<Q>(a * b.centre + t), Q(abs(a) * b.reach), std::nullopt};
-  if (b.half) out.half = Vec3<Q>(abs(a) * *b.half);
-  return out;
 }
 
 namespace {

@@ -454,9 +454,8 @@ Attributes:
         return std::move(d);
       }, "Floating candidates whose terminator is a real ellipse (shadows) or of an ellipsoid (reflections): the "
          "geometric error of the results named in 'results' bounded "
-         "at every point, not only the samples: P and the polar plane over the whole terminator, P_generators "
-         "(P over the terminator moved along its generator lines by the sampled offsets), R (over the terminator "
-         "and the polar plane inside it, where R's second plane does not meet the terminator), B over all of A "
+         "at every point, not only the samples: P, the polar plane and R over the whole terminator (R also over "
+         "the polar plane inside it, where R's second plane does not meet the terminator), B over all of A "
          "reflected. A dict (results, geometric_error_bound, geometric_error_attained, boxes), or None. A pass "
          "needs the bound within the accuracy target.")
       .def_readonly("notes", &CheckReport::notes, "Remarks (few real points, one-point terminator, ...).")

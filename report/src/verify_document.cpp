@@ -114,14 +114,16 @@ json verify_document(const Scene& sc, const VerifyReport& report) {
   doc["accuracy"] = exact ? 0.0 : report.options.accuracy;
   doc["tolerance_rule"] =
       exact ? "exact: every residual must be exactly zero (a proof)"
-            : "pass: the geometric error of every checked result (largest distance of exact points from P, R, the polar "
-              "plane or B: first-order, |x^T Q x| / |grad|, or second-order, sqrt(|x^T Q x| / kappa), where smaller; "
-              "of exact points from P, R, the polar plane or B, in the result's frame, divided by the object size: the "
-              "largest distance of the points from A's centre) is at most the accuracy target; P also on exact points "
-              "of its generator lines, R also on points of the polar plane, signs and M against references computed "
-              "here from A, L and the mirror; and where certified, eval's certified bound over every point of the "
-              "results' geometry (certified.results; near a point where the reference's gradient vanishes, a cone's "
-              "apex or where R's planes cross, of the Euclidean distance, by second order) is at most the target. "
+            : "pass: the geometric error of every checked result (geometric_error: largest distance of exact points "
+              "of the terminator from P, R and the polar plane, or of A reflected from B: first-order, |x^T Q x| / "
+              "|grad|, or second-order, sqrt(|x^T Q x| / kappa), where smaller; in the result's frame, divided by the "
+              "object size: the largest distance of the points from A's centre) is at most the accuracy target; the "
+              "results' shapes too, at the same target (on_generators: P on exact points of its generator lines, the "
+              "cone from L; R_on_polar_plane and R_on_second_plane: R the plane pair of the polar plane and h), signs "
+              "and M against references computed here from A, L and the mirror; and where certified, eval's certified "
+              "bound of the geometric error over every point of the terminator or of A reflected (certified.results; "
+              "near a point where the reference's gradient vanishes, a cone's apex or where R's planes cross, of the "
+              "Euclidean distance, by second order) is at most the target. "
               "consistent_with_precision (information only): every relative residual "
               "|x^T Q x| / (|Q|_F |x|^2) within 64 eps kappa, kappa the rounding amplification of the formulas";
   json checks = json::array();

@@ -103,9 +103,15 @@ TEST_CASE("a sphere lit level with its centre: R measured by the Euclidean dista
   const ShadowResult<double> s = shadow<double>(A, L, Method::direct);
   const CheckReport at_default = check_shadow<double>(A, L, candidate_of(s));
   INFO(at_default.summary());
-  // the neck: above the default target (and so is R's certified bound, 4.7e-9), below 1e-8
-  CHECK(at_default.geometric_error > 1e-10);
-  CHECK(at_default.geometric_error < 1e-8);
+  // the neck: above the default target on the polar plane's points (a check of R's shape) and in R's
+  // certified bound over the terminator (whose two points on h the samples miss), below 1e-8
+  REQUIRE(at_default.find("R_on_polar_plane"));
+  CHECK(at_default.find("R_on_polar_plane")->geometric_error > 1e-10);
+  CHECK(at_default.find("R_on_polar_plane")->geometric_error < 1e-8);
+  REQUIRE(at_default.certified);
+  CHECK(at_default.certified->upper > 1e-9);
+  CHECK(at_default.certified->upper < 1e-8);
+  CHECK_FALSE(at_default.passed);
   CheckOptions loose;
   loose.accuracy = 1e-8;
   const CheckReport good = check_shadow<double>(A, L, candidate_of(s), loose);
@@ -180,10 +186,10 @@ TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how m
     CHECK_FALSE(r.passed);
     CHECK(r.find("on_P")->passed);  // the terminator alone cannot tell
     CHECK_FALSE(r.find("on_generators")->passed);
-    // and the bound over every point of the generator lines at the sampled offsets certifies it
+    CHECK(r.find("on_generators")->geometric_error > 1e-3);
+    // (the certified bound is of the geometric error, on the terminator, where this P is right)
     REQUIRE(r.certified);
-    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators", "R"});
-    CHECK(r.certified->attained > 1e-3);
+    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "R"});
   }
   SECTION("the same on a hyperboloid (a hyperbola: bounded over the ball of the object size), the samples see it") {
     Mat4<double> H = Mat4<double>::Zero();  // x^2 + y^2 - z^2 - 1 = 0, one sheet
@@ -197,8 +203,7 @@ TEST_CASE("check_shadow: a wrong P fails, and the report says where and by how m
     INFO(r.summary());
     REQUIRE(r.certified);  // the ball bound: the wrong P's error term swamps its gradient, no finite bound
     // (R too: h, z = 2, crosses the ball, and R's planes cross there: the second order bounds it)
-    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "P_generators", "R"});
-    CHECK(r.certified->upper > 1e-9);
+    CHECK(r.certified_for == std::vector<std::string>{"P", "polar_plane", "R"});
     CHECK_FALSE(r.passed);
     CHECK(r.find("on_P")->passed);
     CHECK_FALSE(r.find("on_generators")->passed);

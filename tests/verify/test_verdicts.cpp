@@ -942,3 +942,33 @@ TEST_CASE("a cone with no length of its own is sampled by unit steps - its place
     }
   }
 }
+
+TEST_CASE("correctly rounded results of degenerate references: not flagged, and they pass", "[verdicts][accuracy]") {
+  // A cone's P under a sun is a plane pair: rounded, it is truly sqrt(eps) rho off along the line where
+  // its planes cross (the apex's generator line), 5e-17 off on the terminator. Its certified bound over
+  // the generator lines flagged it at 7.1e-9, and verify failed eval's own double results (audit 31a
+  // F1). A hyperbolic paraboloid's R, 1.3e-16 off on the terminator, was flagged at 6.7e-9 near the line
+  // where h crosses the polar plane, a line the terminator does not meet (F2). The geometric error is
+  // of the terminator's points; P's generators and R's polar plane are checks of their shapes, sampled.
+  const char* scenes[] = {
+      R"({"format": "qverify-scene/1", "name": "cone", "quadrics": [{"id": "cone", "cone": {"apex": [0, 0, 0],
+          "axis": [1, 2, 3], "tan_half_angle": "1/3"}}], "lights": [{"id": "sun", "direction": [1, -1, 2]}]})",
+      R"({"format": "qverify-scene/1", "name": "hpar", "quadrics": [{"id": "hpar", "coefficients": {"xx": "32/75",
+          "yy": "1/3", "zz": "-19/25", "xy": "-4/5", "xz": "-52/75", "yz": "16/15", "x": "41/15", "y": "-6",
+          "z": "112/15", "c": "-55/3"}}], "lights": [{"id": "p0", "position": ["88/75", "47/30", "857/150"]}]})"};
+  for (const char* text : scenes) {
+    const Scene sc = parse_scene(text, "degenerate.json");
+    INFO(sc.name);
+    const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+    REQUIRE(rs.shadows.size() == 1);
+    const auto& acc = rs.shadows[0].accuracy;
+    REQUIRE(acc);
+    REQUIRE(acc->bound);
+    INFO("error_bound " << *acc->bound);
+    CHECK_FALSE(acc->inaccurate);
+    CHECK(*acc->bound < 1e-12);
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    REQUIRE(v.checks.size() == 1);
+    CHECK(v.passed == 1);
+  }
+}

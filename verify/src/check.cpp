@@ -282,10 +282,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   if (onPolar && onPolar->judged) judge(*onPolar, "on_polar_plane");
   if (onGen) judge(*onGen, "on_generators (P is not the cone from L through the terminator)");
   if (onPlane) judge(*onPlane, "R on the polar plane");
-  Measure h_err = 0;  // R on its second plane (also counted in the geometric error, below)
+  Measure h_err = 0;  // R on its second plane
   if (got.R) {  // (also at a single point: the matrices' cross residual does not see h's height off)
     bool h_zero = true;
-    h_err = second_plane_error(local, pts.size, Ae, Le, *got.R, h_zero);  // (accuracy.hpp; eval counts it too)
+    h_err = second_plane_error(local, pts.size, Ae, Le, *got.R, h_zero);  // (accuracy.hpp)
     rep.second_plane_error = h_err < kInf ? to_d(h_err) : std::numeric_limits<double>::infinity();
     if (exact ? !h_zero : h_err > T)
       problems.push_back("R does not contain the plane h that the paper's frame sends to infinity (R must be the plane "
@@ -324,11 +324,13 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
         ++rep.proved_exactly;
   rep.rounding_tolerance = to_d(tol);
   rep.kappa = to_d(kappa);
+  // The geometric error (cli.md): P, the polar plane and R on the terminator. The checks of their
+  // shapes (P on its generator lines, R on the polar plane and on h) are judged beside it, each in its
+  // own entry, and fail the check on their own.
   Measure geo = 0;
-  for (const auto* c : {&onP, &onPolar, &onR, &onGen, &onPlane})
+  for (const auto* c : {&onP, &onPolar, &onR})
     if (*c && (*c)->judged) geo = mmax(geo, relative((*c)->metric, pts.size));
   if (asMatrices) geo = mmax(geo, asMatrices->metric.distance);
-  geo = mmax(geo, h_err);  // (a result failed for R's second plane reports that error, not a smaller one)
   rep.geometric_error = geo < kInf ? to_d(geo) : std::numeric_limits<double>::infinity();
   if (pts.exhausted) rep.notes.push_back("only " + std::to_string(pts.points.size()) + " real point(s) found on this terminator");
   if (one_point)
@@ -340,22 +342,20 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     // measured on the same parts' sample points
     const ShadowBounds bounds(Aw, Lw, pts);
     const ShadowCover& c = bounds.cover();
-    const Mat4<Q>* P = got.P && (c.P || c.generators) ? &*got.P : nullptr;
+    const Mat4<Q>* P = got.P && c.P ? &*got.P : nullptr;
     const Vec4<Q>* polar = got.polar_plane && c.polar ? &*got.polar_plane : nullptr;
     const Mat4<Q>* R = got.R && c.R ? &*got.R : nullptr;
     Measure sampled = 0;
-    if (P && c.P) sampled = relative(onP->metric, pts.size);
-    if (P && c.generators) sampled = mmax(sampled, relative(onGen->metric, pts.size));
+    if (P) sampled = relative(onP->metric, pts.size);
     if (polar) sampled = mmax(sampled, relative(onPolar->metric, pts.size));
-    if (R) sampled = mmax(sampled, mmax(relative(onR->metric, pts.size), relative(onPlane->metric, pts.size)));
+    if (R) sampled = mmax(sampled, relative(onR->metric, pts.size));
     if (P || polar || R) {
       CoveredBound b = bounds(got.origin, P, polar, R, size_down(pts.size), opt.accuracy);
       b.check([&](const std::string& n) {
         const auto at = [&](const std::optional<QuadricCheck>& c) { return c ? relative(c->metric, pts.size) : Measure(0); };
         if (n == "P") return at(onP);
         if (n == "polar_plane") return at(onPolar);
-        if (n == "P_generators") return at(onGen);
-        return mmax(at(onR), at(onPlane));
+        return at(onR);
       });
       if (!b.certified.empty()) certify(rep, b.bound, opt.accuracy, std::move(b.certified), sampled);
     }

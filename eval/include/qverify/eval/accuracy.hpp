@@ -163,10 +163,12 @@ Measure relative(const Metric& m, const Measure& size);
 
 /// Geometric errors of one shadow item's results (relative to the object size).
 struct ShadowError {
-  Metric P, polar, R;
-  Metric generators;      ///< P on the generator lines
-  Metric R_plane;         ///< R on the polar plane
-  Measure geometric = 0;  ///< the largest of the five
+  Metric P, polar, R;     ///< on the terminator
+  Metric generators;      ///< P on the generator lines (verify's check of P's shape)
+  Metric R_plane;         ///< R on the polar plane (verify's check of R's shape)
+  /// The geometric error (cli.md): the largest of P, polar and R, on the terminator; the shape
+  /// checks are verify's, beyond it (ShadowBounds).
+  Measure geometric = 0;
 };
 ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& P,
                          const Vec4<Rational>& polar, const Mat4<Rational>& R);
@@ -184,11 +186,10 @@ Mat4<Rational> reference_mirror(const Vec4<Rational>& plane);
 
 /// Which of a shadow item's results a certified bound covers (the others are measured on samples).
 struct ShadowCover {
-  bool P = false, polar = false, generators = false, R = false;
+  bool P = false, polar = false, R = false;
 };
 
-/// The certified bound of some of an item's results, and their names ("P", "polar_plane",
-/// "P_generators", "R", "B").
+/// The certified bound of some of an item's results, and their names ("P", "polar_plane", "R", "B").
 struct CoveredBound {
   CertifiedBound bound;
   std::vector<std::string> certified;
@@ -205,20 +206,26 @@ struct CoveredBound {
   void check(const std::function<Measure(const std::string&)>& sampled) const;
 };
 
-/// The certified bounds of one shadow item's results over every point of their geometry, built once
-/// per item from its points (eval's meter and verify's check use the same):
+/// The certified bounds of one shadow item's results over every point of the contract's geometry,
+/// the terminator, built once per item from its points (eval's meter and verify's check use the same):
 ///  - where the terminator is a real ellipse, over the whole of it by branch and bound: P and the
-///    polar plane (shadow_bound), P on its generator lines at the item's offsets
-///    (generators_bound), R on the terminator and the polar plane inside it where h does not
+///    polar plane (shadow_bound), R on the terminator and the polar plane inside it where h does not
 ///    meet the terminator (terminator_quadric_bound), and where it does, in a ball about the
 ///    whole terminator (ShadowGeometry::R_ball; as a plane pair, second order near the line where
 ///    R's planes cross);
 ///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
 ///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
 ///    A's gradient has a floor on the terminator there, or P is indefinite (a cone's plane pair: second
-///    order near its apex, in shells split while the innermost ball bounds the most); P on the
-///    generator lines, in the ball carried along them; R where h misses the ball or R's planes cross
-///    (second order near their line).
+///    order near its apex, in shells split while the innermost ball bounds the most); R where the
+///    line h . x = 0 of the polar plane misses the terminator (a floor of |h . x| on it,
+///    terminator_h_floor), where h misses the ball, or where R's planes cross (second order near
+///    their line).
+/// P on its generator lines, R on the polar plane inside the object and on h are not bounded: they
+/// are verify's checks of the results' shapes (that P is the cone from L, R the plane pair), beyond
+/// the geometric error, measured on samples. Bounded, they flagged correctly rounded results: a
+/// cone's P under a parallel light is a plane pair, a rounded one truly sqrt(eps) rho off along the
+/// line where its planes cross, the apex's generator line, while 5e-17 off on the terminator (audit
+/// 31a F1); R likewise near the line where h crosses the polar plane, off the terminator (F2).
 /// Nothing where the terminator has too few points to sample (ItemPoints::exhausted).
 class ShadowBounds {
  public:
@@ -231,26 +238,20 @@ class ShadowBounds {
                           const Vec4<Rational>* polar, const Mat4<Rational>* R, double size, double target) const;
 
  private:
-  struct BallPart {
-    Mat4<Rational> ref;
-    Vec4<Rational> plane;  ///< the plane of the moved terminator, A_rho L
-    Ball ball;
-    GradientFloor floor;
-  };
   /// The unit of length of everything below and of the bounds (accuracy.cpp, length_unit): a power
   /// of two near the object's size, so that the bounds' doubles neither overflow nor underflow.
   Rational unit_{1};
   ShadowCover cover_;
   std::optional<ShadowGeometry> geo_;
-  std::vector<ShadowGeometry> generators_;
   // the ball bounds, where geo_ is empty
   Ball ball_{Vec3<Rational>::Zero(), Rational(0), std::nullopt};
   Mat4<Rational> P_ref_, R_ref_;
   Vec4<Rational> pi_ref_, h_;
   GradientFloor P_floor_;
-  std::vector<BallPart> generator_balls_;
+  Measure R_floor_ = 0;  ///< terminator_h_floor times |pi_xyz|: R_ref's gradient on the terminator
   /// R in the ball as a plane pair (ball_plane_pair_bound: the terminator from R's first plane, then
-  /// R from that plane's points); where h misses the ball also against R_ref in one step, the smaller.
+  /// R from that plane's points); where h misses the ball also against R_ref in one step, and where
+  /// R_floor_ > 0 against R_ref with that floor (over the terminator only), the smallest.
   CertifiedBound R_ball_bound(const Mat4<Rational>& R, const std::optional<Vec3<Rational>>& origin, double size) const;
 };
 
@@ -288,9 +289,8 @@ struct ItemAccuracy {
   std::string reason;
   bool inaccurate = false;
   /// The results whose part of the bound is certified over every point of their geometry
-  /// (certified_bound.hpp: "P" and "polar_plane" on the terminator, "P_generators" for P on its
-  /// generator lines at the item's offsets, "R", "B"; ShadowBounds, ReflectionBounds); the other
-  /// parts are measured on samples.
+  /// (certified_bound.hpp: "P", "polar_plane" and "R" on the terminator, "B"; ShadowBounds,
+  /// ReflectionBounds); the other parts are measured on samples.
   std::vector<std::string> certified;
   /// A geometric error the result is known to reach (a lower bound of its true error, at most
   /// `bound`): the largest measured on the exact sample points, or, where the bound is certified,

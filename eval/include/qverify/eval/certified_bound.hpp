@@ -15,9 +15,7 @@
 ///  - A reflected: x = c + R3^-1 u with K / (-A(c)) = R3^T R3, carried by the
 ///    exact mirror M (the reflected point minus M c is H R3^-1 u);
 ///  - the polar plane inside the terminator: the same map of the unit disc
-///    (|u| <= 1, u = r v / |v|, r in [0, 1] a second parameter), where R vanishes;
-///  - P's generator lines at an offset rho: the terminator of the homothetic
-///    quadric A_rho (generator_geometries).
+///    (|u| <= 1, u = r v / |v|, r in [0, 1] a second parameter), where R vanishes.
 ///
 /// For a returned quadric Q^ (in the frame with origin o) and an exact quadric
 /// Q that vanishes on the geometry (the reference, computed from A and L or the
@@ -132,9 +130,17 @@ Vec4<Rational> reference_second_plane(const Vec4<Rational>& L);
 Mat4<Rational> reference_cone(const Mat4<Rational>& A, const Vec4<Rational>& L);
 Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
-/// A_rho = N^T A N, N = I - rho L e_4^T: the quadric whose terminator lit by L is A's terminator moved
-/// along the generator lines by rho (generator_map, generator_geometries).
-Mat4<Rational> generator_quadric(const Mat4<Rational>& A, const Vec4<Rational>& L, const Rational& rho);
+/// A lower bound t0 > 0 of |h . x| over the terminator's finite real points x = (p, 1) (h =
+/// reference_second_plane(L): R_ref's gradient there is (h . x) pi_xyz), whatever its shape; nullopt
+/// where none is found (the line h . x = 0 of the polar plane meets or touches the terminator, h is
+/// the plane at infinity, or the lines of the polar plane along h are asymptotic to A). Exactly: on
+/// the lines x = p0 + t w + s u of the polar plane (pi . x = 0, h . x = t, u along both planes),
+/// A(x) = alpha s^2 + 2 beta(t) s + gamma(t), beta linear and gamma quadratic in t, alpha =
+/// u^T K u != 0; such a line meets A where D(t) = beta^2 - alpha gamma = a t^2 + b t + c >= 0. With
+/// c = D(0) < 0 the line h . x = 0 misses the terminator, and the t of the terminator's points
+/// nearest 0 is D's root of least magnitude, 2 |c| / (|b| + sqrt(b^2 - 4 a c)) (for either sign of
+/// a; the whole line family misses where b^2 < 4 a c), enclosed from below.
+std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
 /// The geometry of a reflection item where A is an ellipsoid; nullopt otherwise.
 struct ReflectionGeometry {
@@ -175,21 +181,6 @@ std::optional<CertifiedBound> terminator_quadric_bound(const ShadowGeometry& g,
 /// rho L_xyz for a parallel one. M L = L.
 Mat4<Rational> generator_map(const Vec4<Rational>& L, const Rational& rho);
 
-/// P on its generator lines, over every point at each offset rho (ItemPoints::generator_offsets).
-/// With N = I - rho L e_4^T (N M = (1 - rho L_w) I), M maps A's terminator onto the terminator
-/// of A_rho = N^T A N lit by the same L (y = M x: y^T A_rho y = a^2 x^T A x, (A_rho L) . y =
-/// a^2 (A L) . x, a = 1 - rho L_w), and the cone onto itself: P_ref of (A_rho, L) is a^2 P_ref
-/// (N L = a L, P_ref N = P_ref since P_ref L = 0). So shadow_bound of the geometry of
-/// (A_rho, L), P alone, bounds P's error over the whole terminator moved by rho along the
-/// generators (the geometries carry the terminator and P's parts; R's are not built). One geometry per offset; empty unless every offset has one (a > 0,
-/// the terminator a real ellipse).
-std::vector<ShadowGeometry> generator_geometries(const Mat4<Rational>& A, const Vec4<Rational>& L,
-                                                 const std::vector<Rational>& offsets);
-
-/// The certified bound of the returned P over the generator geometries: the largest of their bounds.
-CertifiedBound generators_bound(const std::vector<ShadowGeometry>& g, const std::optional<Vec3<Rational>>& origin,
-                                const Mat4<Rational>& P, double size, double target);
-
 /// The bound of an item's results over two pieces of geometry: the larger upper bound and
 /// distance attained, the boxes of both.
 CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b);
@@ -198,10 +189,6 @@ CertifiedBound combined(const CertifiedBound& a, const CertifiedBound& b);
 CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional<Vec3<Rational>>& origin,
                                 const Mat4<Rational>& B, double size, double target);
 
-
-/// The ball mapped by x -> a x + t (a homothety or translation, as generator_map and the mirror's
-/// linear part times its offset are): centre a c + t, reach |a| reach (and the box's half-widths).
-Ball moved(const Ball& b, const Rational& a, const Vec3<Rational>& t);
 
 /// Lower bounds of |(A (x, 1))_xyz| over the points x of A in a shell of a ball, inner <= |x - c| <=
 /// outer; 0 where none is known (A's gradient vanishes there: the apex of a cone; or A is the zero

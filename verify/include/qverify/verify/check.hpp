@@ -93,7 +93,10 @@ struct CheckReport {
   std::string item_status;            ///< the candidate's status (or the exact one when it gave none)
   double accuracy = kDefaultAccuracy;
   double object_size = 0;
-  double geometric_error = 0;  ///< largest over the judged quadrics and second_plane_error (+inf: unbounded)
+  /// The geometric error (cli.md): the largest over the judged checks of P, the polar plane and R on
+  /// the terminator, or B (+inf: unbounded). The checks of the results' shapes (on_generators,
+  /// R_on_polar_plane, second_plane_error) are beside it and fail the check on their own.
+  double geometric_error = 0;
   std::size_t points = 0;      ///< exact points sampled
   bool exhausted = false;      ///< fewer real points than asked
   std::vector<QuadricCheck> checks;
@@ -104,7 +107,7 @@ struct CheckReport {
   int proved_exactly = 0;  ///< exact mode: points at which every residual is exactly 0
   /// Floating candidates whose terminator is a real ellipse (shadows) or of an ellipsoid
   /// (reflections): the geometric error of the results in certified_for
-  /// ("P", "polar_plane", "P_generators", "R", "B") bounded over every point of their geometry,
+  /// ("P", "polar_plane", "R" on the terminator, "B") bounded over every point of their geometry,
   /// not only the samples (certified_bound.hpp); a pass needs its upper bound within the accuracy
   /// target.
   std::optional<CertifiedBound> certified;
