@@ -307,7 +307,7 @@ Commands declare_commands(CLI::App& app, Options& o) {
                                 "Check results on exact sample points: terminator points on A, P and R, "
                                 "reflected points on B (a proof in exact arithmetic)");
   add_common(c.verify);
-  c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(integer_in(1, 100000));
+  c.verify->add_option("--samples", o.samples, "Points per item")->capture_default_str()->check(integer_in(1, kMaxSamples));
   c.verify->add_option("--seed", o.seed, "Seed of the deterministic sampler (0 to 2^64 - 1)")
       ->capture_default_str()
       ->check(kSeedText);

@@ -1221,11 +1221,14 @@ Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P
   return e;
 }
 
-std::vector<std::string> shadow_zero_problems(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Mat4<Q>* R) {
+std::vector<std::string> shadow_zero_problems(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar,
+                                              const Mat4<Q>* R) {
   std::vector<std::string> out;
   const Vec4<Q> pi = A * L;
   if (P && P->isZero() != reference_cone(A, L).isZero())
     out.emplace_back("P is zero where it should not be (or the converse)");
+  if (polar && polar->isZero() != pi.isZero())
+    out.emplace_back("the polar plane is zero where it should not be (or the converse)");
   if (R && R->isZero() != pi.isZero())  // R = pi h^T + h pi^T, h != 0
     out.emplace_back("R is zero where it should not be (or the converse)");
   return out;
@@ -1265,7 +1268,7 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const Mat4<Q> Ae = quadric_to_local(A_, o);
   const Vec4<Q> Le = point_to_local(L_, o);
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
-  if (const auto zero = shadow_zero_problems(Ae, Le, &P, &R); !zero.empty()) return wrong_result(zero.front());
+  if (const auto zero = shadow_zero_problems(Ae, Le, &P, &polar, &R); !zero.empty()) return wrong_result(zero.front());
   // A terminator whose real points all lie at infinity (a cylinder lit from inside: its axis's
   // direction; an imaginary cylinder's) has no finite point to measure a distance at: the results are
   // measured against the exact ones as matrices (the cross residual, as a one-point terminator's

@@ -329,7 +329,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     return rep;
   }
   Vec4<Q> b = section_base(A, pi);
-  const int max_attempts = 50 * n + 50;
+  const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   int hits = 0;
   // the base's shifts (below) are made with the normal's primitive integer form: the same shifts for
@@ -392,7 +392,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   }
   Draw draw(seed);
   Vec4<Q> b = quadric_base(A);
-  const int max_attempts = 50 * n + 50;
+  const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   bool stepped = false;
   const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));

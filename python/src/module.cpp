@@ -84,8 +84,8 @@ double accuracy_arg(const py::object& arg) {
 
 int samples_arg(const py::object& arg) {
   const py::int_ samples = integer_arg(arg, "samples");
-  if (samples < py::int_(1) || samples > py::int_(100000))
-    bad_argument("samples", "expected 1 to 100000 sample points, found " + short_repr(samples));
+  if (samples < py::int_(1) || samples > py::int_(kMaxSamples))
+    bad_argument("samples", "expected 1 to " + std::to_string(kMaxSamples) + " sample points, found " + short_repr(samples));
   return samples.cast<int>();
 }
 

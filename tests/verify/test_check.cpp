@@ -25,6 +25,12 @@ template <class S> ShadowCandidate<S> candidate_of(const ShadowResult<S>& r) {
   return c;
 }
 
+template <class S> ReflectionCandidate<S> candidate_of(const ReflectionResult<S>& r) {
+  ReflectionCandidate<S> c;
+  c.B = r.B;
+  return c;
+}
+
 template <class S> CheckReport own_shadow(Method m = Method::direct) {
   const Mat4<S> A = unit_sphere<S>();
   const Vec4<S> L = lamp<S>();
@@ -124,17 +130,62 @@ TEST_CASE("a sphere lit level with its centre: R measured by the Euclidean dista
   CHECK_FALSE(check_shadow<double>(A, L, bad, loose).passed);
 }
 
-TEST_CASE("a cylinder lit from inside: status ok, skipped, and the reason says its points lie at infinity", "[check]") {
-  // The polar plane x = 2 is parallel to the axis: the section's one real point is the axis's point at
-  // infinity (so the status is ok, not no-real-silhouette), and there is no finite point to sample.
+TEST_CASE("real points at infinity only: judged as matrices, a right result passes and a wrong one fails", "[check]") {
+  // A cylinder lit from inside: the polar plane x = 2 is parallel to the axis, the section's one real point
+  // is the axis's point at infinity (status ok, not no-real-silhouette), and there is no finite point to
+  // sample. Such items were skipped: a candidate with P, the polar plane and R all wrong was skipped, exit
+  // 0, and audit called it a pass, and a right one was not passed either (audit 31b F1). They are judged
+  // as matrices against the exact ones, up to a factor, as eval measures them.
   const Mat4<double> A = cylinder_quadric<double>(Vec3<double>(0, 0, 0), Vec3<double>(0, 0, 1), 1);
   const Vec4<double> L(0.5, 0, 0, 1);
-  const CheckReport r = check_shadow<double>(A, L, candidate_of(shadow<double>(A, L, Method::direct)));
+  const ShadowCandidate<double> good = candidate_of(shadow<double>(A, L, Method::direct));
+  const CheckReport r = check_shadow<double>(A, L, good);
+  INFO(r.summary());
   CHECK(r.exact_status == "ok");
-  CHECK(r.skipped);
+  CHECK_FALSE(r.skipped);
+  CHECK(r.passed);
+  REQUIRE(r.find("as_matrices"));
+  CHECK(r.find("as_matrices")->passed);
+  ShadowCandidate<double> bad = good;
+  (*bad.polar_plane)(3) *= 500;  // the plane x = 1000, not x = 2
+  const CheckReport rb = check_shadow<double>(A, L, bad);
+  INFO(rb.summary());
+  CHECK_FALSE(rb.passed);
+  CHECK_FALSE(rb.skipped);
+  CHECK(rb.geometric_error > 0.1);
+  // an imaginary cylinder reflected: B against M^T A M as a matrix
+  Mat4<double> imaginary = Mat4<double>::Zero();  // x^2 + y^2 + 1 = 0: real only at z's point at infinity
+  imaginary(0, 0) = imaginary(1, 1) = imaginary(3, 3) = 1;
+  const Vec4<double> mirror(1, 2, 2, 3);
+  ReflectionCandidate<double> rc = candidate_of(reflection_in_plane<double>(imaginary, mirror, Method::direct));
+  const CheckReport rr = check_reflection<double>(imaginary, mirror, rc);
+  INFO(rr.summary());
+  CHECK_FALSE(rr.skipped);
+  CHECK(rr.passed);
+  (*rc.B)(3, 3) *= 7;
+  CHECK_FALSE(check_reflection<double>(imaginary, mirror, rc).passed);
+  // a quadric without any real point, not even at infinity, still has nothing to judge
+  Mat4<double> none = Mat4<double>::Identity();
+  const CheckReport rn = check_reflection<double>(none, mirror, candidate_of(reflection_in_plane<double>(none, mirror, Method::direct)));
+  CHECK(rn.skipped);
+}
+
+TEST_CASE("a polar plane where A L = 0 must be zero: a cylinder lit along its axis", "[check]") {
+  // A sun along the cylinder's axis: A L = 0, so P, the polar plane and R are all zero (status
+  // light-on-surface). A non-zero polar plane was judged nowhere and passed audit (audit 31b F2).
+  const Mat4<double> A = cylinder_quadric<double>(Vec3<double>(0, 0, 0), Vec3<double>(0, 0, 1), 1);
+  const Vec4<double> L(0, 0, -1, 0);
+  const ShadowCandidate<double> good = candidate_of(shadow<double>(A, L, Method::direct));
+  REQUIRE(good.polar_plane);
+  CHECK(good.polar_plane->isZero());
+  CHECK_FALSE(check_shadow<double>(A, L, good).problems.size() > 1);  // (skipped: nothing to sample)
+  ShadowCandidate<double> bad = good;
+  *bad.polar_plane = Vec4<double>(0, 0, 1, -5);
+  const CheckReport r = check_shadow<double>(A, L, bad);
+  INFO(r.summary());
   CHECK_FALSE(r.passed);
-  REQUIRE(r.problems.size() == 1);
-  CHECK(r.problems[0].find("real points lie at infinity") != std::string::npos);
+  CHECK_FALSE(r.skipped);
+  CHECK_THAT(r.summary(), Catch::Contains("the polar plane is zero where it should not be"));
 }
 
 TEST_CASE("check_shadow with rationals is a proof: every residual exactly zero", "[check]") {
@@ -346,6 +397,16 @@ TEST_CASE("bad input at the check door: an InputError naming the argument, nothi
   CHECK(path_of([&] { check_shadow<double>(A, L, c, bad); }) == "accuracy");
   bad.accuracy = std::numeric_limits<double>::quiet_NaN();
   CHECK(path_of([&] { check_shadow<double>(A, L, c, bad); }) == "accuracy");
+  // samples: 1 to kMaxSamples at every door (INT_MAX overflowed the sampler's attempt count and came
+  // back "skipped", audit 31b F3); threads of a batch: 0 or more
+  CheckOptions many;
+  many.samples = std::numeric_limits<int>::max();
+  CHECK(path_of([&] { check_shadow<double>(A, L, c, many); }) == "samples");
+  many.samples = kMaxSamples + 1;
+  CHECK(path_of([&] { check_shadow<double>(A, L, c, many); }) == "samples");
+  BatchCheckOptions negative;
+  negative.threads = -3;
+  CHECK(path_of([&] { check_shadows<double>({A}, {L}, {c}, negative); }) == "threads");
   ReflectionCandidate<double> r;
   r.B = A;
   CHECK(path_of([&] { check_reflection<double>(A, Vec4<double>(0, 0, 0, 1), r); }) == "plane");

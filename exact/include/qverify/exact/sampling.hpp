@@ -25,7 +25,7 @@ namespace qverify {
 
 struct SampleReport {
   std::vector<RootPoint> points;
-  int attempts = 0;  ///< lines drawn
+  long long attempts = 0;  ///< lines drawn
   bool exhausted = false;  ///< fewer points than asked were found
 };
 
