@@ -487,15 +487,16 @@ int run_audit_command(const Options& o, bool with_candidate) {
 }
 
 int run_stress_command(const Options& o, bool with_candidate) {
+  // (an unknown family is an error with --list too: it listed every family and exited 0, audit 31b)
+  for (const auto& f : o.families)
+    if (std::none_of(stress_families().begin(), stress_families().end(), [&](const auto& g) { return g.name == f; }))
+      throw UsageError("stress: unknown family \"" + f + "\" (see qverify stress --list)");
   if (o.list_families) {
     if (o.as_json) std::cout << stress_families_json(stress_families()).dump(2) << "\n";
     else std::cout << stress_families_text(stress_families());
     return kOk;
   }
   if (o.out_dir.empty()) throw UsageError("stress: --out DIR is required (or --list)");
-  for (const auto& f : o.families)
-    if (std::none_of(stress_families().begin(), stress_families().end(), [&](const auto& g) { return g.name == f; }))
-      throw UsageError("stress: unknown family \"" + f + "\" (see qverify stress --list)");
   StressOptions opt;
   opt.out_dir = o.out_dir;
   opt.families = o.families;

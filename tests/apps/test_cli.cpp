@@ -118,7 +118,7 @@ TEST_CASE("bad input and usage exit 2 with nothing on stdout", "[cli]") {
   for (const std::string& args :
        {std::string("eval /nonexistent.json --json"), "eval " + scene("ball-lamp-floor.json") + " --precision quad --json",
         "eval " + scene("ball-lamp-floor.json") + " --method magic --json", std::string("frobnicate"),
-        "eval " + scene("ball-lamp-floor.json") + " --no-such-flag"}) {
+        "eval " + scene("ball-lamp-floor.json") + " --no-such-flag", std::string("stress --list --family nope")}) {
     INFO(args);
     const Run r = run(args);
     CHECK(r.code == 2);
