@@ -139,7 +139,7 @@ Ball counted_ball(const Vec3<Q>& centre, const Measure& reach) {
 /// points, rounded to a double: offsets up to half the object's size along the generators,
 /// and at most half way to the apex (rho L_w = 1), where the cone's gradient vanishes. One
 /// scale per item, not per point, so that the points of one offset are the terminator of one
-/// quadric (generator_map), over which P's error is also bounded (generator_geometries).
+/// quadric (generator_map).
 std::vector<Q> generator_offsets(const std::vector<RootPoint>& terminator, const Vec4<Q>& L, const Measure& size) {
   if (!(size > 0)) return {};
   Measure dmax = 0;
@@ -828,8 +828,6 @@ ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Q>>& or
   e.P = measure_quadric(P_points(local, pts), P);
   e.polar = measure_plane(local, polar);
   e.R = measure_quadric(R_points(local, pts), R);
-  e.generators = measure_quadric(in_frame(pts.generators, origin), P);
-  e.R_plane = measure_quadric(in_frame(pts.plane, origin), R);
   for (const Metric* m : {&e.P, &e.polar, &e.R}) e.geometric = mmax(e.geometric, relative(*m, pts.size));
   return e;
 }
@@ -1020,28 +1018,49 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
 }
 
 CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<Vec3<Q>>& origin, double size) const {
-  // Each bound holds over the terminator in the ball (the first two over all of the polar plane in it);
-  // the smallest counts.
+  // Each bound holds over the terminator in the ball (the one and two steps over all of the polar plane
+  // in it); the smallest counts.
   const auto smaller = [](const CertifiedBound& a, const CertifiedBound& b) { return b.upper < a.upper ? b : a; };
   std::optional<CertifiedBound> best;
   const auto take = [&](const CertifiedBound& b) { best = best ? smaller(*best, b) : b; };
   // Where h . x keeps away from 0 on the terminator, R_ref's gradient there does too (R_floor_): the
   // line where R's planes cross may pass through the ball, off the terminator, where a rounded R is
   // truly about sqrt(eps) off, but no terminator point is near it (a hyperbolic paraboloid's R was
-  // flagged at 6.7e-9, 1.3e-16 off on the terminator: audit 31a F2).
+  // flagged at 6.7e-9 there, 1.3e-16 off on the terminator: audit 31a F2).
   if (R_floor_ > 0) {
     const Measure floor = R_floor_;
     take(ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; }, size,
                             false, &pi_ref_));
   }
-  // As a plane pair in two steps; where h misses the ball also in one step, R's reference gradient on
-  // the polar plane being (h . x) pi_xyz: the two steps are tighter where h passes near the ball (the
-  // one step divides the value's largest over a shell by the gradient's smallest, and |h . x| spans 0
-  // to the ball's width there: a cylinder's R moved by 3e-10 of its size was bounded at 1.2e-9), the
-  // one step where R is rounded more than it is moved.
-  take(ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size));
-  if (!crosses(h_, ball_))
-    take(ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size, false, &pi_ref_));
+  // As a plane pair in two steps, a bound of the Euclidean distance (which the line where R's planes
+  // cross, in the ball, needs: no first-order distance is bounded near it).
+  const CertifiedBound pair = ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
+  if (crosses(h_, ball_)) {
+    take(pair);
+    return *best;
+  }
+  // h misses the ball: R's reference gradient on the polar plane is (h . x) pi_xyz, and R is bounded
+  // against R_ref in one step, to first order, with a floor G of |(hat x)_xyz| on the terminator in the
+  // ball. The two steps' Euclidean delta is tighter where h passes near the ball (the one step divides
+  // the value's largest over a shell by the gradient's smallest, and |h . x| spans 0 to the ball's
+  // width there: a cylinder's R moved by 3e-10 of its size was bounded at 1.2e-9), and it bounds the
+  // first-order distance too, once made one: with y a point of hat's zero set within delta of x,
+  // f(x) = grad f(x) . v - v^T H v (v = x - y, grad f = 2 (hat x)_xyz), so |f(x)| / |grad f(x)| <=
+  // delta + |H|_F delta^2 / (2 |(hat x)_xyz|), the one step's floor of |(hat x)_xyz| / |H|_F giving the
+  // last (CertifiedBound::gradient). (Taken as it was, a Euclidean bound where the first-order
+  // distance exists let that exceed it: review of session 31.)
+  const CertifiedBound one = ball_quadric_bound(R, R_ref_, ball_, origin, plane_pair_floor(pi_ref_, h_, ball_), size,
+                                                false, &pi_ref_);
+  take(one);
+  if (one.gradient > 0 && std::isfinite(pair.upper) && size > 0) {
+    CertifiedBound first = pair;
+    first.euclidean = false;
+    const Measure d = Measure(pair.upper) * Measure(size);  // (relative bounds: times the size, a length)
+    const Measure g = std::isfinite(one.gradient) ? Measure(one.gradient) : Measure(0);
+    const Measure grown = g > 0 ? Measure(d + d * d / (2 * g)) : d;
+    first.upper = up_to_double(Measure(grown / Measure(size)) * (1 + kMeasureSlack));
+    take(first);
+  }
   return *best;
 }
 
@@ -1277,16 +1296,11 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   // none (no-real-silhouette).
   if (pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no)
     return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
-  // (a cone lit from 1e12 along its axis: R's h is 2e-8 of its height off in float, which the matrices'
-  // cross residual, relative to their largest entry, does not see: R also on h, at the points of h
-  // verify takes (second_plane_error), measured, not certified; fixed points, not samples of a
-  // geometry with points between them, so no margin)
-  if (single_point(A_, L_, pts_.points)) {
-    bool zero = true;
-    const Measure on_h = second_plane_error(in_frame(pts_.points, origin), pts_.size, Ae, Le, R, zero);
-    return measured_exactly(std::max(shadow_matrix_error(Ae, Le, &P, &polar, &R), on_h), {"P", "polar_plane"},
-                            opt_.target);
-  }
+  // (R's error on h, which the matrices' cross residual, relative to their largest entry, may not see
+  // (a cone lit from 1e12 along its axis: h 2e-8 of its height off in float), is verify's check of R's
+  // shape, R_on_second_plane, not counted here)
+  if (single_point(A_, L_, pts_.points))
+    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
   // The geometric error of P, the polar plane and R on the terminator (cli.md), not verify's checks of
   // their shapes beyond it (P on its generator lines, R on the polar plane and on h: ShadowBounds).
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, A_, L_)); };

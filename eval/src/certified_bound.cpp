@@ -723,6 +723,7 @@ std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L) {
           g2 = w.dot(Vec3<Q>(K * w));
   const Q a = b1 * b1 - alpha * g2, b = 2 * b0 * b1 - alpha * g1, c = b0 * b0 - alpha * g0;
   if (!(c < 0)) return std::nullopt;  // the line h . x = 0 meets (or touches) the terminator
+  if (a == 0 && b == 0) return std::nullopt;  // D = c < 0 for every t: no finite terminator point
   const Q disc = b * b - 4 * a * c;
   if (disc < 0) return std::nullopt;  // (no line of the family meets A: no finite terminator point)
   const double t0 = upward([&] {
@@ -965,6 +966,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   struct Batch {
     double worst = 0, inner = 0;  // over the shells; the inner ball's
     bool euclidean = false, inner_euclidean = false, shrinks = false, finite = true;
+    double gradient = kInf;  // the least first-order gradient bound over the shells (0: a shell had none)
   };
   const auto run_batch = [&](const std::vector<Q>& radius, const std::vector<double>& floors) {
     return upward([&] {
@@ -994,6 +996,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
         if (!euclidean_only) {
           const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
           if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
+          out.gradient = std::min(out.gradient, gradient.inf() <= 0 ? 0.0 : h3.sup() == 0 ? kInf : (gradient / h3).inf());
         } else {
           // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
           // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b
@@ -1011,6 +1014,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
           out.finite = false;
           return out;
         }
+        if (euclidean) out.gradient = 0;
         if (inner) {
           out.inner = d;
           out.inner_euclidean = euclidean;
@@ -1023,7 +1027,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
       return out;
     });
   };
-  double worst = 0;
+  double worst = 0, gradient = euclidean_only ? 0.0 : kInf;
   bool euclidean = euclidean_only;
   int boxes = 0;
   Q outer = ball.reach;
@@ -1040,6 +1044,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     boxes += kShells + 1;
     if (!b.finite) return CertifiedBound{kInf, 0, boxes};
     worst = std::max(worst, b.worst);
+    gradient = std::min(gradient, b.gradient);
     euclidean = euclidean || b.euclidean;
     if (batch == kBatches || b.inner <= worst || !b.shrinks) {
       worst = std::max(worst, b.inner);
@@ -1052,6 +1057,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     CertifiedBound out = relative_bound(IA(worst), size);
     out.boxes = boxes;
     out.euclidean = euclidean;
+    out.gradient = euclidean ? 0.0 : gradient;
     return out;
   });
 }

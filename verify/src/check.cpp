@@ -229,14 +229,18 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   // matrices, as eval measures them (a candidate with P, the polar plane and R all wrong was skipped,
   // exit 0, and audit called it a pass; a right one was skipped too, and check_shadow's passed was
   // false: audit 31b F1). One without any real point (no-real-silhouette) has nothing to judge.
-  if (pts.points.empty() && silhouette_empty<Q>(Aw, Lw) == Truth::no) {
-    const QuadricCheck c = as_matrices("real only at infinity");
+  // (A L = 0, a cylinder lit along its axis, takes this path too: P, the polar plane and R are then zero,
+  // which the zero problems judge; a candidate without any of the three has nothing to judge)
+  if (pts.points.empty() && silhouette_empty<Q>(Aw, Lw) == Truth::no && (got.P || got.polar_plane || got.R)) {
+    const bool zero = pi_ref.isZero();
+    const QuadricCheck c = as_matrices(zero ? "all of A (A L = 0)" : "real only at infinity");
     rep.checks.push_back(c);
     rep.geometric_error = c.geometric_error;
     point_free_checks();
-    rep.notes.push_back("the terminator's real points all lie at infinity: P, the polar plane and R are judged as "
-                        "matrices, by their largest relative cross residual against the exact ones (zero exactly when "
-                        "proportional), which must be within the accuracy target");
+    rep.notes.push_back(zero ? "A L = 0: the exact P, polar plane and R are zero, and so must the results be"
+                             : "the terminator's real points all lie at infinity: P, the polar plane and R are judged as "
+                               "matrices, by their largest relative cross residual against the exact ones (zero exactly "
+                               "when proportional), which must be within the accuracy target");
     rep.passed = rep.problems.empty();
     return rep;
   }
@@ -244,11 +248,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     point_free_checks();  // a wrong status, sign or zero fails; else nothing to judge: skipped
     if (rep.problems.empty()) {
       rep.skipped = true;
-      // (status ok with no point: the terminator's only real points are at infinity, e.g. a cylinder lit
-      // from inside, whose polar plane is parallel to its axis; the sampler takes finite points)
+      // (status ok with no point and no result given: real points at infinity only, nothing to judge)
       rep.problems.push_back(rep.exact_status == "ok"
-                                 ? "the terminator has no real finite point to sample: its real points lie at infinity "
-                                   "(exact status: ok)"
+                                 ? "the terminator has no real finite point to sample (its real points lie at infinity), "
+                                   "and no P, polar plane or R is given to judge as matrices"
                                  : "the terminator has no real point to sample (exact status: " + rep.exact_status + ")");
     }
     return rep;
@@ -415,10 +418,10 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, Aw, plane));
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as eval
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
-  if (pts.points.empty() && !without_real_points(Aw)) {
+  if (pts.points.empty() && !without_real_points(Aw) && got.B) {
     QuadricCheck c;
     c.name = "as_matrices";
-    const Measure e = got.B ? to_measure(cross_residual(*got.B, B_ref)) : Measure(0);
+    const Measure e = to_measure(cross_residual(*got.B, B_ref));
     c.metric.residual = c.metric.distance = e;
     c.metric.all_zero = e == 0;
     c.geometric_error = to_d(e);

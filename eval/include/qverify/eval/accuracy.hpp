@@ -167,11 +167,9 @@ Measure relative(const Metric& m, const Measure& size);
 
 /// Geometric errors of one shadow item's results (relative to the object size).
 struct ShadowError {
-  Metric P, polar, R;     ///< on the terminator
-  Metric generators;      ///< P on the generator lines (verify's check of P's shape)
-  Metric R_plane;         ///< R on the polar plane (verify's check of R's shape)
-  /// The geometric error (cli.md): the largest of P, polar and R, on the terminator; the shape
-  /// checks are verify's, beyond it (ShadowBounds).
+  Metric P, polar, R;  ///< on the terminator
+  /// The geometric error (cli.md): the largest of the three. (The checks of the results' shapes, P on
+  /// its generator lines and R on the polar plane and h, are verify's, beyond it: ShadowBounds.)
   Measure geometric = 0;
 };
 ShadowError shadow_error(const ItemPoints& pts, const std::optional<Vec3<Rational>>& origin, const Mat4<Rational>& P,
@@ -367,8 +365,8 @@ Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, co
                             const Vec4<Rational>* polar, const Mat4<Rational>* R);
 
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z for a point light, the
-/// plane at infinity for a parallel one): R must vanish on it. Measured the same way by verify
-/// (R_on_second_plane, judged against the target) and by eval (counted in error_bound), at exact
+/// plane at infinity for a parallel one): R must vanish on it. Measured by verify
+/// (R_on_second_plane, a check of R's shape judged against the target, not in the geometric error), at exact
 /// points of h, A and L in the result's frame, `local` the item's terminator points in that frame
 /// (none finite: nothing is measured) and `size` the object size. h's points are taken above
 /// `inside`, section_base(A, A L) (exact/sampling.hpp): a point of A and L alone, so that where the

@@ -71,6 +71,11 @@ struct CertifiedBound {
   /// bound V / G (ball_quadric_bound; ball_plane_pair_bound always), not the first-order one, which
   /// is unbounded there: a sampled point's first-order distance may then exceed `upper`.
   bool euclidean = false;
+  /// Ball bounds bounded to first order in every shell: a lower bound of |(hat z)_xyz| / |H|_F over
+  /// the geometry they cover (H the symmetric part of hat_xyz,xyz; a length, whatever hat's scale),
+  /// infinite where H = 0; 0 where none (a shell took the second order, or not a ball bound). With it
+  /// a Euclidean distance delta bounds the first-order one: delta + delta^2 / (2 gradient).
+  double gradient = 0;
 };
 
 /// One returned result with its exact reference, ready for interval evaluation.
