@@ -1288,18 +1288,15 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   const Vec4<Q> Le = point_to_local(L_, o);
   if (const auto sign = shadow_sign_problems(Ae, Le, &P, &polar); !sign.empty()) return wrong_result(sign.front());
   if (const auto zero = shadow_zero_problems(Ae, Le, &P, &polar, &R); !zero.empty()) return wrong_result(zero.front());
-  // A terminator whose real points all lie at infinity (a cylinder lit from inside: its axis's
-  // direction; an imaginary cylinder's) has no finite point to measure a distance at: the results are
-  // measured against the exact ones as matrices (the cross residual, as a one-point terminator's
-  // below), so that a result far off is flagged: a paper-route polar plane z = 158.6 for the plane
-  // y = 1e15 + 4 had no bound and no flag (audit 30a F3). A terminator without any real point keeps
-  // none (no-real-silhouette).
-  if (pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no)
-    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
-  // (R's error on h, which the matrices' cross residual, relative to their largest entry, may not see
-  // (a cone lit from 1e12 along its axis: h 2e-8 of its height off in float), is verify's check of R's
-  // shape, R_on_second_plane, not counted here)
-  if (single_point(A_, L_, pts_.points))
+  // Measured against the exact ones as matrices (their largest cross residual): a terminator of one
+  // point, which says nothing of their shapes, and one whose real points all lie at infinity (a
+  // cylinder lit from inside: its axis's direction; an imaginary cylinder's), with no finite point to
+  // measure a distance at, so that a result far off is flagged there too (a paper-route polar plane
+  // z = 158.6 for the plane y = 1e15 + 4 had no bound and no flag: audit 30a F3). A terminator without
+  // any real point keeps none (no-real-silhouette). (R's error on h, which the cross residual, relative
+  // to the largest entry, may not see (a cone lit from 1e12 along its axis: h 2e-8 of its height off in
+  // float), is verify's check of R's shape, R_on_second_plane, not counted here.)
+  if ((pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no) || single_point(A_, L_, pts_.points))
     return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
   // The geometric error of P, the polar plane and R on the terminator (cli.md), not verify's checks of
   // their shapes beyond it (P on its generator lines, R on the polar plane and on h: ShadowBounds).
@@ -1396,8 +1393,7 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       std::to_string(kRefineFactor) + " times as many) and counted " + std::to_string(kBoundMargin) +
       " times, a margin that is not a proof. Where the terminator is a single real point, P, the polar plane and R are "
       "measured as matrices instead, their largest relative cross residual against the exact ones, exactly (verify's "
-      "as_matrices; R also on its second plane h, at three points of h above the point), and likewise where its real "
-      "points all lie at infinity. For a reflection, M's error (its largest entry off the exact reflection, relative "
+      "as_matrices), and likewise where its real points all lie at infinity. For a reflection, M's error (its largest entry off the exact reflection, relative "
       "to the larger of 1 and the reflection's largest entry) is counted exactly (certified_for M). verify's checks of "
       "the results' shapes beyond the geometric error (P on its generator lines, R on the polar plane and on h) are "
       "not counted. Flag inaccurate when error_bound > accuracy";

@@ -968,26 +968,36 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     bool euclidean = false, inner_euclidean = false, shrinks = false, finite = true;
     double gradient = kInf;  // the least first-order gradient bound over the shells (0: a shell had none)
   };
+  // the enclosures every shell of every batch uses, once (intervals: valid in any later upward scope)
+  struct Enclosures {
+    IA e3, e3s, h3, gn, gsn, fa, gvn, ev3, fav, constant;
+    std::array<std::array<IA, 3>, 3> E3a, E3sa, Ev3a;  // (a ball with a box: the terms also from its reaches)
+    std::array<IA, 3> gva, gsa;
+  };
+  const Enclosures en = upward([&] {
+    const auto frobenius = [](const Mat3<Q>& m) {
+      IA n(0);
+      for (Eigen::Index i = 0; i < 9; ++i) n += CGAL::square(enc(m(i)));
+      return CGAL::sqrt(n);
+    };
+    Enclosures x;
+    x.e3 = frobenius(E3), x.e3s = frobenius(E3s), x.h3 = frobenius(H3s);
+    x.gn = norm_of(g), x.gsn = norm_of(gs), x.fa = CGAL::abs(enc(a));
+    x.gvn = norm_of(gv), x.ev3 = frobenius(Ev3), x.fav = CGAL::abs(enc(av));
+    x.constant = tighter(x.fa, x.fav);
+    x.E3a = abs_entries(E3), x.E3sa = abs_entries(E3s), x.Ev3a = abs_entries(Ev3);
+    x.gva = abs_entries(gv), x.gsa = abs_entries(gs);
+    return x;
+  });
   const auto run_batch = [&](const std::vector<Q>& radius, const std::vector<double>& floors) {
     return upward([&] {
-      const auto frobenius = [](const Mat3<Q>& m) {
-        IA n(0);
-        for (Eigen::Index i = 0; i < 9; ++i) n += CGAL::square(enc(m(i)));
-        return CGAL::sqrt(n);
-      };
-      const IA e3 = frobenius(E3), e3s = frobenius(E3s), h3 = frobenius(H3s);
-      const IA gn = norm_of(g), gsn = norm_of(gs), fa = CGAL::abs(enc(a));
-      const IA gvn = norm_of(gv), ev3 = frobenius(Ev3), fav = CGAL::abs(enc(av));
-      // (a ball with a box: each of the terms below also from the box's per-axis reaches)
-      const auto E3a = abs_entries(E3), E3sa = abs_entries(E3s), Ev3a = abs_entries(Ev3);
-      const auto gva = abs_entries(gv), gsa = abs_entries(gs);
+      const auto& [e3, e3s, h3, gn, gsn, fa, gvn, ev3, fav, constant, E3a, E3sa, Ev3a, gva, gsa] = en;
       Batch out;
       for (std::size_t j = 0; j <= kShells; ++j) {
         const bool inner = j == kShells;
         const IA r = enc(radius[j]);
         const std::array<IA, 3> rho = axis_reach(ball, r);
         // (from E and from Ev: the part removed from Ev is not always the one whose removal helps)
-        const IA constant = tighter(fa, fav);
         const IA value = tighter(fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho)),
                                  fav + tighter(r * gvn, box_linear(gva, rho)) + tighter(CGAL::square(r) * ev3, box_quadratic(Ev3a, rho)));
         if (value.sup() == 0) continue;

@@ -176,6 +176,20 @@ Measure machine_epsilon(const Precision& p) {
   return bits ? ldexp(Measure(1), 1 - static_cast<int>(*bits)) : Measure(0);
 }
 
+namespace {
+/// A check of results judged as matrices (as_matrices): their largest relative cross residual e against
+/// the exact ones, zero exactly when proportional, within the target (exactly zero when exact).
+QuadricCheck matrices_check(const Measure& e, bool exact, const Measure& T) {
+  QuadricCheck c;
+  c.name = "as_matrices";
+  c.metric.residual = c.metric.distance = e;
+  c.metric.all_zero = e == 0;
+  c.geometric_error = to_d(e);
+  c.passed = exact ? e == 0 : !(e > T);
+  return c;
+}
+}  // namespace
+
 CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const ExactShadowCandidate& got,
                                const CheckOptions& opt, const Measure& eps) {
   CheckReport rep = begin_report("shadow", got.origin, got.status, exact_shadow_word(Aw, Lw, opt.method), opt, eps);
@@ -208,14 +222,10 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   // The results judged as matrices against the exact ones, up to a factor (the largest relative cross
   // residual, exactly): where the terminator is a single point, or has real points at infinity only.
   const auto as_matrices = [&](const char* where) {
-    const Measure e = shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
-                                          got.polar_plane ? &*got.polar_plane : nullptr, got.R ? &*got.R : nullptr);
-    QuadricCheck c;
-    c.name = "as_matrices";
-    c.metric.residual = c.metric.distance = e;
-    c.metric.all_zero = e == 0;
-    c.geometric_error = to_d(e);
-    c.passed = exact ? e == 0 : !(e > T);
+    const QuadricCheck c = matrices_check(shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
+                                                              got.polar_plane ? &*got.polar_plane : nullptr,
+                                                              got.R ? &*got.R : nullptr),
+                                          exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the terminator is ") + where +
                              ", where the results are judged as matrices: P, the polar plane or R " +
@@ -419,13 +429,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as eval
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
   if (pts.points.empty() && !without_real_points(Aw) && got.B) {
-    QuadricCheck c;
-    c.name = "as_matrices";
-    const Measure e = to_measure(cross_residual(*got.B, B_ref));
-    c.metric.residual = c.metric.distance = e;
-    c.metric.all_zero = e == 0;
-    c.geometric_error = to_d(e);
-    c.passed = exact ? e == 0 : !(e > T);
+    const QuadricCheck c = matrices_check(to_measure(cross_residual(*got.B, B_ref)), exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the quadric's real points all lie at infinity, where B is judged as a "
                                          "matrix: B ") +
