@@ -2,6 +2,7 @@
 #include <qverify/exact/integer_point.hpp>
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/root_enclosure.hpp>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <iomanip>
@@ -281,8 +282,70 @@ Vec4<Q> canonical_light(const Vec4<Q>& L) {
   return Vec4<Q>(Q(v[0]), Q(v[1]), Q(v[2]), Q(v[3]));
 }
 
-std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
-  DigitHash f;  // of the primitive integer forms: the same for every positive multiple
+namespace {
+/// Where an item's sampling base is taken along a core of A that is a line or a plane (a cylinder's
+/// axis: exact/sampling.hpp, section_base and quadric_base take its point nearest this anchor), so
+/// that the points move with the item when the scene is translated (a factorisation's particular
+/// solution, taken before, slides along the axis: audit 31a F4). Kind 1 (shadow): a point light;
+/// a parallel light, which like A does not change along the axis, gives no point of it, and the
+/// world origin is taken (the same item placed elsewhere along its axis is then sampled elsewhere
+/// along it). Kind 2 (reflection, `other` the mirror's plane): the core's point on the mirror, moved
+/// there along the directions D in which A does not change (K w = 0, k_n . w = 0), or any where the
+/// plane is parallel to D (then A and the plane are the same about every such point).
+Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
+  if (kind == 1) return other(3) != 0 ? Vec3<Q>(other.head<3>() / other(3)) : Vec3<Q>(Vec3<Q>::Zero());
+  const Vec3<Q> b0 = quadric_base(A).head<3>();
+  const QuadricCore core = quadric_core(A);
+  if (core.kernel.cols() == 0) return b0;
+  const Eigen::Matrix<Q, 1, Eigen::Dynamic> along = core.kn.transpose() * core.kernel;
+  const Eigen::FullPivLU<Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>> lu(along);
+  const Eigen::Matrix<Q, 3, Eigen::Dynamic> D = core.kernel * lu.kernel();
+  const Vec3<Q> n = other.head<3>();
+  const Eigen::Matrix<Q, Eigen::Dynamic, 1> w = D.transpose() * n;
+  if (w.isZero()) return b0;
+  return Vec3<Q>(b0 - (n.dot(b0) + other(3)) / w.squaredNorm() * (D * w));
+}
+
+/// The point an item's seed hashes A and the light or plane about: a point light, else the base the
+/// sampler takes (A's core point nearest item_anchor). A and the light or plane about it are the same
+/// matrices wherever the item stands (A is the same about every point of its core; a parallel light
+/// is a direction; the mirror's plane passes through the point, or is parallel to the core).
+Vec3<Q> hash_origin(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
+  if (kind == 1 && other(3) != 0) return Vec3<Q>(other.head<3>() / other(3));
+  return quadric_base(A, item_anchor(kind, A, other)).head<3>();
+}
+
+/// The mirror's plane p of a reflection matrix M = I - 2 n p^T / |n|^2 (n = (p_xyz, 0)): p^T M = -p^T,
+/// so p spans the kernel of M^T + I (up to a factor, which item_anchor does not see).
+Vec4<Q> mirror_plane(const Mat4<Q>& M) {
+  const Eigen::FullPivLU<Mat4<Q>> lu(Mat4<Q>(M.transpose() + Mat4<Q>::Identity()));
+  const auto k = lu.kernel();
+  return k.cols() == 1 ? Vec4<Q>(k.col(0)) : Vec4<Q>(1, 0, 0, 0);  // (M a reflection: rank 1)
+}
+}  // namespace
+
+std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A_given, const Vec4<Q>& other_given) {
+  // of A and the light or plane about hash_origin (the same seed wherever the item stands: points that
+  // move with it, and so the same object size and verdict; audit 31a F4: a cylinder's sampled size was
+  // 42.9 at the origin and 12.1 moved by 10^6, and a candidate 2.5e-8 off passed at one and failed at
+  // the other) and of their primitive integer forms (the same for every positive multiple)
+  const Vec3<Q> o = hash_origin(kind, A_given, other_given);
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topRightCorner<3, 1>() = o;
+  const Mat4<Q> A = T.transpose() * A_given * T;
+  Vec4<Q> other = other_given;  // a plane (x -> x + o: its offset grows by n . o) or a point (moves by -o)
+  if (kind == 2) {
+    other(3) += Vec3<Q>(other_given.head<3>()).dot(o);
+    // (p and -p are the same mirror: its first non-zero entry made positive)
+    for (int i = 0; i < 4; ++i)
+      if (other(i) != 0) {
+        if (other(i) < 0) other = -other;
+        break;
+      }
+  } else {
+    other.head<3>() -= other_given(3) * o;
+  }
+  DigitHash f;
   std::array<BigInt, 16> a;
   primitive_integers(A, a);
   f.add_all(a);
@@ -315,9 +378,10 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   // inside, whose sampler spends its every attempt stepping, took seconds on them (a fuzz seed's 1e89
   // apex); a power of two keeps the steps short, and the points still scale with the scene by powers
   // of two exactly, by other factors within 2.
+  const std::optional<Vec3<Q>> anchor = item_anchor(1, A, L);
   const Q base_reach =
-      pi.head<3>().isZero() ? Q(1) : exact_pow2(floor_log2(reach_length(section_base(A, pi), L)));
-  const SampleReport s = sample_section(A, pi, n, seed, base_reach);
+      pi.head<3>().isZero() ? Q(1) : exact_pow2(floor_log2(reach_length(section_base(A, pi, anchor), L)));
+  const SampleReport s = sample_section(A, pi, n, seed, base_reach, anchor);
   ItemPoints out;
   out.points = s.points;
   out.exhausted = s.exhausted;
@@ -346,17 +410,18 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
 
 ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std::uint64_t seed) {
   const Mat4<Q> A = canonical_quadric(A_given);
-  const Vec4<Q> base = quadric_base(A);
+  const Vec4<Q> plane = mirror_plane(M);
+  const Vec3<Q> anchor = item_anchor(2, A, plane);
   // (a quadric whose base no line meets, a cone's apex, has no length of its own, and the mirror's
   // distance is not one of A's: unit steps: sampling.hpp, reach_length, says why)
-  const SampleReport s = sample_quadric(A, n, seed, Q(1));
+  const SampleReport s = sample_quadric(A, n, seed, Q(1), anchor);
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   std::tie(out.size, centre) = object_size(s.points, A);
   if (out.size == 0 && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
-        sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, base), Q(1)).points;
+        sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, plane), Q(1), anchor).points;
     more.insert(more.end(), s.points.begin(), s.points.end());
     std::tie(out.size, centre) = object_size(more, A);
   }
@@ -1159,7 +1224,7 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The
   // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
   // does where the terminator is not a real ellipse.)
-  const Vec4<Q> inside = section_base(A, pi);
+  const Vec4<Q> inside = section_base(A, pi, item_anchor(1, A, L));
   const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Q step = to_rational(size.convert_to<double>());
   if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own

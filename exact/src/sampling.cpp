@@ -188,21 +188,25 @@ std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k
   return W;
 }
 
-/// A rational point at A's core, to draw lines through: its centre; a point of its axis of centres
-/// (a cylinder); for a paraboloid (K y = -k has no solution) a point inside it on its axis, a focal
-/// length or so beyond the vertex. Not the origin: lines drawn from a world origin 10^6 away from a
-/// cylinder of radius 1 miss it (no point found, so no check) or meet it 10^6 away along its axis
-/// (so an object size of 10^6).
-Vec3<Q> core_point(const Mat4<Q>& A) {
+/// A rational point at A's core, to draw lines through: its centre; the point of its axis (plane) of
+/// centres nearest `anchor`, or any where none is given (a cylinder: A does not change along its
+/// axis); for a paraboloid (K y = -k has no solution) a point inside it on its axis, a focal length or
+/// so beyond the vertex. Not the origin: lines drawn from a world origin 10^6 away from a cylinder of
+/// radius 1 miss it (no point found, so no check) or meet it 10^6 away along its axis (so an object
+/// size of 10^6). Nor the particular solution of K y = -k a factorisation gives: it slides along the
+/// axis when the scene moves, and with it the lamp's distance the sampler steps by (a cylinder's
+/// sampled object size was 42.9 at the origin, 12.1 moved by 10^6: audit 31a F4).
+Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
   const QuadricCore core = quadric_core(A);
   if (!core.found) return Vec3<Q>::Zero();  // (not expected)
-  if (core.kn.isZero()) return core.y;
+  const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;  // (K y + k - k_n = 0 along the kernel)
+  if (core.kn.isZero()) return y;
   // no centre (a paraboloid, a parabolic cylinder, a plane): on the line y + s k_n, A = A(y) + 2 s
   // |k_n|^2: the vertex at s = -A(y) / (2 |k_n|^2). Beyond it by t k_n, A = 2 t |k_n|^2: inside (on the
   // side of the quadric's convexity, where sign(A) = -sign(trace K)) for t of the sign of -trace K,
   // |t k_n| about |k_n| / max|K|; a plane (K = 0): off it by k_n, where lines meet it.
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const Vec3<Q> vertex = core.y - quadric_value(A, core.y) / (2 * core.kn.squaredNorm()) * core.kn;
+  const Vec3<Q> vertex = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
   Q big = 0;
   for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
   if (big == 0) return Vec3<Q>(vertex + core.kn);
@@ -257,7 +261,7 @@ Q quadric_value(const Mat4<Q>& A, const Vec3<Q>& y) {
   return y.dot(Mat3<Q>(A.topLeftCorner<3, 3>()) * y) + 2 * Vec3<Q>(A.topRightCorner<3, 1>()).dot(y) + A(3, 3);
 }
 
-Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi) {
+Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi, const std::optional<Vec3<Q>>& anchor) {
   const Vec3<Q> normal = pi.head<3>();
   const Eigen::Matrix<Q, 4, 3> E = plane_basis<Q>(pi);
   const Mat3<Q> K = E.transpose() * A * E;
@@ -266,11 +270,11 @@ Vec4<Q> section_base(const Mat4<Q>& A, const Vec4<Q>& pi) {
     const Vec4<Q> c = E * Eigen::Matrix<Q, 3, 1>(adjugate3<Q>(K) * ell);
     if (c(3) != 0) return c / c(3);
   }
-  const Vec3<Q> y = core_point(A);  // else the foot on the plane of A's core point
+  const Vec3<Q> y = core_point(A, anchor);  // else the foot on the plane of A's core point
   return finite(Vec3<Q>(y - (normal.dot(y) + pi(3)) / normal.squaredNorm() * normal));
 }
 
-Vec4<Q> quadric_base(const Mat4<Q>& A) { return finite(core_point(A)); }
+Vec4<Q> quadric_base(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) { return finite(core_point(A, anchor)); }
 
 Q reach_length(const Vec4<Q>& b, const Vec4<Q>& light) {
   if (light(3) != 0) {
@@ -280,7 +284,8 @@ Q reach_length(const Vec4<Q>& b, const Vec4<Q>& light) {
   return Q(1);
 }
 
-SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed, const Q& reach) {
+SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uint64_t seed, const Q& reach,
+                            const std::optional<Vec3<Q>>& anchor) {
   if (!(reach > 0)) throw std::invalid_argument("sample_section: reach must be positive");
   SampleReport rep;
   const Vec3<Q> normal = pi.head<3>();
@@ -328,7 +333,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     rep.exhausted = static_cast<int>(rep.points.size()) < n;
     return rep;
   }
-  Vec4<Q> b = section_base(A, pi);
+  Vec4<Q> b = section_base(A, pi, anchor);
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   int hits = 0;
@@ -382,7 +387,8 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
 
 bool without_real_points(const Mat4<Q>& A) { return *definiteness<Q, 4>(A) != 0; }
 
-SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q& reach) {
+SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q& reach,
+                            const std::optional<Vec3<Q>>& anchor) {
   if (!(reach > 0)) throw std::invalid_argument("sample_quadric: reach must be positive");
   SampleReport rep;
   if (n <= 0) return rep;
@@ -391,7 +397,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
     return rep;
   }
   Draw draw(seed);
-  Vec4<Q> b = quadric_base(A);
+  Vec4<Q> b = quadric_base(A, anchor);
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   bool stepped = false;

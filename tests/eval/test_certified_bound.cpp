@@ -789,14 +789,16 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   const Mat4<Q> sphere = quadric_of({1, 1, 1}, {0, 0, 0}, -1);
   REQUIRE(light_plane_meets_terminator(sphere, Vec4<Q>(3, 0, Q(3, 10), 1)));
   CHECK_FALSE(light_plane_meets_terminator(sphere, Vec4<Q>(3, 0, 2, 1)));
-  // a cylinder along z: its terminator (two lines along z) crosses every h; near its centre (the
-  // scene's point of the axis) the frame moves, 9.5 radii away it does not; along y (lines parallel
-  // to h) nothing crosses
+  // a cylinder along z: its terminator (two lines along z) crosses every h, and the frame moves
+  // wherever the scene's point of its axis is (any point of it: 9.5 radii from the light's height it
+  // once did not, and the terminator, sampled about the lamp's foot on the axis, failed there); along
+  // y (lines parallel to h) nothing crosses, and it does not
   const Mat4<Q> cylinder = quadric_of({1, 1, 0}, {0, 0, 0}, -1);
   CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
   CHECK(light_plane_meets_terminator(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1)));
-  CHECK_FALSE(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>(0, 0, 10), Q(1)));
+  CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>(0, 0, 10), Q(1)));
   CHECK_FALSE(light_plane_meets_terminator(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1)));
+  CHECK_FALSE(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
   // world_rounded: the default frame's results moved to world coordinates exactly and rounded once;
   // R, rounded there, is as far from the crossing points as the world frame's, and flagged the same way
   const ResultSet local = computed_results(sc, dbl, Method::direct, Frame::local, AccuracyOptions{});

@@ -102,7 +102,10 @@ struct ItemPoints {
 
 /// The sampler's seed of one item of a kind (1 shadow, 2 reflection): of the run's seed and of the
 /// item's exact inputs, A and L (the light) or the mirror's plane, each up to a positive factor (the
-/// same quadric, light or plane), not of where the item stands in a scene. So an item gets the same
+/// same quadric, light or plane), taken about a point that moves with the item (the point light, else
+/// a point of A's core: accuracy.cpp, hash_origin), and not of where the item stands in a scene nor of
+/// where the scene stands (translated exactly, its items get the same seeds, so the same points
+/// moved with it). So an item gets the same
 /// points, and the same object size and verdict where these come from the points, alone or among
 /// others, from `verify` of a scene, check_shadow, a batch or Python (with the index, a cone
 /// measured 6.6e-10 in one scene and 1.26e-9, flagged and failed, as a scene's only request); and

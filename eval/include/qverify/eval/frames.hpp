@@ -49,7 +49,8 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 
 /// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
 /// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
-/// terminator; for another quadric with a centre wherever the light's height is within 4 sizes of it
+/// terminator; for a line or plane of centres (a cylinder, whose given centre is any point of its
+/// axis) where h meets the terminator; for another quadric with a centre wherever the light's height is within 4 sizes of it
 /// (s2 = size_squared; 1 for a cone, 4 units then), met or not: its terminator may be unbounded, and is
 /// bounded in a ball about the sampled points, which R's crossing line may cross away from the
 /// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
@@ -57,8 +58,11 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
                               const std::optional<Vec3<Rational>>& centre, const Rational& s2);
 
-/// The origin o (or 0) with its z the light's height rounded to a double.
-Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const Vec4<Rational>& L);
+/// The origin o (or 0) with its z the light's height rounded to a double; where A has a line of
+/// centres not parallel to h (a cylinder), first moved to that line's point at the light's height
+/// (where h crosses the terminator), its x and y rounded to doubles.
+Vec3<Rational> light_height_origin(const Mat4<Rational>& A, const std::optional<Vec3<Rational>>& o,
+                                   const Vec4<Rational>& L);
 
 inline Mat4<Rational> quadric_to_local(const Mat4<Rational>& A, const Vec3<Rational>& o) {
   const Mat4<Rational> T = translation<Rational>(o);

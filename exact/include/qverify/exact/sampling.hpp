@@ -19,6 +19,7 @@
 #include <qverify/exact/root_point.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace qverify {
@@ -48,16 +49,20 @@ QuadricCore quadric_core(const Mat4<Rational>& A);
 /// A's value at the Cartesian point y: y^T K y + 2 k . y + A_ww.
 Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
 
-/// The point sample_section draws its lines through, a function of A and pi alone: the centre of
-/// the section A ∩ {pi . x = 0} (the pole of its line at infinity) where that is a finite point,
-/// else the foot on the plane of A's core point (a parabola's section, a degenerate one). Finite;
-/// pi's normal must not be zero. (verify's check of R on its second plane starts from it:
+/// The point sample_section draws its lines through, a function of A, pi and `anchor` alone: the
+/// centre of the section A ∩ {pi . x = 0} (the pole of its line at infinity) where that is a finite
+/// point, else the foot on the plane of A's core point (a parabola's section, a degenerate one);
+/// where A's core is a line or a plane (a cylinder's axis), its point nearest `anchor` (a point
+/// light: the base then moves with the scene, which a factorisation's particular solution does not).
+/// Finite; pi's normal must not be zero. (verify's check of R on its second plane starts from it:
 /// eval/accuracy.hpp, second_plane_error.)
-Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi);
+Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi,
+                            const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
-/// The point sample_quadric draws its lines through, a function of A alone: A's centre, a point of
-/// its axis of centres, a point inside a paraboloid on its axis. Finite.
-Vec4<Rational> quadric_base(const Mat4<Rational>& A);
+/// The point sample_quadric draws its lines through, a function of A and `anchor` alone: A's centre,
+/// the point of its axis (plane) of centres nearest `anchor` (any where none is given), a point
+/// inside a paraboloid on its axis. Finite.
+Vec4<Rational> quadric_base(const Mat4<Rational>& A, const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
 /// The length the samplers step by (`reach`) where no line through their base point meets the
 /// geometry (the base is a cone's apex, which every line through it only touches): for a point
@@ -73,18 +78,20 @@ Vec4<Rational> quadric_base(const Mat4<Rational>& A);
 /// result within 0.01 of the terminator passed.
 Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& light);
 
-/// Up to n points of A ∩ {pi . x = 0}, all finite. Where no line through the base point meets the
+/// Up to n points of A ∩ {pi . x = 0}, all finite, on lines through section_base(A, pi, anchor).
+/// Where no line through the base point meets the
 /// section (the base is a cone's apex, which every line through it only touches) the base moves
 /// within the plane by steps of L-infinity length `reach` (> 0: reach_length), and the points kept
 /// lie within 16 such lengths of the moved base (lines nearly parallel to a generator meet it
 /// far out: the object size would be theirs).
 SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed,
-                            const Rational& reach);
+                            const Rational& reach, const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
-/// Up to n finite points of A; the base point (quadric_base) moves by steps of L-infinity length
+/// Up to n finite points of A, on lines through quadric_base(A, anchor); the base point moves by steps of L-infinity length
 /// `reach` (> 0; eval takes 1: reach_length) where no line through it meets A, and the points
 /// kept then lie within 16 such lengths of the moved base.
-SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach);
+SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach,
+                            const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
 /// Whether A has no real point at all, not even at infinity: A definite (exactly, Sylvester's leading
 /// minors; x^T A x = 0 has a real solution x != 0 exactly where A is not definite). A quadric with
