@@ -292,6 +292,32 @@ auto item_names(const std::vector<const BatchArg*>& args, long k) {
   };
 }
 
+/// The batch's status words: None (none reported), one word for every item, or a sequence of n
+/// words or None (an item that reported none); a count other than n names "status", an entry not a
+/// word "status[k]".
+std::vector<std::string> batch_status(const py::object& status, long n) {
+  std::vector<std::string> out(static_cast<std::size_t>(n));
+  if (status.is_none()) return out;
+  if (py::isinstance<py::str>(status)) {
+    std::fill(out.begin(), out.end(), status.cast<std::string>());
+    return out;
+  }
+  if (!py::isinstance<py::sequence>(status) && !py::isinstance(status, numpy().attr("ndarray")))
+    bad_argument("status", "expected a status word (str), a sequence of one per item (str or None), or None, found " +
+                               type_name(status));
+  const py::sequence seq = status.cast<py::sequence>();
+  if (static_cast<long>(seq.size()) != n)
+    bad_argument("status", std::to_string(seq.size()) + " words for " + std::to_string(n) +
+                               " items: give one per item (None where none was reported), or one word for all");
+  for (long k = 0; k < n; ++k) {
+    const py::object w = seq[static_cast<std::size_t>(k)];
+    if (w.is_none()) continue;
+    if (!py::isinstance<py::str>(w)) bad_argument("status[" + std::to_string(k) + "]", "expected a status word (str) or None, found " + type_name(w));
+    out[static_cast<std::size_t>(k)] = w.cast<std::string>();
+  }
+  return out;
+}
+
 BatchCheckOptions batch_options(const CheckOptions& check, const py::object& threads, const py::object& progress) {
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     bad_argument("progress", "expected a callable progress(done, total), found " + type_name(progress));
@@ -316,7 +342,8 @@ template <class Call> std::vector<CheckReport> run_batch(const std::vector<Call>
 
 std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::object& L_in, const py::object& P_in,
                                           const py::object& polar_in, const py::object& R_in,
-                                          const py::object& origin_in, const py::object& samples, const py::object& seed,
+                                          const py::object& origin_in, const py::object& status_in,
+                                          const py::object& samples, const py::object& seed,
                                           const py::object& accuracy, const py::object& method, const py::object& exact,
                                           const py::object& threads,
                                           const py::object& progress) {
@@ -329,17 +356,19 @@ std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::obje
   if (!P.given() && !polar.given() && !R.given()) bad_argument("P", "nothing to check: give P, polar_plane or R");
   const std::vector<const BatchArg*> args{&A, &L, &P, &polar, &R, &origin};
   const long n = batch_items(args);
+  const std::vector<std::string> status = batch_status(status_in, n);
   // Every item read and validated before anything is computed, each as check_shadow reads it.
   std::vector<ShadowCall> calls;
   calls.reserve(static_cast<std::size_t>(n));
   for (long k = 0; k < n; ++k)
-    calls.push_back(read_shadow(A.item(k), L.item(k), P.item(k), polar.item(k), R.item(k), origin.item(k), "", exact,
-                                item_names(args, k)));
+    calls.push_back(read_shadow(A.item(k), L.item(k), P.item(k), polar.item(k), R.item(k), origin.item(k),
+                                status[static_cast<std::size_t>(k)], exact, item_names(args, k)));
   return run_batch(calls, bopt);
 }
 
 std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::object& plane_in, const py::object& M_in,
-                                              const py::object& B_in, const py::object& origin_in, const py::object& samples,
+                                              const py::object& B_in, const py::object& origin_in,
+                                              const py::object& status_in, const py::object& samples,
                                               const py::object& seed, const py::object& accuracy, const py::object& exact,
                                               const py::object& threads, const py::object& progress) {
   const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"));
@@ -350,11 +379,12 @@ std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::
   if (!M.given() && !B.given()) bad_argument("B", "nothing to check: give M or B");
   const std::vector<const BatchArg*> args{&A, &plane, &M, &B, &origin};
   const long n = batch_items(args);
+  const std::vector<std::string> status = batch_status(status_in, n);
   std::vector<ReflectionCall> calls;
   calls.reserve(static_cast<std::size_t>(n));
   for (long k = 0; k < n; ++k)
-    calls.push_back(read_reflection(A.item(k), plane.item(k), M.item(k), B.item(k), origin.item(k), "", exact,
-                                    item_names(args, k)));
+    calls.push_back(read_reflection(A.item(k), plane.item(k), M.item(k), B.item(k), origin.item(k),
+                                    status[static_cast<std::size_t>(k)], exact, item_names(args, k)));
   return run_batch(calls, bopt);
 }
 
@@ -514,8 +544,9 @@ Example:
 
   m.def("check_shadows", &check_shadows_py, py::arg("A"), py::arg("L"), py::arg("P") = py::none(),
         py::arg("polar_plane") = py::none(), py::arg("R") = py::none(), py::kw_only(), py::arg("origin") = py::none(),
-        py::arg("samples") = kDefaultSamples, py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy,
-        py::arg("method") = "direct", py::arg("exact") = py::none(), py::arg("threads") = 0,
+        py::arg("status") = py::none(), py::arg("samples") = kDefaultSamples, py::arg("seed") = 1,
+        py::arg("accuracy") = kDefaultAccuracy, py::arg("method") = "direct", py::arg("exact") = py::none(),
+        py::arg("threads") = 0,
         py::arg("progress") = py::none(),
         R"(Checks many shadows at once: a test suite's whole table, a renderer's frame.
 
@@ -529,6 +560,9 @@ Args:
     P, polar_plane, R: the candidates' results, (n, 4, 4) / (n, 4) (or one
         for all); give any of them.
     origin: the frames, (n, 3) or (3,), or None for world coordinates.
+    status: the status words the candidates reported, checked against the
+        exact ones as in check_shadow: None (none reported), one str for
+        every item, or a sequence of n (str, or None for an item without).
     samples, seed, accuracy, method, exact: as in check_shadow (each
         item's mode, proof or floating, decided from its own numbers).
     threads: 0 (default) for one per logical processor.
@@ -554,9 +588,9 @@ Example:
 )");
 
   m.def("check_reflections", &check_reflections_py, py::arg("A"), py::arg("plane"), py::arg("M") = py::none(),
-        py::arg("B") = py::none(), py::kw_only(), py::arg("origin") = py::none(), py::arg("samples") = kDefaultSamples,
-        py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy, py::arg("exact") = py::none(),
-        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("B") = py::none(), py::kw_only(), py::arg("origin") = py::none(), py::arg("status") = py::none(),
+        py::arg("samples") = kDefaultSamples, py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy,
+        py::arg("exact") = py::none(), py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Checks many mirror images at once (as check_shadows does shadows).
 
 Report k is what check_reflection(A[k], plane[k], M=M[k], B=B[k], ...)
@@ -567,8 +601,8 @@ Args:
     plane: the mirror planes (a, b, c, d), (n, 4) or one (4,) for all.
     M, B: the candidates' reflection matrices and mirror images, (n, 4, 4)
         or one for all; give either.
-    origin, samples, seed, accuracy, exact, threads, progress: as in
-        check_shadows.
+    origin, status, samples, seed, accuracy, exact, threads, progress: as
+        in check_shadows.
 
 Returns:
     list[CheckReport], one per item, in order.

@@ -153,3 +153,26 @@ def test_a_ragged_list_names_its_item():
     with pytest.raises(qverify.InputError) as err:
         qverify.check_shadows(A, [[3, 4, 8, 1], [3, 4, 8]], P=[np.eye(4), np.eye(4)])
     assert err.value.path == "L[1]"
+
+
+def test_status_words_are_checked_item_by_item(shadows):
+    # the batch doors took no status word, so could not fail a wrong one as check_shadow does
+    As, Ls, Ps, polars, Rs = shadows
+    words = [s.status for s in (qverify.shadow(A, L) for A, L in zip(As, Ls))]
+    assert all(qverify.check_shadows(As, Ls, P=Ps, status=words, samples=8))
+    assert all(qverify.check_shadows(As, Ls, P=Ps, status="ok", samples=8))
+    wrong = list(words)
+    wrong[3] = "light-on-surface"
+    wrong[4] = None  # none reported: nothing to check
+    reps = qverify.check_shadows(As, Ls, P=Ps, status=wrong, samples=8)
+    assert [k for k, r in enumerate(reps) if not r] == [3]
+    alone = qverify.check_shadow(As[3], Ls[3], P=Ps[3], status="light-on-surface", samples=8)
+    assert same_report(reps[3], alone)
+    for bad, path in ((["ok"] * 3, "status"), (words[:-1] + [7], "status[11]"), (5, "status")):
+        with pytest.raises(qverify.InputError) as e:
+            qverify.check_shadows(As, Ls, P=Ps, status=bad)
+        assert e.value.path == path
+    planes = np.array([[0.0, 0.0, 1.0, 3.0]] * len(As))
+    Bs = np.array([qverify.reflection(A, p).B for A, p in zip(As, planes)])
+    reps = qverify.check_reflections(As, planes, B=Bs, status=["ok"] * 5 + ["degenerate-quadric"] + ["ok"] * 6, samples=8)
+    assert [k for k, r in enumerate(reps) if not r] == [5]

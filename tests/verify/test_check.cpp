@@ -561,6 +561,18 @@ TEST_CASE("check_shadow_batch: each report is its item's alone, on any number of
     same_report(one[static_cast<std::size_t>(i)], alone);
     CHECK(alone.passed == (i != 4));
   }
+  // the status words the program reported, one per item: a wrong one fails its item alone, as in
+  // check_shadow (audit 31b F4: the batch doors took none, so could not fail a wrong word)
+  std::vector<std::string> words(static_cast<std::size_t>(n), "ok");
+  words[6] = "light-on-surface";
+  words[7] = "";  // none reported
+  const std::vector<CheckReport> worded = check_shadow_batch(A, L, P, pi, R, opt, words);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    INFO("item " << i);
+    CHECK(worded[static_cast<std::size_t>(i)].passed == (i != 4 && i != 6));
+    CHECK(worded[static_cast<std::size_t>(i)].item_status == (i == 6 ? "light-on-surface" : "ok"));
+  }
+  CHECK_THROWS_AS(check_shadow_batch(A, L, P, pi, R, opt, std::vector<std::string>(3, "ok")), InputError);
   // only P given: the other arrays empty
   const std::vector<CheckReport> onlyP = check_shadow_batch(A, L, P, Vec4Batch<double>(), SymBatch<double>(), opt);
   CHECK(onlyP[4].find("on_P"));
@@ -586,6 +598,11 @@ TEST_CASE("check_reflection_batch checks reflection_batch's arrays item by item"
     INFO("item " << i << "\n" << r[static_cast<std::size_t>(i)].summary());
     CHECK(r[static_cast<std::size_t>(i)].passed == (i != 2));
   }
+  std::vector<std::string> words(static_cast<std::size_t>(n), "ok");
+  words[4] = "degenerate-quadric";
+  const std::vector<CheckReport> worded = check_reflection_batch(A, planes, M, B, opt, words);
+  for (Eigen::Index i = 0; i < n; ++i) CHECK(worded[static_cast<std::size_t>(i)].passed == (i != 2 && i != 4));
+  CHECK_THROWS_AS(check_reflection_batch(A, planes, M, B, opt, std::vector<std::string>(1, "ok")), InputError);
 }
 
 TEST_CASE("batch checks reject bad input before computing anything, naming the item", "[check][batch][errors]") {

@@ -683,10 +683,12 @@ void same_rows(Eigen::Index n, Eigen::Index m, const std::string& where, const s
 
 std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L,
                                             const SymBatch<double>& P, const Vec4Batch<double>& polar_plane,
-                                            const SymBatch<double>& R, const BatchCheckOptions& opt) {
+                                            const SymBatch<double>& R, const BatchCheckOptions& opt,
+                                            const std::vector<std::string>& status) {
   const std::string where = "check_shadow_batch";
   const Eigen::Index n = A.rows();
   same_rows(n, L.rows(), where, "L");
+  if (!status.empty()) same_rows(n, static_cast<Eigen::Index>(status.size()), where, "status");
   if (P.rows() + polar_plane.rows() + R.rows() == 0) throw InputError(where, "candidate", "nothing to check: give P, polar_plane or R");
   if (P.rows()) same_rows(n, P.rows(), where, "P");
   if (polar_plane.rows()) same_rows(n, polar_plane.rows(), where, "polar_plane");
@@ -701,16 +703,18 @@ std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec
     if (P.rows()) cs[u].P = gather_sym(P, i);
     if (polar_plane.rows()) cs[u].polar_plane = Vec4<double>(polar_plane.row(i).transpose());
     if (R.rows()) cs[u].R = gather_sym(R, i);
+    if (!status.empty()) cs[u].status = status[u];
   }
   return check_shadows(As, Ls, cs, opt);
 }
 
 std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const Vec4Batch<double>& planes,
                                                 const AffineBatch<double>& M, const SymBatch<double>& B,
-                                                const BatchCheckOptions& opt) {
+                                                const BatchCheckOptions& opt, const std::vector<std::string>& status) {
   const std::string where = "check_reflection_batch";
   const Eigen::Index n = A.rows();
   same_rows(n, planes.rows(), where, "planes");
+  if (!status.empty()) same_rows(n, static_cast<Eigen::Index>(status.size()), where, "status");
   if (M.rows() + B.rows() == 0) throw InputError(where, "candidate", "nothing to check: give M or B");
   if (M.rows()) same_rows(n, M.rows(), where, "M");
   if (B.rows()) same_rows(n, B.rows(), where, "B");
@@ -728,6 +732,7 @@ std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const
       cs[u].M = m;
     }
     if (B.rows()) cs[u].B = gather_sym(B, i);
+    if (!status.empty()) cs[u].status = status[u];
   }
   return check_reflections(As, Ps, cs, opt);
 }

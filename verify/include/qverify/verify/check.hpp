@@ -206,13 +206,17 @@ std::vector<CheckReport> check_reflections(const std::vector<Mat4<S>>& A, const 
 /// matrix as its 10 entries A00 A01 A02 A03 A11 A12 A13 A22 A23 A33): what
 /// shadow_batch returns for A and L, or another program's results in that layout.
 /// An array with no rows is a result not given (not checked); any other must have
-/// one row per item (InputError naming it).
+/// one row per item (InputError naming it). `status`: the status words the program
+/// reported, one per item ("" where it gave none), each checked against the exact word
+/// as check_shadow checks ShadowCandidate::status; empty: none given.
 std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L,
                                             const SymBatch<double>& P, const Vec4Batch<double>& polar_plane,
-                                            const SymBatch<double>& R, const BatchCheckOptions& opt = {});
+                                            const SymBatch<double>& R, const BatchCheckOptions& opt = {},
+                                            const std::vector<std::string>& status = {});
 /// The same for reflection_batch's results: M as its three rows (n x 12), B (n x 10).
 std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const Vec4Batch<double>& planes,
                                                 const AffineBatch<double>& M, const SymBatch<double>& B,
-                                                const BatchCheckOptions& opt = {});
+                                                const BatchCheckOptions& opt = {},
+                                                const std::vector<std::string>& status = {});
 
 }  // namespace qverify
