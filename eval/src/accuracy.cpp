@@ -400,11 +400,9 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   const Vec4<Q> h = reference_second_plane(L);
   if (L(3) != 0) out.crossing = common_zeros(out.points, {h});  // (a parallel light's h is the plane at infinity)
   out.plane = plane_points(out.points, Vec4<Q>(A * L), h);
-  // (a plane point is a chord's midpoint, and the chord's other end need not be a sampled point:
-  // the ball reaches it too, so that every point R is measured on is one the bound covers)
-  Measure reach = out.size;
-  for (const RootPoint& x : out.plane) reach = mmax(reach, sqrt((cartesian(x) - to_measure3(centre)).squaredNorm()));
-  out.ball = counted_ball(centre, reach);
+  // (the geometric error is the terminator's alone: R on the polar plane's points is a check of R's
+  // shape, measured but not bounded, so the ball need not reach them)
+  out.ball = counted_ball(centre, out.size);
   return out;
 }
 
