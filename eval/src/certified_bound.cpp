@@ -505,14 +505,18 @@ std::shared_ptr<Geometry> make_ellipse(const Mat4<Q>& A, const Vec4<Q>& L, const
   geo->B.resize(3, 2);
   geo->B.col(0) = e1;
   geo->B.col(1) = e2;
-  const bool ok = upward([&] {  // S = U^T U (Cholesky), R = U^-1
-    const IA a00 = CGAL::sqrt(enc(S00));
-    const IA b = enc(S01) / a00;
-    const IA c2 = enc(S11) - CGAL::square(b);
-    if (!(a00.inf() > 0) || !(c2.inf() > 0)) return false;
-    const IA cc = CGAL::sqrt(c2);
+  // S = L D L^T exactly (L unit lower triangular), so S = U^T U with U = D^1/2 L^T and R = U^-1 =
+  // L^-T D^-1/2: every entry exact but the square roots of D. (The Schur complement S11 - S01^2 / S00
+  // taken in intervals cancelled to an enclosure about 0 for an ellipse 10^14 times longer than wide:
+  // no geometry was built, and the bound fell back to a ball about the sampled points, which missed
+  // the tips; audit 32a F1.)
+  const Q l = S01 / S00, d1 = S11 - S01 * l;
+  if (!(d1 > 0)) return nullptr;  // (not expected: det2 > 0 and S00 > 0)
+  const bool ok = upward([&] {
+    const IA r0 = IA(1) / CGAL::sqrt(enc(S00)), r1 = IA(1) / CGAL::sqrt(enc(d1));
+    if (!(r0.inf() > 0) || !(r1.inf() > 0) || !std::isfinite(r0.sup()) || !std::isfinite(r1.sup())) return false;
     for (auto& row : geo->R) row.fill(IA(0));
-    geo->R[0][0] = IA(1) / a00, geo->R[0][1] = -b / (a00 * cc), geo->R[1][1] = IA(1) / cc;
+    geo->R[0][0] = r0, geo->R[0][1] = -enc(l) * r1, geo->R[1][1] = r1;
     geo->enclose_parts();
     return true;
   });
@@ -530,21 +534,24 @@ std::shared_ptr<Geometry> make_surface(const Mat4<Q>& A, const Mat4<Q>& M, const
   geo->e = Vec4<Q>(M * ch).head<3>();
   geo->y0 = Vec3<Q>::Zero();
   geo->B = M.topLeftCorner<3, 3>();
+  // S = L D L^T exactly, R = U^-1 = L^-T D^-1/2 (as make_ellipse: intervals cancelled in the Schur
+  // complements of a thin ellipsoid, 10^9 times thinner than long, and no geometry was built)
+  const Q l10 = S(1, 0) / S(0, 0), l20 = S(2, 0) / S(0, 0);
+  const Q d1 = S(1, 1) - S(1, 0) * l10;
+  if (!(d1 > 0)) return nullptr;  // (not expected: S positive definite)
+  const Q l21 = (S(2, 1) - S(2, 0) * l10) / d1;
+  const Q d2 = S(2, 2) - S(2, 0) * l20 - d1 * l21 * l21;
+  if (!(d2 > 0)) return nullptr;
+  // L^T = [1 l10 l20; 0 1 l21; 0 0 1], its inverse [1 -l10 l10 l21 - l20; 0 1 -l21; 0 0 1]
+  const Q t02 = l10 * l21 - l20;
   const bool ok = upward([&] {
-    const IA U00 = CGAL::sqrt(enc(S(0, 0)));
-    const IA U01 = enc(S(0, 1)) / U00, U02 = enc(S(0, 2)) / U00;
-    const IA s11 = enc(S(1, 1)) - CGAL::square(U01);
-    if (!(U00.inf() > 0) || !(s11.inf() > 0)) return false;
-    const IA U11 = CGAL::sqrt(s11), U12 = (enc(S(1, 2)) - U01 * U02) / U11;
-    const IA s22 = enc(S(2, 2)) - CGAL::square(U02) - CGAL::square(U12);
-    if (!(s22.inf() > 0)) return false;
-    const IA U22 = CGAL::sqrt(s22);
+    const IA r0 = IA(1) / CGAL::sqrt(enc(S(0, 0))), r1 = IA(1) / CGAL::sqrt(enc(d1)), r2 = IA(1) / CGAL::sqrt(enc(d2));
+    for (const IA& r : {r0, r1, r2})
+      if (!(r.inf() > 0) || !std::isfinite(r.sup())) return false;
     auto& N = geo->R;  // U^-1, upper triangular
     for (auto& row : N) row.fill(IA(0));
-    N[0][0] = IA(1) / U00, N[1][1] = IA(1) / U11, N[2][2] = IA(1) / U22;
-    N[1][2] = -U12 * N[2][2] / U11;
-    N[0][1] = -U01 * N[1][1] / U00;
-    N[0][2] = -(U01 * N[1][2] + U02 * N[2][2]) / U00;
+    N[0][0] = r0, N[1][1] = r1, N[2][2] = r2;
+    N[0][1] = -enc(l10) * r1, N[0][2] = enc(t02) * r2, N[1][2] = -enc(l21) * r2;
     geo->enclose_parts();
     return true;
   });

@@ -94,33 +94,49 @@ bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::opt
   // planes cross in that ball, however far from the terminator, a rounded R is bounded only to about
   // sqrt(eps) (a hyperboloid of one sheet lit from inside its waist was flagged at 5.5e-9 against 1e-16
   // attained); in the frame R's entries are pi's, exact.
-  if (!centre) return meets;
-  // A line or plane of centres (a cylinder): the centre the scene gives is any point of it, and its
+  // A line of centres (a cylinder): the centre the scene gives is any point of its axis, and its
   // height no length of the item. Its terminator is sampled about the lamp's foot on the axis
-  // (item_anchor, accuracy.cpp), where for an upright cylinder h crosses it: a rounded R is about
-  // sqrt(eps) off there, and a correctly rounded double R of a cylinder of radius 0.7 lit from 7.6
-  // above its given point was bounded at 7.3e-9 and failed.
-  if (K.determinant() == 0) return meets;
+  // (item_anchor, accuracy.cpp), and the rule of a centre holds for the foot (shadow_origin puts the
+  // frame there): an upright cylinder's foot is at the light's height, where a correctly rounded
+  // double R of a cylinder of radius 0.7 lit from 7.6 above its given point was bounded at 7.3e-9 and
+  // failed. (Where h crosses the terminator far away, as along an axis 1e-9 from level, the frame stays
+  // on the axis: audit 32a F3.)
+  const QuadricCore core = quadric_core(A);
+  if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
+    const Q dz = L(2) / L(3) - core.nearest(Vec3<Q>(L.head<3>() / L(3)))(2);
+    return dz * dz <= 16 * s2;
+  }
+  if (!centre) return meets;
   const Q dz = L(2) / L(3) - (*centre)(2);
   return dz * dz <= 16 * s2;
 }
 
-Vec3<Q> light_height_origin(const Mat4<Q>& A, const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
-  const Q lz = L(2) / L(3);
-  Vec3<Q> p = o ? *o : Vec3<Q>::Zero();
-  // a line of centres (a cylinder) not parallel to h: its point at the light's height, where h crosses
-  // the terminator (an axis along (0, 1, 1) through the origin lit from height 9.7 put the frame 6.9
-  // from it, at (0, 0, 9.7))
-  const QuadricCore core = quadric_core(A);
-  if (core.found && core.kernel.cols() == 1 && core.kn.isZero() && core.kernel(2, 0) != 0) {
-    const Vec3<Q> d = core.kernel.col(0);
-    const Vec3<Q> on_axis = core.nearest(p);
-    p = on_axis + (lz - on_axis(2)) / d(2) * d;
-  }
-  Vec3<Q> out = rounded_to_double(p);
+Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
+  Vec3<Q> out = o ? *o : Vec3<Q>::Zero();
   RoundingReport rep;
-  out(2) = to_rational(round_rational<double>(lz, rep));
+  out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
   return out;
+}
+
+std::optional<Vec3<Q>> shadow_origin(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& o,
+                                     const std::optional<Vec3<Q>>& centre, const Q& s2) {
+  if (L(3) == 0) return o;  // (a parallel light: h is the plane at infinity, and no point of an axis is the lamp's)
+  const bool height = wants_light_height_frame(A, L, centre, s2);
+  {
+    const QuadricCore core = quadric_core(A);
+    if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
+      const Vec3<Q> foot = core.nearest(Vec3<Q>(L.head<3>() / L(3)));
+      if (double_holds(max_abs(foot))) {
+        Vec3<Q> out = rounded_to_double(foot);
+        if (height) {
+          RoundingReport rep;
+          out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
+        }
+        return out;
+      }
+    }
+  }
+  return height ? std::optional<Vec3<Q>>(light_height_origin(o, L)) : o;
 }
 
 Q exact_pow2(long e) {

@@ -170,6 +170,45 @@ TEST_CASE("certified bound: a thin ellipsoid's P rounded in world coordinates is
   }
 }
 
+TEST_CASE("certified bound: a thin ellipsoid's geometry is built at any aspect, and its tips are bounded",
+          "[accuracy][certified]") {
+  // The Cholesky factor of the ellipse or ellipsoid was taken in intervals, whose Schur complements
+  // cancelled to an enclosure about 0 from aspect 1e9 on: no geometry, and the bound fell back to a
+  // ball about the sampled points (size 0.80 of the true 1), which missed the tips: a B 1.05e-9 off
+  // there passed verify (audit 32a F1). The factor is now exact but for its square roots.
+  const Vec3<Q> c(Q(1, 2), Q(-1, 4), 0);
+  Mat3<Q> axes;
+  axes << Q(1, 3), Q(2, 3), Q(-2, 3), Q(-2, 15), Q(11, 15), Q(2, 3), Q(14, 15), Q(-2, 15), Q(1, 3);
+  const Vec4<Q> plane(2, -3, 6, -5);
+  const Mat4<Q> M = reference_mirror(plane);
+  for (const Q& aspect : {Q(1000), Q(1000000000), Q(1000000) * Q(1000000), Q(1000000) * Q(100000000)}) {
+    INFO("aspect " << aspect);
+    const Mat4<Q> A = ellipsoid_quadric<Q>(c, Vec3<Q>(1, Q(1, 2), Q(1) / aspect), axes);
+    const auto geo = reflection_geometry(A, M);
+    REQUIRE(geo);
+    const auto size = ellipsoid_size(A);
+    REQUIRE(size);
+    CHECK(std::abs(*size - 1) < 1e-5);
+    CHECK(shadow_geometry(A, Vec4<Q>(Q(1, 3), Q(2, 3), Q(-2, 3), 0)));  // the edge-on sun of the audit
+    // B moved by delta along x: at the reflected tip of the long axis its first-order distance is
+    // about |delta . n|; the bound covers it
+    const Vec3<Q> delta(Q(1, 100000000), 0, 0);
+    Mat4<Q> T = Mat4<Q>::Identity();
+    T.topRightCorner<3, 1>() = -delta;
+    const Mat4<Q> B = T.transpose() * geo->B_ref * T;
+    const CertifiedBound b = reflection_bound(*geo, std::nullopt, B, *size, 1e-9);
+    Vec4<Q> tip;
+    tip << Vec3<Q>(c + axes.col(0)), Q(1);
+    const Vec4<Q> x = M * tip;
+    const Measure f = abs(to_measure(Q(x.dot(B * x))));
+    const Measure g = 2 * sqrt(to_measure(Q(Vec4<Q>(B * x).head<3>().squaredNorm())));
+    const Measure at_tip = f / g / Measure(*size);
+    INFO("bound " << b.upper << " at the tip " << at_tip.str(6));
+    CHECK(at_tip > Measure("1e-9"));
+    CHECK(Measure(b.upper) >= at_tip);
+  }
+}
+
 TEST_CASE("generator points: on the cone P from L, off every other quadric of the pencil", "[accuracy]") {
   // The generator points (verify's check that P is the cone from L: on_generators) lie on the
   // lines from L through the terminator, at offsets at most half way to a point light (the map fixes
@@ -792,13 +831,27 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   // a cylinder along z: its terminator (two lines along z) crosses every h, and the frame moves
   // wherever the scene's point of its axis is (any point of it: 9.5 radii from the light's height it
   // once did not, and the terminator, sampled about the lamp's foot on the axis, failed there); along
-  // y (lines parallel to h) nothing crosses, and it does not
+  // y (lines parallel to h) nothing crosses, but the lamp's foot on the axis is within 4 radii of its
+  // height, and R's planes cross in the ball about the samples: it moves too; 5 radii below, not
   const Mat4<Q> cylinder = quadric_of({1, 1, 0}, {0, 0, 0}, -1);
   CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
   CHECK(light_plane_meets_terminator(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1)));
   CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>(0, 0, 10), Q(1)));
   CHECK_FALSE(light_plane_meets_terminator(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1)));
-  CHECK_FALSE(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
+  CHECK(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
+  CHECK_FALSE(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, 5, 1), Vec3<Q>::Zero(), Q(1)));
+  // the frame of a cylinder's shadow is on its axis at the lamp's foot, where its terminator is sampled
+  // (at the light's height where that frame is wanted), not at the scene's point of the axis nor where
+  // h crosses the axis: an axis 1e-9 from level put that 2e9 away (audit 32a F3)
+  {
+    const Mat4<Q> level = cylinder_quadric<Q>(Vec3<Q>(1, 2, 3), Vec3<Q>(1, 0, Q(1, 1000000000)), Q(1));
+    const auto o = shadow_origin(level, Vec4<Q>(2, 1, 5, 1), Vec3<Q>(1, 2, 3), std::nullopt, Q(1));
+    REQUIRE(o);
+    CHECK(max_abs(Vec3<Q>(*o - Vec3<Q>(2, 2, 5))) < Q(1, 1000));  // the foot (2, 2, 3), at height 5
+    const auto far = shadow_origin(cylinder, Vec4<Q>(100000000, 20000000, 30000000, 1), Vec3<Q>(0, 0, 0), std::nullopt, Q(1));
+    REQUIRE(far);
+    CHECK(*far == Vec3<Q>(0, 0, 30000000));  // an upright axis: its foot is at the light's height
+  }
   // world_rounded: the default frame's results moved to world coordinates exactly and rounded once;
   // R, rounded there, is as far from the crossing points as the world frame's, and flagged the same way
   const ResultSet local = computed_results(sc, dbl, Method::direct, Frame::local, AccuracyOptions{});

@@ -429,7 +429,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as eval
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
   if (pts.points.empty() && !without_real_points(Aw) && got.B) {
-    const QuadricCheck c = matrices_check(to_measure(cross_residual(*got.B, B_ref)), exact, T);
+    const QuadricCheck c = matrices_check(reflection_matrix_error(*got.B, B_ref), exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the quadric's real points all lie at infinity, where B is judged as a "
                                          "matrix: B ") +

@@ -362,10 +362,15 @@ Measure mirror_error(const Mat4<Rational>& M, const Mat4<Rational>& M_ref);
 bool single_point(const Mat4<Rational>& A, const Vec4<Rational>& L, const std::vector<RootPoint>& terminator);
 /// The largest relative cross residual (core/projective.hpp, cross_residual: zero exactly when
 /// proportional) of P, the polar plane and R, each when given, against (L^T A L) A - (A L)(A L)^T,
-/// A L and the plane pair R of (A, L), A and L in the results' frame: the error of a shadow item
+/// A L and the plane pair R of (A, L), A and L in the results' frame, all taken to the item's own
+/// frame first (about the sampler's base point, in units of the light's distance from it), so that
+/// the measure does not move with the scene's placement or units: the error of a shadow item
 /// whose terminator is a single point, measured exactly (signs are judged by shadow_sign_problems).
 Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
                             const Vec4<Rational>* polar, const Mat4<Rational>* R);
+/// The same for a reflection whose real points all lie at infinity: B's relative cross residual
+/// against B_ref = M^T A M, both about B_ref's base point (quadric_base).
+Measure reflection_matrix_error(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
 
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z for a point light, the
 /// plane at infinity for a parallel one): R must vanish on it. Measured by verify

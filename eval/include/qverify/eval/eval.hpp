@@ -212,11 +212,11 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     PreparedShadow<S> ps;
     ps.pair = p;
     ps.origin = origin[p.quadric];
-    // R's planes crossing on the terminator: the frame at the light's height, where R rounds exactly
-    // (wants_light_height_frame; the paper's route keeps the quadric's frame: its T depends on l_z)
-    if (method == Method::direct &&
-        wants_light_height_frame(A_exact[p.quadric], L_exact[p.other], center[p.quadric], size2[p.quadric]))
-      ps.origin = light_height_origin(A_exact[p.quadric], ps.origin, L_exact[p.other]);
+    // R's planes crossing on the terminator: the frame at the light's height, where R rounds exactly;
+    // a cylinder's at the lamp's foot on its axis (shadow_origin; the paper's route keeps the
+    // quadric's frame: its T depends on l_z)
+    if (method == Method::direct)
+      ps.origin = shadow_origin(A_exact[p.quadric], L_exact[p.other], ps.origin, center[p.quadric], size2[p.quadric]);
     const Mat4<Q> Al = ps.origin ? quadric_to_local(A_exact[p.quadric], *ps.origin) : A_exact[p.quadric];
     const Vec4<Q> Ll = ps.origin ? point_to_local(L_exact[p.other], *ps.origin) : L_exact[p.other];
     ps.A = rounded_scaled<S>(Al);

@@ -49,8 +49,9 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 
 /// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
 /// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
-/// terminator; for a line or plane of centres (a cylinder, whose given centre is any point of its
-/// axis) where h meets the terminator; for another quadric with a centre wherever the light's height is within 4 sizes of it
+/// terminator; for a line of centres (a cylinder, whose given centre is any point of its axis)
+/// wherever the light's height is within 4 sizes of the lamp's foot on the axis (shadow_origin puts
+/// the frame there); for another quadric with a centre wherever the light's height is within 4 sizes of it
 /// (s2 = size_squared; 1 for a cone, 4 units then), met or not: its terminator may be unbounded, and is
 /// bounded in a ball about the sampled points, which R's crossing line may cross away from the
 /// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
@@ -58,11 +59,20 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
                               const std::optional<Vec3<Rational>>& centre, const Rational& s2);
 
-/// The origin o (or 0) with its z the light's height rounded to a double; where A has a line of
-/// centres not parallel to h (a cylinder), first moved to that line's point at the light's height
-/// (where h crosses the terminator), its x and y rounded to doubles.
-Vec3<Rational> light_height_origin(const Mat4<Rational>& A, const std::optional<Vec3<Rational>>& o,
-                                   const Vec4<Rational>& L);
+/// The origin o (or 0) with its z the light's height rounded to a double.
+Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const Vec4<Rational>& L);
+
+/// The frame the direct route computes a shadow item in (o: the quadric's own local frame, or none).
+/// A point light and a line of centres (a cylinder): the axis point nearest the lamp, where the
+/// terminator is sampled (accuracy.cpp, item_anchor), with its z the light's height where
+/// wants_light_height_frame; rounded to doubles. (The scene's point of the axis may lie anywhere
+/// along it: a lamp 1e8 away put the samples 7.6e7 from a frame there, where a double P was 6.8e-4
+/// off; and the axis point at the light's height, tried first, is 2e9 away along an axis 1e-9 from
+/// level: audit 32a F3, F4.) Otherwise the frame at the light's height where
+/// wants_light_height_frame, else o.
+std::optional<Vec3<Rational>> shadow_origin(const Mat4<Rational>& A, const Vec4<Rational>& L,
+                                            const std::optional<Vec3<Rational>>& o,
+                                            const std::optional<Vec3<Rational>>& centre, const Rational& s2);
 
 inline Mat4<Rational> quadric_to_local(const Mat4<Rational>& A, const Vec3<Rational>& o) {
   const Mat4<Rational> T = translation<Rational>(o);
