@@ -290,8 +290,9 @@ namespace {
 /// a parallel light, which like A does not change along the axis, gives no point of it, and the
 /// world origin is taken (the same item placed elsewhere along its axis is then sampled elsewhere
 /// along it). Kind 2 (reflection, `other` the mirror's plane): the core's point on the mirror, moved
-/// there along the directions D in which A does not change (K w = 0, k_n . w = 0), or any where the
-/// plane is parallel to D (then A and the plane are the same about every such point).
+/// there along the directions D in which A does not change (K w = 0, k_n . w = 0); where the plane is
+/// parallel to D, the world origin again (A and the plane are the same about every such point, but
+/// the points are not).
 Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   if (kind == 1) return other(3) != 0 ? Vec3<Q>(other.head<3>() / other(3)) : Vec3<Q>(Vec3<Q>::Zero());
   const Vec3<Q> b0 = quadric_base(A).head<3>();
@@ -302,17 +303,24 @@ Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   const Eigen::Matrix<Q, 3, Eigen::Dynamic> D = core.kernel * lu.kernel();
   const Vec3<Q> n = other.head<3>();
   const Eigen::Matrix<Q, Eigen::Dynamic, 1> w = D.transpose() * n;
-  if (w.isZero()) return b0;
+  if (w.isZero()) return Vec3<Q>::Zero();  // (parallel: as for a parallel light, the world origin)
   return Vec3<Q>(b0 - (n.dot(b0) + other(3)) / w.squaredNorm() * (D * w));
 }
 
+}  // namespace
+
+Vec3<Q> item_base(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
+  return quadric_base(A, item_anchor(kind, A, other)).head<3>();
+}
+
+namespace {
 /// The point an item's seed hashes A and the light or plane about: a point light, else the base the
 /// sampler takes (A's core point nearest item_anchor). A and the light or plane about it are the same
 /// matrices wherever the item stands (A is the same about every point of its core; a parallel light
 /// is a direction; the mirror's plane passes through the point, or is parallel to the core).
 Vec3<Q> hash_origin(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   if (kind == 1 && other(3) != 0) return Vec3<Q>(other.head<3>() / other(3));
-  return quadric_base(A, item_anchor(kind, A, other)).head<3>();
+  return item_base(kind, A, other);
 }
 
 /// The mirror's plane p of a reflection matrix M = I - 2 n p^T / |n|^2 (n = (p_xyz, 0)): p^T M = -p^T,
@@ -1302,20 +1310,27 @@ bool single_point(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<RootPoin
   return all_one_point(terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L)).points);
 }
 
-Measure reflection_matrix_error(const Mat4<Q>& B, const Mat4<Q>& B_ref) {
-  Mat4<Q> T = Mat4<Q>::Identity();  // about B_ref's base point (shadow_matrix_error says why)
-  T.topRightCorner<3, 1>() = quadric_base(B_ref).head<3>();
+Vec3<Q> reflected_item_base(const Mat4<Q>& A, const Vec4<Q>& plane, const std::optional<Vec3<Q>>& origin) {
+  Vec4<Q> b;
+  b << item_base(2, A, plane), Q(1);
+  return Vec3<Q>(Vec4<Q>(reference_mirror(plane) * b).head<3>() - (origin ? *origin : Vec3<Q>::Zero()));
+}
+
+Measure reflection_matrix_error(const Mat4<Q>& B, const Mat4<Q>& B_ref, const Vec3<Q>& base) {
+  Mat4<Q> T = Mat4<Q>::Identity();  // about the item's base point (shadow_matrix_error says why)
+  T.topRightCorner<3, 1>() = base;
   return to_measure(cross_residual(Mat4<Q>(T.transpose() * B * T), Mat4<Q>(T.transpose() * B_ref * T)));
 }
 
-Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R) {
-  // In the item's own frame, x = o + l y: o the sampler's base (A's centre or apex, a cylinder's axis
-  // point nearest a point light), l the light's L-infinity distance from it (1 for a parallel light or
-  // none). Relative to the largest entry in the results' frame, the residual shrank with the scene's
-  // distance from the origin (entries growing with its square): a cone's P 0.01 off at its apex
-  // failed at 8.3e-3 at the origin and passed at 1.4e-15 moved by 10^6 (audit 32a F2).
+Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R,
+                            const Vec3<Q>& base) {
+  // In the item's own frame, x = o + l y: o the item's base point (item_base, in the results' frame),
+  // l the light's L-infinity distance from it (1, the scene's unit, for a parallel light or a lamp
+  // at the base). Relative to the largest entry in the results' frame, the residual shrank with the
+  // scene's distance from the origin (entries growing with its square): a cone's P 0.01 off at its
+  // apex failed at 8.3e-3 at the origin and passed at 1.4e-15 moved by 10^6 (audit 32a F2).
   const std::optional<Vec3<Q>> light = L(3) != 0 ? std::optional<Vec3<Q>>(Vec3<Q>(L.head<3>() / L(3))) : std::nullopt;
-  const Vec3<Q> o = quadric_base(A, light).head<3>();
+  const Vec3<Q>& o = base;
   Q l = light ? max_abs(Vec3<Q>(*light - o)) : Q(1);
   if (l == 0) l = 1;
   Mat4<Q> T = Mat4<Q>::Identity() * l;
@@ -1387,7 +1402,8 @@ ItemAccuracy ShadowMeter::operator()(const std::optional<Vec3<Q>>& origin, const
   // to the largest entry, may not see (a cone lit from 1e12 along its axis: h 2e-8 of its height off in
   // float), is verify's check of R's shape, R_on_second_plane, not counted here.)
   if ((pts_.points.empty() && silhouette_empty<Q>(A_, L_) == Truth::no) || single_point(A_, L_, pts_.points))
-    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R), {"P", "polar_plane", "R"}, opt_.target);
+    return measured_exactly(shadow_matrix_error(Ae, Le, &P, &polar, &R, Vec3<Q>(item_base(1, A_, L_) - o)),
+                            {"P", "polar_plane", "R"}, opt_.target);
   // The geometric error of P, the polar plane and R on the terminator (cli.md), not verify's checks of
   // their shapes beyond it (P on its generator lines, R on the polar plane and on h: ShadowBounds).
   auto dense = [&] { return terminator_points(A_, L_, opt_.samples * kRefineFactor, item_seed(opt_.seed + 1, 1, A_, L_)); };
@@ -1452,7 +1468,7 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as a
   // shadow's terminator at infinity (ShadowMeter)
   if (pts_.points.empty() && !without_real_points(A_))
-    return measured_exactly(reflection_matrix_error(B, B_ref), {"B"}, opt_.target);
+    return measured_exactly(reflection_matrix_error(B, B_ref, reflected_item_base(A_, plane_, origin)), {"B"}, opt_.target);
   if (!bounds_.covers())
     return refined_accuracy(
         pts_, dense_, opt_, [&](const ItemPoints& p) { return reflection_error(p, origin, B).geometric; },

@@ -1,6 +1,7 @@
 #include <qverify/core/predicates.hpp>
 #include <qverify/exact/rounding.hpp>
 #include <qverify/exact/sampling.hpp>
+#include <qverify/eval/accuracy.hpp>
 #include <qverify/eval/frames.hpp>
 
 #include <limits>
@@ -103,7 +104,7 @@ bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::opt
   // on the axis: audit 32a F3.)
   const QuadricCore core = quadric_core(A);
   if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
-    const Q dz = L(2) / L(3) - core.nearest(Vec3<Q>(L.head<3>() / L(3)))(2);
+    const Q dz = L(2) / L(3) - item_base(1, A, L)(2);
     return dz * dz <= 16 * s2;
   }
   if (!centre) return meets;
@@ -120,20 +121,17 @@ Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
 
 std::optional<Vec3<Q>> shadow_origin(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& o,
                                      const std::optional<Vec3<Q>>& centre, const Q& s2) {
-  if (L(3) == 0) return o;  // (a parallel light: h is the plane at infinity, and no point of an axis is the lamp's)
-  const bool height = wants_light_height_frame(A, L, centre, s2);
-  {
-    const QuadricCore core = quadric_core(A);
-    if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
-      const Vec3<Q> foot = core.nearest(Vec3<Q>(L.head<3>() / L(3)));
-      if (double_holds(max_abs(foot))) {
-        Vec3<Q> out = rounded_to_double(foot);
-        if (height) {
-          RoundingReport rep;
-          out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
-        }
-        return out;
+  const bool height = wants_light_height_frame(A, L, centre, s2);  // (false for a parallel light)
+  const QuadricCore core = quadric_core(A);
+  if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
+    const Vec3<Q> base = item_base(1, A, L);  // the lamp's foot on the axis (parallel: nearest the origin)
+    if (double_holds(max_abs(base))) {
+      Vec3<Q> out = rounded_to_double(base);
+      if (height) {
+        RoundingReport rep;
+        out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
       }
+      return out;
     }
   }
   return height ? std::optional<Vec3<Q>>(light_height_origin(o, L)) : o;

@@ -185,7 +185,7 @@ TEST_CASE("results judged as matrices are judged in the item's own frame, wherev
     Mat4<Q> S = Mat4<Q>::Identity();
     S(0, 3) = Q(-1, 100);  // P moved by (1/100, 0, 0)
     const Mat4<Q> P = S.transpose() * reference_cone(A, L) * S;
-    const Measure e = shadow_matrix_error(A, L, &P, nullptr, nullptr);
+    const Measure e = shadow_matrix_error(A, L, &P, nullptr, nullptr, item_base(1, A, L));
     CHECK(e > Measure("1e-4"));
     if (!first) first = e;
     CHECK(e == *first);

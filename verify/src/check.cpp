@@ -224,7 +224,7 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   const auto as_matrices = [&](const char* where) {
     const QuadricCheck c = matrices_check(shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
                                                               got.polar_plane ? &*got.polar_plane : nullptr,
-                                                              got.R ? &*got.R : nullptr),
+                                                              got.R ? &*got.R : nullptr, Vec3<Q>(item_base(1, Aw, Lw) - o)),
                                           exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the terminator is ") + where +
@@ -429,7 +429,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as eval
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
   if (pts.points.empty() && !without_real_points(Aw) && got.B) {
-    const QuadricCheck c = matrices_check(reflection_matrix_error(*got.B, B_ref), exact, T);
+    const QuadricCheck c = matrices_check(reflection_matrix_error(*got.B, B_ref, reflected_item_base(Aw, plane, got.origin)), exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the quadric's real points all lie at infinity, where B is judged as a "
                                          "matrix: B ") +

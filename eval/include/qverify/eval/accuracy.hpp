@@ -363,14 +363,26 @@ bool single_point(const Mat4<Rational>& A, const Vec4<Rational>& L, const std::v
 /// The largest relative cross residual (core/projective.hpp, cross_residual: zero exactly when
 /// proportional) of P, the polar plane and R, each when given, against (L^T A L) A - (A L)(A L)^T,
 /// A L and the plane pair R of (A, L), A and L in the results' frame, all taken to the item's own
-/// frame first (about the sampler's base point, in units of the light's distance from it), so that
-/// the measure does not move with the scene's placement or units: the error of a shadow item
+/// frame first (about `base`, item_base in the results' frame, in units of the light's L-infinity
+/// distance from it; the scene's unit for a parallel light or a lamp at the base), so that the
+/// measure does not move with the scene's placement: the error of a shadow item
 /// whose terminator is a single point, measured exactly (signs are judged by shadow_sign_problems).
 Measure shadow_matrix_error(const Mat4<Rational>& A, const Vec4<Rational>& L, const Mat4<Rational>* P,
-                            const Vec4<Rational>* polar, const Mat4<Rational>* R);
+                            const Vec4<Rational>* polar, const Mat4<Rational>* R, const Vec3<Rational>& base);
 /// The same for a reflection whose real points all lie at infinity: B's relative cross residual
-/// against B_ref = M^T A M, both about B_ref's base point (quadric_base).
-Measure reflection_matrix_error(const Mat4<Rational>& B, const Mat4<Rational>& B_ref);
+/// against B_ref = M^T A M, both about `base` (reflected_item_base, in the results' frame).
+Measure reflection_matrix_error(const Mat4<Rational>& B, const Mat4<Rational>& B_ref, const Vec3<Rational>& base);
+
+/// The point of A's core an item's samples are drawn about (world frame; kind 1 shadow, `other` the
+/// light; kind 2 reflection, `other` the mirror's plane): A's centre or apex, a point inside a
+/// paraboloid on its axis; on a line of centres (a cylinder), its point nearest a point light, or on
+/// the mirror, else nearest the world origin. It moves with the item when the scene is translated
+/// (but for a cylinder under a parallel light, or beside a mirror parallel to its axis, which slide
+/// along the axis), and eval's frames, the seeds and the matrices' measure are all about it.
+Vec3<Rational> item_base(int kind, const Mat4<Rational>& A, const Vec4<Rational>& other);
+/// item_base(2, A, plane) reflected in the mirror, in the frame with the given origin.
+Vec3<Rational> reflected_item_base(const Mat4<Rational>& A, const Vec4<Rational>& plane,
+                                   const std::optional<Vec3<Rational>>& origin);
 
 /// R's second plane h (the plane the paper's frame sends to infinity: z = l_z for a point light, the
 /// plane at infinity for a parallel one): R must vanish on it. Measured by verify

@@ -232,8 +232,10 @@ template <class S> void prepare(const Scene& sc, Frame frame, Evaluation<S>& ev,
     const Mat4<Q> M = mirror_matrix<Q>(planes_exact[p.other]);  // exact, rational in n and d
     const Vec3<Q> oA = origin[p.quadric] ? *origin[p.quadric] : Vec3<Q>::Zero();
     std::optional<Vec3<Q>> oB;
-    {  // about the image of the point A's frame is about
-      const Vec3<Q>& k = core[p.quadric];
+    {  // about the image of the item's base point (item_base: A's centre, apex, a point of its axis
+       // on the mirror, where its points are sampled; the scene's point of a cylinder's axis may lie
+       // anywhere along it)
+      const Vec3<Q> k = item_base(2, A_exact[p.quadric], planes_exact[p.other]);
       const Vec3<Q> mc = (M * Vec4<Q>(k.x(), k.y(), k.z(), Q(1))).template head<3>();
       if (wants_local_frame(mc, size2[p.quadric])) oB = rounded_to_double(mc);
     }

@@ -63,8 +63,9 @@ bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
 Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const Vec4<Rational>& L);
 
 /// The frame the direct route computes a shadow item in (o: the quadric's own local frame, or none).
-/// A point light and a line of centres (a cylinder): the axis point nearest the lamp, where the
-/// terminator is sampled (accuracy.cpp, item_anchor), with its z the light's height where
+/// A line of centres (a cylinder): the item's base point on the axis (accuracy.hpp, item_base: the
+/// lamp's foot, or under a parallel light the point nearest the world origin), where the terminator
+/// is sampled, with its z the light's height where
 /// wants_light_height_frame; rounded to doubles. (The scene's point of the axis may lie anywhere
 /// along it: a lamp 1e8 away put the samples 7.6e7 from a frame there, where a double P was 6.8e-4
 /// off; and the axis point at the light's height, tried first, is 2e9 away along an axis 1e-9 from
