@@ -831,15 +831,15 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   // a cylinder along z: its terminator (two lines along z) crosses every h, and the frame moves
   // wherever the scene's point of its axis is (any point of it: 9.5 radii from the light's height it
   // once did not, and the terminator, sampled about the lamp's foot on the axis, failed there); along
-  // y (lines parallel to h) nothing crosses, but the lamp's foot on the axis is within 4 radii of its
-  // height, and R's planes cross in the ball about the samples: it moves too; 5 radii below, not
+  // y (lines parallel to h) nothing crosses, but the lamp's foot on the axis is within 64 radii of its
+  // height, and R's planes may cross in the ball about the samples: it moves too; 100 radii below, not
   const Mat4<Q> cylinder = quadric_of({1, 1, 0}, {0, 0, 0}, -1);
   CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
   CHECK(light_plane_meets_terminator(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1)));
   CHECK(wants_light_height_frame(cylinder, Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>(0, 0, 10), Q(1)));
   CHECK_FALSE(light_plane_meets_terminator(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1)));
   CHECK(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, Q(1, 2), 1), Vec3<Q>::Zero(), Q(1)));
-  CHECK_FALSE(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, 5, 1), Vec3<Q>::Zero(), Q(1)));
+  CHECK_FALSE(wants_light_height_frame(quadric_of({1, 0, 1}, {0, 0, 0}, -1), Vec4<Q>(3, 0, 100, 1), Vec3<Q>::Zero(), Q(1)));
   // the frame of a cylinder's shadow is on its axis at the lamp's foot, where its terminator is sampled
   // (at the light's height where that frame is wanted), not at the scene's point of the axis nor where
   // h crosses the axis: an axis 1e-9 from level put that 2e9 away (audit 32a F3)

@@ -50,8 +50,9 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 /// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
 /// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
 /// terminator; for a line of centres (a cylinder, whose given centre is any point of its axis)
-/// wherever the light's height is within 4 sizes of the lamp's foot on the axis (shadow_origin puts
-/// the frame there); for another quadric with a centre wherever the light's height is within 4 sizes of it
+/// wherever the light's height is within 64 radii (about the reach of its samples) of the lamp's
+/// foot on the axis (shadow_origin puts the frame there); for another quadric with a centre wherever
+/// the light's height is within 4 sizes of it
 /// (s2 = size_squared; 1 for a cone, 4 units then), met or not: its terminator may be unbounded, and is
 /// bounded in a ball about the sampled points, which R's crossing line may cross away from the
 /// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
