@@ -52,6 +52,14 @@ bool double_holds(const Q& x) {
 }
 }  // namespace
 
+namespace {
+/// A line of centres (an elliptic or hyperbolic cylinder): K's kernel a line, k in K's range.
+bool has_line_of_centres(const Mat4<Q>& A) {
+  const QuadricCore core = quadric_core(A);
+  return core.found && core.kernel.cols() == 1 && core.kn.isZero();
+}
+}  // namespace
+
 bool wants_local_frame(const Vec3<Q>& center, const Q& s2) {
   const Q c = max_abs(center);
   return c * c > Q(64 * 64) * s2 && double_holds(c);
@@ -106,8 +114,7 @@ bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::opt
   // and failed; the pipe of examples/scenes/mixed-requests.json, its foot 4.75 (9.5 radii) below the
   // light, failed verify at seeds 2, 3, 4, 6 and 8 with 4 radii. Where h crosses the axis far away, as
   // an axis 1e-9 from level does, the frame stays on the axis: audit 32a F3.)
-  const QuadricCore core = quadric_core(A);
-  if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
+  if (has_line_of_centres(A)) {
     const Q dz = L(2) / L(3) - item_base(1, A, L)(2);
     return dz * dz <= 4096 * s2;
   }
@@ -126,16 +133,11 @@ Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
 std::optional<Vec3<Q>> shadow_origin(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& o,
                                      const std::optional<Vec3<Q>>& centre, const Q& s2) {
   const bool height = wants_light_height_frame(A, L, centre, s2);  // (false for a parallel light)
-  const QuadricCore core = quadric_core(A);
-  if (core.found && core.kernel.cols() == 1 && core.kn.isZero()) {
+  if (has_line_of_centres(A)) {
     const Vec3<Q> base = item_base(1, A, L);  // the lamp's foot on the axis (parallel: nearest the origin)
     if (double_holds(max_abs(base))) {
-      Vec3<Q> out = rounded_to_double(base);
-      if (height) {
-        RoundingReport rep;
-        out(2) = to_rational(round_rational<double>(Q(L(2) / L(3)), rep));
-      }
-      return out;
+      const Vec3<Q> out = rounded_to_double(base);
+      return height ? light_height_origin(out, L) : out;
     }
   }
   return height ? std::optional<Vec3<Q>>(light_height_origin(o, L)) : o;
