@@ -39,16 +39,27 @@ FI enclosed(const Q& q) {
 
 bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
 
-/// Largest distance of the points from A's centre (their centroid where K is singular, rounded to
-/// a rational at 80 digits: the distances are measured from that exact point), to 80 digits, and
-/// the centre. With a centre, a filter first: each point's squared distance is
+/// Largest distance of the points from A's centre (`core_centre` where A has a line or plane of
+/// centres: centre_of_core; their centroid where A has none, a paraboloid, rounded to a rational at
+/// 80 digits: the distances are measured from that exact point), to 80 digits, and the centre. With a centre, a filter first: each point's squared distance is
 /// enclosed from its coordinates' enclosures, and only the points whose upper
 /// bound reaches the largest lower bound (or that the intervals cannot bound)
 /// can be the farthest; only those are rounded to 80 digits.
-std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A) {
+/// Where A has a line or a plane of centres (a cylinder, a plane pair), the centre nearest `anchor`
+/// (the point sample_section and sample_quadric draw their lines about: quadric_base): a cylinder's
+/// axis point nearest its lamp, about which its sample is symmetric, not the sample's centroid, which
+/// moved with the sample. nullopt where A has one centre (K invertible) or none (a paraboloid).
+std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
+  const QuadricCore core = quadric_core(A);
+  if (core.kernel.cols() == 0 || !core.found || !core.kn.isZero()) return std::nullopt;
+  return anchor ? core.nearest(*anchor) : core.y;
+}
+
+std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A,
+                                        const std::optional<Vec3<Q>>& core_centre) {
   if (pts.empty()) return {0, Vec3<Q>::Zero()};
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  if (K.determinant() == 0) {
+  if (K.determinant() == 0 && !core_centre) {
     std::vector<Vec3<Measure>> xs;
     for (const RootPoint& x : pts) xs.push_back(cartesian(x));
     Vec3<Measure> c = Vec3<Measure>::Zero();
@@ -59,7 +70,7 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
     for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
     return {best, cq};
   }
-  const Vec3<Q> cq = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+  const Vec3<Q> cq = K.determinant() == 0 ? *core_centre : Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
   Vec3<Measure> c;
   for (int i = 0; i < 3; ++i) c(i) = to_measure(cq(i));
   std::vector<FI> d2(pts.size());
@@ -394,9 +405,10 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.points = s.points;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  std::tie(out.size, centre) = object_size(out.points, A);
+  const std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  std::tie(out.size, centre) = object_size(out.points, A, core_centre);
   if (out.size == 0 && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
-    std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A);
+    std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A, core_centre);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
     if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u), Vec3<Q>(centre / u)))
@@ -424,12 +436,13 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  std::tie(out.size, centre) = object_size(s.points, A);
+  const std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  std::tie(out.size, centre) = object_size(s.points, A, core_centre);
   if (out.size == 0 && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
         sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, plane), Q(1), anchor).points;
     more.insert(more.end(), s.points.begin(), s.points.end());
-    std::tie(out.size, centre) = object_size(more, A);
+    std::tie(out.size, centre) = object_size(more, A, core_centre);
   }
   if (!s.points.empty()) {
     const Q u = length_unit(out.size);

@@ -23,6 +23,8 @@ struct Draw {
   std::mt19937_64 gen;
   explicit Draw(std::uint64_t seed) : gen(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull) {}
   Q small() { return Q(std::uniform_int_distribution<int>(-9, 9)(gen)); }
+  /// A rational in [-1, 1] in steps of 2^-12.
+  Q unit() { return Q(std::uniform_int_distribution<int>(-4096, 4096)(gen), 4096); }
   /// Draws x, then y, then z (sequenced: the order of a call's arguments is
   /// unspecified, and gcc and clang differ, which gave other points per compiler).
   Vec3<Q> vec3() {
@@ -117,6 +119,22 @@ class Lines {
 };
 
 Vec4<Q> finite(const Vec3<Q>& v) { return Vec4<Q>(v(0), v(1), v(2), Q(1)); }
+
+/// A plane's normal as its primitive integer vector (the same for every positive multiple).
+Vec3<Q> primitive_normal(const Vec3<Q>& normal) {
+  std::array<BigInt, 4> np;
+  primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
+  return Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2]));
+}
+
+/// A direction (a line's, either way) as its primitive integer vector with its first non-zero
+/// entry positive: the same however it was found (a plane basis pivoted on another entry, a kernel).
+Vec3<Q> primitive_direction(const Vec3<Q>& d) {
+  Vec3<Q> v = primitive_normal(d);
+  for (int i = 0; i < 3; ++i)
+    if (v(i) != 0) return v(i) < 0 ? Vec3<Q>(-v) : v;
+  return v;
+}
 
 Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs(v(2)))}); }
 
@@ -220,6 +238,54 @@ Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
 /// error by as much. Points out[from..] farther than kReachCap steps from the base b (L-infinity,
 /// judged on their double approximations: a sampling choice, not a measure) are dropped.
 constexpr int kReachCap = 16;
+
+/// The positive rational nearest sqrt(r) to 24 bits (r > 0, within double's range), a function of r
+/// alone (IEEE's sqrt is correctly rounded).
+Q rough_sqrt(const Q& r) {
+  const double x = std::sqrt(r.convert_to<double>());
+  if (!(x > 0) || !std::isfinite(x)) return Q(1);
+  const int e = std::ilogb(x);
+  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24));
+}
+
+/// How far along its lines a pair of parallel lines is sampled, in half-widths of the pair.
+constexpr int kPairReach = 16;
+
+/// A section that is a pair of real parallel lines (a cylinder's terminator under a point or a
+/// parallel light, a pair of parallel planes cut): where its chords are drawn, and which way. Chords
+/// through a point of the lines' midline m in the directions e + t a (e across the lines in the
+/// plane, a along them, scaled by a rational within 2^-24 of |e| / |a|) all meet the lines at the
+/// same distance s from it across (a is the section's singular point at infinity: A a is orthogonal
+/// to the plane, so (e + t a)^T A (e + t a) = e^T A e and (e + t a)^T A m = e^T A m = 0), at
+/// m +- s (e + t a), |t| <= kPairReach: the points within kPairReach half-widths of m along the lines
+/// (the same whatever the seed: the first two chords are t = +-kPairReach, the farthest points).
+/// Random directions met the lines as far out as they were near parallel to them: a cylinder whose
+/// axis was 10^-9 from level was sized 3e8 (a chord along a coordinate axis), its double results'
+/// bounds over a ball of that size (1.3e-9 to 0.13) failed verify against 10^-25 sampled; and a
+/// cylinder's size was 52.3 at one seed and 14.8 at another.
+struct ParallelPair {
+  Vec4<Q> mid;
+  Vec3<Q> across, along;
+};
+std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<Q, 4, 3>& E, const Mat3<Q>& K,
+                                          const Vec3<Q>& normal, const Vec4<Q>& base) {
+  if (K.determinant() != 0) return std::nullopt;
+  const Mat3<Q> adj = adjugate3<Q>(K);  // l1 l2 z z^T, z the singular point: real lines where l1 l2 < 0
+  if (adj.isZero() || !(adj.trace() < 0)) return std::nullopt;
+  Vec4<Q> z = Vec4<Q>::Zero();
+  for (int j = 0; j < 3 && z.isZero(); ++j) z = E * Eigen::Matrix<Q, 3, 1>(adj.col(j));
+  if (z(3) != 0) return std::nullopt;  // (lines crossing at a finite point)
+  const Vec3<Q> a = primitive_direction(z.head<3>());
+  const Vec3<Q> e = normal.cross(a);
+  const Vec4<Q> e4(e(0), e(1), e(2), Q(0));
+  const Q alpha = e4.dot(A * e4);  // (not 0: the section's only point at infinity is z)
+  if (alpha == 0) return std::nullopt;
+  ParallelPair pair;
+  pair.mid = base - e4.dot(A * base) / alpha * e4;  // the middle of the chord through the base along e
+  pair.across = e;
+  pair.along = Vec3<Q>(a * rough_sqrt(Q(e.squaredNorm() / a.squaredNorm())));
+  return pair;
+}
 void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, const Q& reach) {
   const double cap = kReachCap * reach.convert_to<double>();
   const Vec3<double> base(b(0).convert_to<double>(), b(1).convert_to<double>(), b(2).convert_to<double>());
@@ -334,16 +400,15 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     return rep;
   }
   Vec4<Q> b = section_base(A, pi, anchor);
+  // (from the primitive normal below: the same chords for every positive multiple of A and L)
+  const std::optional<ParallelPair> pair = parallel_pair(A, E, K, primitive_normal(normal), b);
+  if (pair) b = pair->mid;
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   int hits = 0;
   // the base's shifts (below) are made with the normal's primitive integer form: the same shifts for
   // every positive multiple of A and L
-  const Vec3<Q> shift_normal = [&] {
-    std::array<BigInt, 4> np;
-    primitive_integers(Vec4<Q>(normal(0), normal(1), normal(2), Q(0)), np);
-    return Vec3<Q>(Q(np[0]), Q(np[1]), Q(np[2]));
-  }();
+  const Vec3<Q> shift_normal = primitive_normal(normal);
   bool stepped = false;
   // an elliptic section: in-plane directions shaped by its axes (shaped_directions), in the plane's
   // basis a = n x e_j, n x a, n the normal's primitive integers (the same basis for every positive
@@ -358,7 +423,12 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   const auto shape = shaped_directions<2>(
       Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane),
       Eigen::Matrix<Q, 2, 1>(in_plane.col(0).squaredNorm(), in_plane.col(1).squaredNorm()));
+  int ends = 2;  // a parallel pair's first two chords: its farthest points (ParallelPair)
   const auto direction = [&]() -> Vec3<Q> {
+    if (pair) {
+      const Q t = ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit());
+      return Vec3<Q>(pair->across + t * pair->along);
+    }
     if (!shape || stepped) return normal.cross(draw.vec3());
     Vec3<Q> r = draw.vec3();
     while (r(0) == 0 && r(1) == 0) r = draw.vec3();
@@ -402,9 +472,29 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   Lines lines(A, b);
   bool stepped = false;
   const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));
+  // A cylinder (an axis of centres, through b): lines r + t a, r across the axis a, meet it at the
+  // same distance across whatever t (a is K's kernel and b a centre: the line's quadratic is r's),
+  // so its points lie within kPairReach cross-section radii of b along the axis, scaled as in
+  // ParallelPair; random directions met it as far out as they were near parallel to the axis (10^9
+  // out for an axis 10^-9 from level). The first two lines are the farthest (t = +-kPairReach).
+  const std::optional<Vec3<Q>> axis = [&]() -> std::optional<Vec3<Q>> {
+    const QuadricCore core = quadric_core(A);
+    if (core.kernel.cols() != 1 || !core.kn.isZero() || !core.found) return std::nullopt;
+    return primitive_direction(Vec3<Q>(core.kernel.col(0)));
+  }();
+  int ends = 2;
+  const auto direction = [&]() -> Vec3<Q> {
+    if (axis && !stepped) {
+      Vec3<Q> r = axis->cross(draw.vec3());
+      while (r.isZero()) r = axis->cross(draw.vec3());
+      const Q t = ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit());
+      return Vec3<Q>(r + t * rough_sqrt(Q(r.squaredNorm() / axis->squaredNorm())) * *axis);
+    }
+    return shape && !stepped ? Vec3<Q>(*shape * draw.vec3()) : draw.vec3();
+  };
   while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
     ++rep.attempts;
-    const Vec3<Q> d = shape && !stepped ? Vec3<Q>(*shape * draw.vec3()) : draw.vec3();
+    const Vec3<Q> d = direction();
     const std::size_t had = rep.points.size();
     lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (stepped) keep_near(rep.points, had, b, reach);

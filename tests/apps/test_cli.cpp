@@ -153,7 +153,7 @@ TEST_CASE("verify --precision exact proves every sampled point of the examples",
   CHECK(a.out == b.out);
 }
 
-TEST_CASE("verify in floating precisions passes within the accuracy target, float only at a float-sized one",
+TEST_CASE("verify in floating precisions passes within the accuracy target, float only at a float-sized one - the paper route's world R fails where its planes cross the terminator",
           "[cli][verify]") {
   for (const char* p : {"float", "double", "long-double", "float128", "mpfr:200"})
     for (const char* m : {"direct", "paper"}) {
@@ -161,10 +161,20 @@ TEST_CASE("verify in floating precisions passes within the accuracy target, floa
       const bool single = std::string(p) == "float";
       const Run r = run(std::string("verify ") + scene("mixed-requests.json") + " --json --samples 16 --precision " + p +
                         " --method " + m + (single ? " --accuracy 1e-5" : ""));
-      REQUIRE(r.code == 0);
+      // The paper's route is in world coordinates, where R, a plane pair, is about sqrt(eps) |x| off
+      // near the line where its planes cross the terminator: the pipe's, at the lamp's height, lies 6.7
+      // along the axis from the lamp's foot, within the stretch sampled (8 either side). Float and
+      // double fail it there by its certified bound (6.5e-4 and 2.6e-8), whatever the samples.
+      const bool crossing = std::string(m) == "paper" && (single || std::string(p) == "double");
+      REQUIRE(r.code == (crossing ? 1 : 0));
       const auto doc = nlohmann::json::parse(r.out);
-      CHECK(doc["passed"] == 6);
+      CHECK(doc["passed"] == (crossing ? 5 : 6));
       for (const auto& c : doc["checks"]) {
+        if (crossing && c["quadric"] == "pipe") {
+          CHECK(c["status"] == "fail");
+          CHECK(c["certified"]["geometric_error_bound"].get<double>() > c["accuracy"].get<double>());
+          continue;
+        }
         CHECK_FALSE(c.contains("proved_exactly"));
         CHECK(c["accuracy"].get<double>() == (single ? 1e-5 : 1e-9));
         CHECK(c["geometric_error"].get<double>() <= c["accuracy"].get<double>());

@@ -325,7 +325,10 @@ TEST_CASE("eval --tolerance: every item has an error_bound, and its flag agrees 
         flagged += inaccurate;
       }
   }
-  CHECK(flagged == 2);  // the far sphere's shadow and reflection; none on the example
+  // the far sphere's shadow and reflection, and the example's pipe: its R in world coordinates (this
+  // evaluation's frame) is about sqrt(eps) off where its planes cross the terminator, at the lamp's
+  // height, 6.7 along the axis from the lamp's foot, within the 8 sampled either side (ParallelPair)
+  CHECK(flagged == 3);
 }
 
 TEST_CASE("qverify's own eval document, read back as a candidate, passes: far origins survive the JSON text",
@@ -403,8 +406,8 @@ TEST_CASE("an origin in a float document is the double it is written as", "[verd
 
 namespace {
 
-ResultSet exact_results(const Scene& sc) {
-  return computed_results(sc, *parse_precision("exact"), Method::direct, std::nullopt, std::nullopt);
+ResultSet exact_results(const Scene& sc, std::optional<Frame> frame = std::nullopt) {
+  return computed_results(sc, *parse_precision("exact"), Method::direct, frame, std::nullopt);
 }
 
 /// The exact results rounded to nearest double, entry by entry: a double candidate.
@@ -474,12 +477,41 @@ TEST_CASE("eval's own results pass verify at every seed: a cylinder's frame at t
   }
 }
 
+TEST_CASE("eval's own results pass verify on a cylinder whose axis is 1e-9 from level", "[verdicts][verify]") {
+  // Random chords met its terminator lines as far out as they were near parallel to them: a chord
+  // along x met them 3e8 out, the object size was that, and the double results' bounds over a ball of
+  // 3e8 (1.3e-9 to 0.13) flagged them and failed verify against errors of 1e-25 sampled (audit 32a).
+  // Now a parallel pair is sampled within 16 half-widths of its middle.
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "nearh", "quadrics": [{"id": "c",
+      "cylinder": {"point": [1, 2, 3], "axis": [1, 0, "1e-9"], "radius": 1}}], "lights": [
+      {"id": "near", "position": [2, 1, 5]}, {"id": "level", "position": [3, -2, 3]},
+      {"id": "far", "position": [100000000, 20000000, 30000000]}, {"id": "high", "position": [0, 0, 100000000]},
+      {"id": "sun", "direction": [1, 1, -2]}]})", "nearh.json");
+  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+  for (std::size_t k = 0; k < rs.shadows.size(); ++k) {
+    INFO("shadow " << k);
+    REQUIRE(rs.shadows[k].accuracy);
+    CHECK(!rs.shadows[k].accuracy->inaccurate);
+  }
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    INFO("seed " << seed);
+    VerifyOptions opt;
+    opt.seed = seed;
+    const auto report = verify_results(sc, rs, opt);
+    CHECK(report.failed == 0);
+  }
+}
+
 TEST_CASE("verify: the correctly rounded result passes, one entry off by 1e-7 fails", "[verdicts][verify]") {
   for (const char* name : {"ball-lamp-floor.json", "egg-sun-wall.json", "mixed-requests.json"}) {
     INFO(name);
     const Scene sc = load_scene(std::string(QVERIFY_SCENES) + "/" + name);
-    const ResultSet good = rounded(exact_results(sc));
+    // rounded in eval's own frame: in world coordinates the pipe's R, a plane pair, is about sqrt(eps)
+    // off where its planes cross the terminator (at the lamp's height, within the stretch sampled),
+    // truly, and fails; the world R passed only while the samples happened to stop short of there
+    const ResultSet good = rounded(exact_results(sc, Frame::local));
     CHECK(failures(sc, good) == 0);
+    if (std::string(name) == "mixed-requests.json") CHECK(failures(sc, rounded(exact_results(sc))) == 1);
     for (std::size_t k = 0; k < good.shadows.size(); ++k) {
       if (!good.shadows[k].present) continue;
       ResultSet bad = good;

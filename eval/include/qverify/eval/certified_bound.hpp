@@ -160,7 +160,7 @@ std::optional<ReflectionGeometry> reflection_geometry(const Mat4<Rational>& A, c
 /// them, from below and within a relative 2^-19 of the truth, where A is an
 /// ellipsoid; nullopt otherwise. terminator_size also where the terminator is a real ellipse on
 /// another quadric (a hyperboloid's, a paraboloid's: a bounded curve), from `centre` there
-/// (object_size's: A's centre, or the sampled points' centroid where A has none): sampled, the
+/// (object_size's: A's centre, or the sampled points' centroid where A has no centre): sampled, the
 /// size of such a terminator 10^12 long came out 10^6 at 8 samples and 10^12 at 64, and every
 /// relative error with it.
 std::optional<double> terminator_size(const Mat4<Rational>& A, const Vec4<Rational>& L, const Vec3<Rational>& centre);
