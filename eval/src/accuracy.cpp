@@ -96,7 +96,6 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
   return {best, cq};
 }
 
-Vec3<Measure> to_measure3(const Vec3<Q>& v) { return Vec3<Measure>(to_measure(v(0)), to_measure(v(1)), to_measure(v(2))); }
 
 /// The certified bounds' unit of length (ShadowBounds, ReflectionBounds, the whole terminator's
 /// size): the power of two 2^e <= size < 2^(e + 1) (1 for no size). Their intervals are doubles,
@@ -1329,10 +1328,26 @@ Vec3<Q> reflected_item_base(const Mat4<Q>& A, const Vec4<Q>& plane, const std::o
   return Vec3<Q>(Vec4<Q>(reference_mirror(plane) * b).head<3>() - (origin ? *origin : Vec3<Q>::Zero()));
 }
 
+namespace {
+/// Results and their references in the frame x = o + l y (a map of points T; quadrics go to
+/// T^T X T, planes to T^T p), compared there up to scale (cross_residual).
+struct ItemFrame {
+  Mat4<Q> T;
+  ItemFrame(const Vec3<Q>& o, const Q& l) : T(Mat4<Q>::Identity() * l) {
+    T(3, 3) = 1;
+    T.topRightCorner<3, 1>() = o;
+  }
+  Measure error(const Mat4<Q>& hat, const Mat4<Q>& ref) const {
+    return to_measure(cross_residual(Mat4<Q>(T.transpose() * hat * T), Mat4<Q>(T.transpose() * ref * T)));
+  }
+  Measure error(const Vec4<Q>& hat, const Vec4<Q>& ref) const {
+    return to_measure(cross_residual(Vec4<Q>(T.transpose() * hat), Vec4<Q>(T.transpose() * ref)));
+  }
+};
+}  // namespace
+
 Measure reflection_matrix_error(const Mat4<Q>& B, const Mat4<Q>& B_ref, const Vec3<Q>& base) {
-  Mat4<Q> T = Mat4<Q>::Identity();  // about the item's base point (shadow_matrix_error says why)
-  T.topRightCorner<3, 1>() = base;
-  return to_measure(cross_residual(Mat4<Q>(T.transpose() * B * T), Mat4<Q>(T.transpose() * B_ref * T)));
+  return ItemFrame(base, Q(1)).error(B, B_ref);  // about the item's base point (shadow_matrix_error says why)
 }
 
 Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P, const Vec4<Q>* polar, const Mat4<Q>* R,
@@ -1346,15 +1361,11 @@ Measure shadow_matrix_error(const Mat4<Q>& A, const Vec4<Q>& L, const Mat4<Q>* P
   const Vec3<Q>& o = base;
   Q l = light ? max_abs(Vec3<Q>(*light - o)) : Q(1);
   if (l == 0) l = 1;
-  Mat4<Q> T = Mat4<Q>::Identity() * l;
-  T(3, 3) = 1;
-  T.topRightCorner<3, 1>() = o;
-  const auto in_frame = [&](const Mat4<Q>& m) { return Mat4<Q>(T.transpose() * m * T); };
-  const auto plane_in_frame = [&](const Vec4<Q>& p) { return Vec4<Q>(T.transpose() * p); };
+  const ItemFrame frame(o, l);
   Measure e = 0;
-  if (P) e = mmax(e, to_measure(cross_residual(in_frame(*P), in_frame(reference_cone(A, L)))));
-  if (polar) e = mmax(e, to_measure(cross_residual(plane_in_frame(*polar), plane_in_frame(Vec4<Q>(A * L)))));
-  if (R) e = mmax(e, to_measure(cross_residual(in_frame(*R), in_frame(reference_plane_pair(A, L)))));
+  if (P) e = mmax(e, frame.error(*P, reference_cone(A, L)));
+  if (polar) e = mmax(e, frame.error(*polar, Vec4<Q>(A * L)));
+  if (R) e = mmax(e, frame.error(*R, reference_plane_pair(A, L)));
   return e;
 }
 
