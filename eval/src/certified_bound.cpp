@@ -248,6 +248,54 @@ template <class M> Q best_scale(const M& hat, const M& ref) {
   return boost::multiprecision::isfinite(l) ? to_rational(l) : Q(0);
 }
 
+/// The map of points x = c + s y into a geometry's own frame (c its centre and s > 0 its length, in
+/// the results' frame).
+Mat4<Q> own_frame(const Vec3<Q>& c, const Q& s) {
+  Mat4<Q> T = Mat4<Q>::Identity() * s;
+  T(3, 3) = 1;
+  T.topRightCorner<3, 1>() = c;
+  return T;
+}
+/// best_scale in the geometry's own frame T (own_frame): a lambda that is the same wherever the item
+/// stands and in any units (E = hat - lambda ref is exact for every lambda, and T^T E T = T^T hat T -
+/// lambda T^T ref T). In the results' frame the least squares weighed the entries the placement made
+/// large (a far geometry's constant terms): a hyperbolic paraboloid's candidate was bounded at 4.7e-10,
+/// 1.19e-9 and 7.5e-10 translated by three offsets (audit 32a F5).
+Q scale_about(const Mat4<Q>& hat, const Mat4<Q>& ref, const Mat4<Q>& T) {
+  return best_scale(Mat4<Q>(T.transpose() * hat * T), Mat4<Q>(T.transpose() * ref * T));
+}
+Q scale_about(const Vec4<Q>& hat, const Vec4<Q>& ref, const Mat4<Q>& T) {
+  return best_scale(Vec4<Q>(T.transpose() * hat), Vec4<Q>(T.transpose() * ref));
+}
+/// The power of two at most x (x > 0 and finite; 1 otherwise).
+Q pow2_below(double x) {
+  if (!(x > 0) || !std::isfinite(x)) return Q(1);
+  int e = 0;
+  (void)std::frexp(x, &e);  // x in [2^(e-1), 2^e)
+  const boost::multiprecision::mpz_int p = boost::multiprecision::mpz_int(1) << std::abs(e - 1);
+  return e - 1 >= 0 ? Q(p) : Q(1) / Q(p);
+}
+/// A geometry's own frame: about its centre y0 + e, by the power of two below its largest |B R| entry.
+Mat4<Q> geometry_frame(const Geometry& geo, const std::optional<Vec3<Q>>& o) {
+  double big = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < geo.k; ++j) big = std::max(big, mag(geo.BR[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
+  return own_frame(Vec3<Q>(geo.y0 + geo.e - (o ? *o : Vec3<Q>::Zero())), pow2_below(big));
+}
+/// A ball's own frame: about its centre, by the power of two below its reach.
+Mat4<Q> ball_frame(const Ball& ball, const std::optional<Vec3<Q>>& o) {
+  return own_frame(Vec3<Q>(ball.centre - (o ? *o : Vec3<Q>::Zero())), pow2_below(enc(ball.reach).inf()));
+}
+
+/// plane_pair_part in the frame T (own_frame), taken back: w e^T + e w^T is the same there and here
+/// (e = T^-T e_T), but the part of E it picks depends on the frame's metric, and in the results' frame
+/// a far plane's constant outweighed the rest (audit 32a F5: the ball bound of one candidate P,
+/// translated exactly, 4.7e-10 at one offset and 1.2e-9 at another).
+Vec4<Q> plane_pair_part_about(const Mat4<Q>& E, const Vec4<Q>& w, const Mat4<Q>& T) {
+  const Vec4<Q> eT = plane_pair_part(Mat4<Q>(T.transpose() * E * T), Vec4<Q>(T.transpose() * w));
+  return Mat4<Q>(T.inverse()).transpose() * eT;
+}
+
 /// 2^-e with 2^e the size of m's largest entry (1 for a zero m): an exact scale that brings m's
 /// entries near 1, so that their enclosures in double neither overflow nor underflow. (The
 /// first-order distance does not change when a result, or its reference, is scaled.)
@@ -287,7 +335,7 @@ BoundedResult quadric_result(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const
   const Q ref_scale = unit_scale(ref_in);
   const Mat4<Q> ref = ref_scale * ref_in;
   const Mat4<Q> ref_o = T.transpose() * ref * T;
-  const Q lambda = best_scale(hat, ref_o);
+  const Q lambda = scale_about(hat, ref_o, geometry_frame(geo, o));
   const Mat4<Q> E = hat - lambda * ref_o;
   Vec4<Q> z0, eh;
   z0 << Vec3<Q>(geo.y0 + geo.e - (o ? *o : Vec3<Q>::Zero())), Q(1);
@@ -342,7 +390,7 @@ BoundedResult plane_result(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const G
                            const std::optional<Vec3<Q>>& o) {
   const Vec4<Q> hat = unit_scale(hat_in) * hat_in;
   const Vec4<Q> ref_o = translation_of(o).transpose() * Vec4<Q>(unit_scale(ref_in) * ref_in);
-  const Q lambda = best_scale(hat, ref_o);
+  const Q lambda = scale_about(hat, ref_o, geometry_frame(geo, o));
   const Vec4<Q> eps = hat - lambda * ref_o;
   Vec4<Q> z0;
   z0 << Vec3<Q>(geo.y0 + geo.e - (o ? *o : Vec3<Q>::Zero())), Q(1);
@@ -951,7 +999,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
   const Q ref_scale = unit_scale(ref_in);
   const Mat4<Q> ref_o = T.transpose() * Mat4<Q>(ref_scale * ref_in) * T;
-  const Q lambda = best_scale(hat, ref_o);
+  const Q lambda = scale_about(hat, ref_o, ball_frame(ball, o));
   const Mat4<Q> E = hat - lambda * ref_o;
   const Vec4<Q> z0 = ball_base(ball, o);
   // The value: on the geometry x^T hat x = x^T Ev x, Ev = E, or where the geometry lies in the plane
@@ -961,7 +1009,7 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
   Mat4<Q> Ev = E;
   if (within && !within->isZero()) {
     const Vec4<Q> w = T.transpose() * *within;
-    const Vec4<Q> e = plane_pair_part(E, w);
+    const Vec4<Q> e = plane_pair_part_about(E, w, ball_frame(ball, o));
     Ev = E - (w * e.transpose() + e * w.transpose());
   }
   const Q a = z0.dot(E * z0), av = z0.dot(Ev * z0);
@@ -1099,7 +1147,7 @@ CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, co
   if (hat_in.head<3>().isZero()) return {hat_in.isZero() && ref_in.isZero() ? 0.0 : kInf, 0, 1};
   const Vec4<Q> hat = unit_scale(hat_in) * hat_in;
   const Vec4<Q> ref_o = translation_of(o).transpose() * Vec4<Q>(unit_scale(ref_in) * ref_in);
-  const Vec4<Q> eps = hat - best_scale(hat, ref_o) * ref_o;
+  const Vec4<Q> eps = hat - scale_about(hat, ref_o, ball_frame(ball, o)) * ref_o;
   const Q a = eps.dot(ball_base(ball, o));
   return upward([&] {
     const IA r = enc(ball.reach);
@@ -1138,10 +1186,10 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, co
   const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
   const Vec4<Q> p_o = T.transpose() * p, q_o = T.transpose() * q;
   const Mat4<Q> ref_o = p_o * q_o.transpose() + q_o * p_o.transpose();
-  const Q lambda = best_scale(hat, ref_o);
+  const Q lambda = scale_about(hat, ref_o, ball_frame(ball, o));
   // p' = lambda p + e, e the part of E = hat - lambda ref_o of the form e q^T + q e^T (exact when E is)
   const Mat4<Q> E = hat - lambda * ref_o;
-  const Vec4<Q> e = plane_pair_part(E, q_o);
+  const Vec4<Q> e = plane_pair_part_about(E, q_o, ball_frame(ball, o));
   const Vec4<Q> p1 = lambda * p_o + e;
   if (p1.head<3>().isZero()) return {kInf, 0, 1};
   // step 1: the geometry's points (on p) from the plane p', absolute (size 1)
