@@ -30,8 +30,8 @@ std::optional<Vec3<Q>> natural_center(const QuadricSpec& q, const Mat4<Q>& A) {
 Q size_squared(const Mat4<Q>& A_local) {
   const Q k = max_abs(Mat3<Q>(A_local.topLeftCorner<3, 3>()));
   const Q c0 = A_local(3, 3) < 0 ? Q(-A_local(3, 3)) : A_local(3, 3);
-  if (k == 0 || c0 == 0) return Q(1);
-  return c0 / k;
+  if (k == 0) return Q(1);
+  return c0 / k;  // (0 for a cone: no size of its own, so any apex off the origin gets a frame there)
 }
 
 Vec3<Q> rounded_to_double(const Vec3<Q>& v) {
@@ -57,6 +57,16 @@ namespace {
 bool has_line_of_centres(const Mat4<Q>& A) {
   const QuadricCore core = quadric_core(A);
   return core.found && core.kernel.cols() == 1 && core.kn.isZero();
+}
+}  // namespace
+
+namespace {
+/// A cone: a centre (K invertible) on the quadric (its apex).
+bool is_cone(const Mat4<Q>& A) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  if (K.determinant() == 0) return false;
+  const Vec3<Q> c = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
+  return quadric_value(A, c) == 0;
 }
 }  // namespace
 
@@ -132,6 +142,7 @@ Vec3<Q> light_height_origin(const std::optional<Vec3<Q>>& o, const Vec4<Q>& L) {
 
 std::optional<Vec3<Q>> shadow_origin(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& o,
                                      const std::optional<Vec3<Q>>& centre, const Q& s2) {
+  if (is_cone(A) && L(3) != 0 && double_holds(Q(L(2) / L(3)))) return light_height_origin(o, L);
   const bool height = wants_light_height_frame(A, L, centre, s2);  // (false for a parallel light)
   if (has_line_of_centres(A)) {
     const Vec3<Q> base = item_base(1, A, L);  // the lamp's foot on the axis (parallel: nearest the origin)

@@ -632,6 +632,36 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
   }
 }
 
+TEST_CASE("a cone is computed at its apex (or above it at a lamp's height) in any units", "[verdicts][frames]") {
+  // A cone's rounded matrix is a hyperboloid about sqrt(eps) |apex| off near its apex, where its
+  // gradient vanishes: a cone at (0, 0, 5) kept the world frame (its "size" was 1, in the scene's units:
+  // a frame only beyond 64 units) and its double P under a parallel light was flagged (audit 31a F6;
+  // this one at 9e-9 and 1.3e-9, and at 3.2e-8 and 7.1e-9 scaled by 3, not scaled by 2^-6): no flag
+  // in any units now.
+  for (const Q& k : {Q(1), Q(1, 64), Q(3)}) {
+    INFO("scale " << k);
+    const auto num = [&](const Q& v) { return "\"" + Q(v * k).str() + "\""; };
+    const std::string text = std::string(R"({"format": "qverify-scene/1", "name": "c", "quadrics": [{"id": "c", "cone": {"apex": [0, 0, )") +
+                             num(5) + R"(], "axis": [1, 2, 3], "tan_half_angle": "2/7"}}], "lights": [
+        {"id": "sun", "direction": ["-89/150", "11/15", "26/75"]}, {"id": "sun2", "direction": ["1/15", "4/3", "7/15"]},
+        {"id": "lamp", "position": [)" + num(2) + ", " + num(-3) + ", " + num(Q(11, 2)) + R"(]}]})";
+    const Scene sc = parse_scene(text, "cone.json");
+    const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+    REQUIRE(rs.shadows.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+      INFO("shadow " << i);
+      REQUIRE(rs.shadows[i].accuracy);
+      CHECK(!rs.shadows[i].accuracy->inaccurate);
+      REQUIRE(rs.shadows[i].origin);
+      CHECK((*rs.shadows[i].origin)(0) == 0);
+      CHECK((*rs.shadows[i].origin)(1) == 0);
+      // the suns: at the apex; the lamp: above it, at the lamp's height
+      CHECK((*rs.shadows[i].origin)(2) == (i < 2 ? Q(5) * k : Q(11, 2) * k));
+    }
+    CHECK(verify_results(sc, rs, VerifyOptions{}).failed == 0);
+  }
+}
+
 TEST_CASE("a far quadric without a centre gets a frame on its axis, and verify passes it", "[verdicts][frames]") {
   // the cylinder (x - a)^2 + (y + 2)^2 = 1/4 and the paraboloid z - 1 = (x - a)^2 + (y + 2)^2,
   // a = 3e7 + 1/2, given as a matrix and as coefficients: no centre, and they were computed in

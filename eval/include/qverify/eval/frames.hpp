@@ -28,7 +28,10 @@ template <class S> Mat4<S> translation(const Vec3<S>& v) {
 std::optional<Vec3<Rational>> natural_center(const QuadricSpec& q, const Mat4<Rational>& A);
 
 /// The object's size estimate sqrt(|c0| / |K|_max) with c0 the constant term
-/// in its own frame (the radius of a sphere); 1 when c0 = 0 (a cone).
+/// in its own frame (the radius of a sphere); 0 for a cone (c0 = 0: no length of its own, and a
+/// frame at its apex wherever that is off the origin, in any units: its rounded matrix is a
+/// hyperboloid about sqrt(eps) |apex| off near the apex, where its gradient vanishes; a cone at
+/// (0, 0, 5) kept the world frame below 64 units and was flagged, audit 31a F6); 1 for a plane.
 Rational size_squared(const Mat4<Rational>& A_local);
 
 /// The nearest double to each coordinate (an exactly representable origin).
@@ -53,7 +56,7 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 /// wherever the light's height is within 64 radii (about the reach of its samples) of the lamp's
 /// foot on the axis (shadow_origin puts the frame there); for another quadric with a centre wherever
 /// the light's height is within 4 sizes of it
-/// (s2 = size_squared; 1 for a cone, 4 units then), met or not: its terminator may be unbounded, and is
+/// (s2 = size_squared), met or not: its terminator may be unbounded, and is
 /// bounded in a ball about the sampled points, which R's crossing line may cross away from the
 /// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
 /// bound in the item's ball holds, and a frame there would only put the object away from its origin.
@@ -71,7 +74,14 @@ Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const
 /// along it: a lamp 1e8 away put the samples 7.6e7 from a frame there, where a double P was 6.8e-4
 /// off; and the axis point at the light's height, tried first, is 2e9 away along an axis 1e-9 from
 /// level: audit 32a F3, F4.) Otherwise the frame at the light's height where
-/// wants_light_height_frame, else o.
+/// wants_light_height_frame, else o. A cone lit by a lamp: always above its apex (o) at the light's
+/// height. Its P is the pair of planes through the lamp and the generators, whose gradient vanishes
+/// on the terminator at the apex, and R's gradient where h crosses the terminator: rounded, each is
+/// about sqrt(eps) times the origin's distance from that point off there, and no one frame holds
+/// both; here R rounds as pi does, and P is off at the apex by about sqrt(eps) |dz| (dz the
+/// lamp's height above the apex), within the target wherever |dz| is a small part of the
+/// cone's sampled stretch (16 lamp distances). (The rule was 4 units of the scene: a cone's
+/// flags changed with the scene's units.)
 std::optional<Vec3<Rational>> shadow_origin(const Mat4<Rational>& A, const Vec4<Rational>& L,
                                             const std::optional<Vec3<Rational>>& o,
                                             const std::optional<Vec3<Rational>>& centre, const Rational& s2);
