@@ -375,11 +375,13 @@ std::uint64_t item_seed(std::uint64_t seed, int kind, const Mat4<Q>& A_given, co
 
 namespace {
 /// The points an item's size is measured on where its own sample (fewer than the default count:
-/// `--samples 1`) has none, being one point, and was not exhausted (a terminator of one point,
-/// a cone lit from inside, exhausts any larger count, and its default sample spends 3250 attempts): the default count with a seed of its own, as
-/// single_point takes, and its own points (which the ball must cover), so that a cylinder's size
-/// does not fall to 0 (and every relative error, every bound, to infinity) with the number of
-/// samples; a terminator that is one point keeps 0.
+/// `--samples 1`) has none, being one point, or is a parallel pair's without its stretch's four ends
+/// (the first two chords' roots, the farthest points: fewer than 4 points), and was not exhausted (a
+/// terminator of one point, a cone lit from inside, exhausts any larger count, and its default sample
+/// spends 3250 attempts): the default count with a seed of its own, as single_point takes, and its
+/// own points (which the ball must cover), so that a cylinder's size does not fall to 0 (and every
+/// relative error, every bound, to infinity) nor change with the number of samples; a terminator
+/// that is one point keeps 0.
 std::vector<RootPoint> unsized_sample(const Mat4<Q>& A, const Vec4<Q>& L, const std::vector<RootPoint>& own) {
   std::vector<RootPoint> more = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L)).points;
   more.insert(more.end(), own.begin(), own.end());
@@ -404,9 +406,14 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.points = s.points;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  const std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  // (a parallel pair on a quadric without a centre, a parabolic cylinder: its middle, about which its
+  // sample is symmetric, not the sample's centroid, which moved with an odd count)
+  std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  if (!core_centre) core_centre = s.middle;
   std::tie(out.size, centre) = object_size(out.points, A, core_centre);
-  if (out.size == 0 && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
+  // one point (no extent), or a parallel pair without its stretch's four ends (fewer than 4 points):
+  // sized with the default sample as well (unsized_sample)
+  if ((out.size == 0 || (s.middle && n < 4)) && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
     std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A, core_centre);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
@@ -1239,7 +1246,8 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
       std::none_of(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; }))
     return 0;
   // A rational point at the object, of A and L alone, not of the samples: the section's centre, where
-  // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core. (The
+  // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core (a
+  // parallel pair's chords cross at its middle, on the same midline for a cylinder). (The
   // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
   // does where the terminator is not a real ellipse.)
   const Vec4<Q> inside = section_base(A, pi, item_anchor(1, A, L));
@@ -1511,7 +1519,8 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "(R also on the polar plane inside it where h does not meet the terminator), and, where A is an ellipsoid, B "
       "are bounded over every point of their geometry by interval branch and bound; other terminators (hyperbolas, "
       "parabolas, line pairs) and other quadrics reflected are unbounded, and there the object size is the largest "
-      "distance of the sampled points from A's centre (their centroid where A has none) and the same results are "
+      "distance of the sampled points from A's centre (a cylinder's axis point they are drawn about; their centroid "
+      "where A has no centre; the middle of a parabolic cylinder's terminator lines) and the same results are "
       "bounded over every point of their geometry within that distance of the centre, by interval bounds over shells "
       "of that ball. Where the reference's gradient vanishes on the geometry (a cone's apex; R where its plane h "
       "crosses the terminator) a first-order distance means nothing: there the shells bound the Euclidean distance to "

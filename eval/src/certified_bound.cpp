@@ -775,7 +775,18 @@ std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L) {
   const Vec4<Q> pi = A * L, h = reference_second_plane(L);
   const Vec3<Q> n = pi.head<3>(), m = h.head<3>();
   const Vec3<Q> u = n.cross(m);
-  if (u.isZero()) return std::nullopt;  // (parallel planes, or h at infinity)
+  if (m.isZero() || n.isZero()) return std::nullopt;  // (h or the polar plane at infinity)
+  if (u.isZero()) {
+    // parallel planes: h . x is the same at every point of the polar plane (m = c n: h . x = h_w - c pi_w).
+    // With no floor R was judged on its samples alone, and one chord (--samples 1 or 2) let an R 8e-6
+    // off elsewhere pass (audit 33a F1: a lamp straight above a level cylinder's axis).
+    const Q c = m.dot(n) / n.squaredNorm();
+    const Q level = abs(Q(h(3) - c * pi(3)));
+    if (level == 0) return std::nullopt;  // (the same plane)
+    const double t0 = upward([&] { return enc(level).inf(); });
+    if (!(t0 > 0) || !std::isfinite(t0)) return std::nullopt;
+    return Measure(t0);
+  }
   // p0 on both planes and w with n . w = 0, m . w = 1, both in the span of n and m (Gram system)
   const Q nn = n.squaredNorm(), nm = n.dot(m), mm = m.squaredNorm(), det = nn * mm - nm * nm;  // |u|^2 > 0
   const auto in_span = [&](const Q& at_n, const Q& at_m) {  // the v = a n + b m with n . v, m . v given
@@ -865,6 +876,7 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   kn_ = msqrt(core.kn.squaredNorm());
   a0_ = abs(to_measure(quadric_value(A, y)));
   grows_ = core.kernel.cols() == 1 && mu > 0;
+  flat_ = core.kernel.cols() == 2;
 }
 
 Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) const {
@@ -884,6 +896,16 @@ Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) co
         const Measure w = -2 * c2 / (b2 + sqrt(b2 * b2 - 4 * a2 * c2));
         f = std::max(f, Measure(sqrt(mu_ * w + kn2)));
       }
+    }
+    if (flat_) {
+      // a parabolic cylinder, K = lambda v v^T (|v| = 1, |lambda| = sigma): about y (the core point
+      // nearest the centre c, c - y along v), x on A has lambda (v . (x - y))^2 = -(A(y) + 2 k_n . (x - c))
+      // (k_n is orthogonal to v), so |K (x - y)|^2 = sigma |A(y) + 2 k_n . (x - c)| >= sigma (a0 - 2 |k_n|
+      // outer), and the gradient K (x - y) + k_n has that plus |k_n|^2. Without it the floor stayed at
+      // |k_n| where the gradient was 2e4 (a parabola's terminator lit from 1e8 away), and eval's own
+      // accurate results were flagged at 1.2e-8 and failed (audit 33a F2).
+      const Measure gap = a0_ - 2 * kn_ * outer;
+      if (gap > 0) f = std::max(f, Measure(sqrt(sigma_ * gap + kn_ * kn_)));
     }
   }
   // (80 digits: the callers take a double below with a margin, lower_double)

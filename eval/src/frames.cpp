@@ -31,7 +31,10 @@ Q size_squared(const Mat4<Q>& A_local) {
   const Q k = max_abs(Mat3<Q>(A_local.topLeftCorner<3, 3>()));
   const Q c0 = A_local(3, 3) < 0 ? Q(-A_local(3, 3)) : A_local(3, 3);
   if (k == 0) return Q(1);
-  return c0 / k;  // (0 for a cone: no size of its own, so any apex off the origin gets a frame there)
+  // (0 for a cone: no size of its own, so any apex off the origin gets a frame there; a plane pair's
+  // point on its crossing line keeps 1)
+  if (c0 == 0) return Mat3<Q>(A_local.topLeftCorner<3, 3>()).determinant() != 0 ? Q(0) : Q(1);
+  return c0 / k;
 }
 
 Vec3<Q> rounded_to_double(const Vec3<Q>& v) {
@@ -116,8 +119,10 @@ bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::opt
   // A line of centres (a cylinder): the centre the scene gives is any point of its axis, and its
   // height no length of the item. Its terminator is sampled about the lamp's foot on the axis
   // (item_base), and shadow_origin puts the frame there: at the light's height wherever that is within
-  // 64 radii of the foot, about as far as its sampled points reach (a random chord meets the two lines
-  // as far out as it is near their direction: 6 to 50 radii at 64 samples). Where R's planes cross in
+  // 64 radii of the foot, beyond the stretch its points are sampled on (16 half-widths of the terminator
+  // either side of its middle, the foot: sampling.cpp, ParallelPair; a half-width is at most a radius,
+  // and the axis may be steep, so the light's height within the stretch is within 16 radii of the
+  // foot's). Where R's planes cross in
   // the ball about those points a rounded R is about sqrt(eps) off; a frame that far above the axis
   // costs P and the polar plane little. (An upright cylinder's foot is at the light's height: a
   // correctly rounded double R of radius 0.7 lit from 7.6 above its given point was bounded at 7.3e-9

@@ -239,17 +239,32 @@ Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
 /// judged on their double approximations: a sampling choice, not a measure) are dropped.
 constexpr int kReachCap = 16;
 
-/// The positive rational nearest sqrt(r) to 24 bits (r > 0, within double's range), a function of r
-/// alone (IEEE's sqrt is correctly rounded).
+/// 2^e exactly.
+Q two_to(long e) {
+  const Q p(BigInt(1) << static_cast<unsigned>(e < 0 ? -e : e));
+  return e >= 0 ? p : Q(1 / p);
+}
+
+/// A positive rational within 2^-23 of sqrt(r) (r > 0), a function of r alone: r = r' 4^k with r'
+/// near 1 (exactly, by the bit lengths of its numerator and denominator), sqrt(r') in double
+/// (correctly rounded) to 24 bits, times 2^k. (Through a double alone a ratio beyond 1e308, a
+/// plane's normal of long decimals squared, overflowed.)
 Q rough_sqrt(const Q& r) {
-  const double x = std::sqrt(r.convert_to<double>());
-  if (!(x > 0) || !std::isfinite(x)) return Q(1);
+  const long k = (static_cast<long>(msb(numerator(r))) - static_cast<long>(msb(denominator(r)))) / 2;
+  const double x = std::sqrt(Q(r * two_to(-2 * k)).convert_to<double>());  // (r' in [1/8, 8])
   const int e = std::ilogb(x);
-  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24));
+  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24)) * two_to(k);
 }
 
 /// How far along its lines a pair of parallel lines is sampled, in half-widths of the pair.
 constexpr int kPairReach = 16;
+
+/// The parameters t of a stretch's chords (ParallelPair; a cylinder's lines, sample_quadric): the
+/// two ends first (t = +-kPairReach, the farthest points), then seeded ones within.
+struct Stretch {
+  int ends = 2;
+  Q next(Draw& draw) { return ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit()); }
+};
 
 /// A section that is a pair of real parallel lines (a cylinder's terminator under a point or a
 /// parallel light, a pair of parallel planes cut): where its chords are drawn, and which way. Chords
@@ -278,7 +293,7 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
   const Vec3<Q> a = primitive_direction(z.head<3>());
   const Vec3<Q> e = normal.cross(a);
   const Vec4<Q> e4(e(0), e(1), e(2), Q(0));
-  const Q alpha = e4.dot(A * e4);  // (not 0: the section's only point at infinity is z)
+  const Q alpha = e4.dot(A * e4);  // 0 where one of the lines is the line at infinity (z = xy cut by x = c)
   if (alpha == 0) return std::nullopt;
   ParallelPair pair;
   pair.mid = base - e4.dot(A * base) / alpha * e4;  // the middle of the chord through the base along e
@@ -402,7 +417,10 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   Vec4<Q> b = section_base(A, pi, anchor);
   // (from the primitive normal below: the same chords for every positive multiple of A and L)
   const std::optional<ParallelPair> pair = parallel_pair(A, E, K, primitive_normal(normal), b);
-  if (pair) b = pair->mid;
+  if (pair) {
+    b = pair->mid;
+    rep.middle = Vec3<Q>(b.head<3>());
+  }
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   int hits = 0;
@@ -423,12 +441,9 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   const auto shape = shaped_directions<2>(
       Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane),
       Eigen::Matrix<Q, 2, 1>(in_plane.col(0).squaredNorm(), in_plane.col(1).squaredNorm()));
-  int ends = 2;  // a parallel pair's first two chords: its farthest points (ParallelPair)
+  Stretch stretch;  // a parallel pair's chords (ParallelPair)
   const auto direction = [&]() -> Vec3<Q> {
-    if (pair) {
-      const Q t = ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit());
-      return Vec3<Q>(pair->across + t * pair->along);
-    }
+    if (pair) return Vec3<Q>(pair->across + stretch.next(draw) * pair->along);
     if (!shape || stepped) return normal.cross(draw.vec3());
     Vec3<Q> r = draw.vec3();
     while (r(0) == 0 && r(1) == 0) r = draw.vec3();
@@ -476,19 +491,19 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   // same distance across whatever t (a is K's kernel and b a centre: the line's quadratic is r's),
   // so its points lie within kPairReach cross-section radii of b along the axis, scaled as in
   // ParallelPair; random directions met it as far out as they were near parallel to the axis (10^9
-  // out for an axis 10^-9 from level). The first two lines are the farthest (t = +-kPairReach).
+  // out for an axis 10^-9 from level). The first two lines are at the stretch's ends (t = +-kPairReach;
+  // the farthest points where the cylinder is circular; an elliptic one's reach also depends on r).
   const std::optional<Vec3<Q>> axis = [&]() -> std::optional<Vec3<Q>> {
     const QuadricCore core = quadric_core(A);
-    if (core.kernel.cols() != 1 || !core.kn.isZero() || !core.found) return std::nullopt;
+    if (!core.line_of_centres()) return std::nullopt;
     return primitive_direction(Vec3<Q>(core.kernel.col(0)));
   }();
-  int ends = 2;
+  Stretch stretch;
   const auto direction = [&]() -> Vec3<Q> {
     if (axis && !stepped) {
-      Vec3<Q> r = axis->cross(draw.vec3());
+      Vec3<Q> r = axis->cross(draw.vec3());  // (not 0 for every draw: the axis is not 0)
       while (r.isZero()) r = axis->cross(draw.vec3());
-      const Q t = ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit());
-      return Vec3<Q>(r + t * rough_sqrt(Q(r.squaredNorm() / axis->squaredNorm())) * *axis);
+      return Vec3<Q>(r + stretch.next(draw) * rough_sqrt(Q(r.squaredNorm() / axis->squaredNorm())) * *axis);
     }
     return shape && !stepped ? Vec3<Q>(*shape * draw.vec3()) : draw.vec3();
   };

@@ -351,13 +351,40 @@ TEST_CASE("a cylinder is sampled within 16 half-widths of its middle - the same 
           CHECK(abs(other.size - first.size) <= Measure("1e-60") * first.size);
         }
     }
-    // its reflection: within 16 radii of the axis point on the mirror, along the axis
+    // its reflection: within 16 radii of the axis point on the mirror, along the axis (a circular one)
     const Vec4<Q> mirror(1, 2, 2, -7);
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       const ItemPoints reflected = reflected_points(cyl, reference_mirror(mirror), kDefaultSamples, item_seed(seed, 2, cyl, mirror));
       CHECK(reflected.size <= Measure("16.0313") * to_measure(r));  // sqrt(1 + 16^2) (1 + 2^-23)
       CHECK(reflected.size >= 16 * to_measure(r));
     }
+  }
+}
+
+TEST_CASE("elliptic and parabolic cylinders: the same size at every seed and count", "[accuracy][sampling]") {
+  // The two roots of a chord through the pair's middle lie at different distances from an elliptic
+  // cylinder's axis point, and one sample keeps one of them; a parabolic cylinder has no centre and
+  // was sized from its sample's centroid, which moved with an odd count (review of 34f7379, audit 33a
+  // F4). Fewer points than the default count are now sized with the default sample too, and a
+  // parallel pair without a centre from its middle.
+  Mat4<Q> elliptic = Mat4<Q>::Zero();  // x^2 + 4 y^2 = 1
+  elliptic(0, 0) = 1, elliptic(1, 1) = 4, elliptic(3, 3) = -1;
+  Mat4<Q> parabolic = Mat4<Q>::Zero();  // (3 y - 4 z)^2 / 25 = (4 y + 3 z) / 5
+  parabolic(1, 1) = Q(9, 25), parabolic(2, 2) = Q(16, 25), parabolic(1, 2) = parabolic(2, 1) = Q(-12, 25);
+  parabolic(1, 3) = parabolic(3, 1) = Q(-2, 5), parabolic(2, 3) = parabolic(3, 2) = Q(-3, 10);
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"elliptic, a lamp", elliptic, {3, 1, 2, 1}},
+                                   {"elliptic, a sun", elliptic, {1, -2, 3, 0}},
+                                   {"parabolic, a lamp", parabolic, {Q(3, 10), -8, -6, 1}},
+                                   {"parabolic, a far lamp", parabolic, {Q(3, 10), -80000000, -60000000, 1}}}) {
+    INFO(name);
+    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
+    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int n : {1, 2, 7, 33, kDefaultSamples}) {
+        INFO("seed " << seed << ", " << n << " samples");
+        const ItemPoints other = terminator_points(A, L, n, item_seed(seed, 1, A, L));
+        CHECK(abs(other.size - first.size) <= Measure("1e-60") * first.size);
+      }
   }
 }
 

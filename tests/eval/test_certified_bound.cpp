@@ -651,7 +651,10 @@ TEST_CASE("terminator_h_floor: never above |h . x| at a terminator point, none w
                         {"a hyperboloid lit from its waist", hyperboloid, {5, 0, 0, 1}, false},
                         {"a paraboloid lit from below", paraboloid, {3, 4, -5, 1}, true},
                         {"a cylinder", cylinder, {3, 4, 5, 1}, false},
-                        {"a cone lit from outside", cone, {3, 0, 1, 1}, false}};
+                        {"a cone lit from outside", cone, {3, 0, 1, 1}, false},
+                        // y^2 + (z - 3)^2 = 1 lit from (0, 0, 5), straight above its axis: the polar plane z = 7/2
+                        // is parallel to h (z = 5), and h . x is one number on it (audit 33a F1)
+                        {"a level cylinder lit from above its axis", quadric_of({0, 1, 1}, {0, 0, -3}, 8), {0, 0, 5, 1}, true}};
   int floors = 0;
   for (const Case& c : cases) {
     INFO(c.name);
@@ -674,7 +677,7 @@ TEST_CASE("terminator_h_floor: never above |h . x| at a terminator point, none w
     CHECK(*t0 <= least);
     CHECK(*t0 >= least / 1000);  // (the floor is the terminator's own, not a loose one)
   }
-  CHECK(floors == 4);
+  CHECK(floors == 5);
 }
 
 TEST_CASE("ball bound: a translated R is bounded by about its translation", "[accuracy][certified]") {

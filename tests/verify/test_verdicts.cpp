@@ -2,6 +2,7 @@
 // method under any units and placement; the filter never decides wrongly; the
 // inaccurate flag is raised exactly where the geometric error may exceed the
 // target; verify never passes a geometrically wrong result.
+#include <qverify/eval/certified_bound.hpp>
 #include <qverify/exact/statuses.hpp>
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/scene/json_tree.hpp>
@@ -630,6 +631,44 @@ TEST_CASE("a far object given as a matrix or as coefficients gets its local fram
     const auto v_doc = verify_document(sc, v);
     for (const auto& c : v_doc["checks"]) CHECK(c["geometric_error"].get<double>() < 1e-12);
   }
+}
+
+TEST_CASE("R off where no sample is: certified where h is parallel to the polar plane, at any count", "[verdicts][verify]") {
+  // A lamp straight above a level cylinder's axis: the polar plane is parallel to h, and R's floor
+  // |h . x| (one number there) was not found, so R was judged on its samples alone, and an R 8.2e-6
+  // off away from the one chord that 1 or 2 samples draw passed (audit 33a F1).
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "top", "quadrics": [{"id": "c", "cylinder":
+      {"point": [0, 2, 3], "axis": [1, 0, 0], "radius": "3/2"}}], "lights": [{"id": "lamp", "position": [0, 2, 5]}]})",
+                               "top.json");
+  ResultSet rs = exact_results(sc);
+  rs.precision = *parse_precision("double");  // (a floating candidate: judged by its geometric error)
+  REQUIRE(rs.shadows.size() == 1);
+  const Vec4<Q> h = reference_second_plane(Vec4<Q>(0, 2, 5, 1)), w(1, -16, 0, 32);
+  Mat4<Q>& R = rs.shadows[0].R;
+  R += max_abs(R) / 10000000 * Mat4<Q>(h * w.transpose() + w * h.transpose());
+  for (int n : {1, 2, 64}) {
+    INFO(n << " samples");
+    VerifyOptions opt;
+    opt.samples = n;
+    CHECK(verify_results(sc, rs, opt).failed == 1);
+  }
+}
+
+TEST_CASE("a parabolic cylinder lit from afar: its gradient floor grows with the distance", "[verdicts][verify]") {
+  // (3 y - 4 z)^2 / 25 = (4 y + 3 z) / 5, lit from 1e8 straight down its axis: the terminator's points
+  // lie 1e4 from the vertex line, where the gradient is about 2e4, but the floor of a parabolic
+  // cylinder (a plane for a kernel) stayed |k_n| = 1/2, and eval's own results, 1.1e-10 off, were bounded
+  // at 2.2e-6, flagged and failed (audit 33a F2)
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "name": "pc", "quadrics": [{"id": "r", "coefficients":
+      {"yy": "9/25", "zz": "16/25", "yz": "-24/25", "y": "-4/5", "z": "-3/5"}}],
+      "lights": [{"id": "c", "position": ["3/10", "-80000000", "-60000000"]}]})", "pc.json");
+  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct);
+  REQUIRE(rs.shadows.size() == 1);
+  REQUIRE(rs.shadows[0].accuracy);
+  REQUIRE(rs.shadows[0].accuracy->bound);
+  CHECK(*rs.shadows[0].accuracy->bound < 1e-9);
+  CHECK(!rs.shadows[0].accuracy->inaccurate);
+  CHECK(verify_results(sc, rs, VerifyOptions{}).failed == 0);
 }
 
 TEST_CASE("a cone is computed at its apex (or above it at a lamp's height) in any units", "[verdicts][frames]") {

@@ -138,7 +138,8 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 /// A lower bound t0 > 0 of |h . x| over the terminator's finite real points x = (p, 1) (h =
 /// reference_second_plane(L): R_ref's gradient there is (h . x) pi_xyz), whatever its shape; nullopt
 /// where none is found (the line h . x = 0 of the polar plane meets or touches the terminator, h is
-/// the plane at infinity, or the lines of the polar plane along h are asymptotic to A). Exactly: on
+/// the plane at infinity, or the lines of the polar plane along h are asymptotic to A). Where h is
+/// parallel to the polar plane, h . x is one number on it, exactly. Exactly: on
 /// the lines x = p0 + t w + s u of the polar plane (pi . x = 0, h . x = t, u along both planes),
 /// A(x) = alpha s^2 + 2 beta(t) s + gamma(t), beta linear and gamma quadratic in t, alpha =
 /// u^T K u != 0; such a line meets A where D(t) = beta^2 - alpha gamma = a t^2 + b t + c >= 0. With
@@ -221,6 +222,7 @@ class GradientFloor {
   Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(mu |r| / sigma), sqrt(mu) (K invertible)
   Measure kn_ = 0, a0_ = 0, sigma_ = 0, mu_ = 0; ///< paraboloid: |k_n|, |A(y0)|, sigma, mu
   bool grows_ = false;                           ///< a paraboloid (the kernel is k_n's line)
+  bool flat_ = false;                            ///< a parabolic cylinder (the kernel a plane, k_n in it)
 };
 
 /// The floor over the whole ball: GradientFloor(A, ball)(0, reach).

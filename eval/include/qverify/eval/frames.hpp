@@ -31,7 +31,8 @@ std::optional<Vec3<Rational>> natural_center(const QuadricSpec& q, const Mat4<Ra
 /// in its own frame (the radius of a sphere); 0 for a cone (c0 = 0: no length of its own, and a
 /// frame at its apex wherever that is off the origin, in any units: its rounded matrix is a
 /// hyperboloid about sqrt(eps) |apex| off near the apex, where its gradient vanishes; a cone at
-/// (0, 0, 5) kept the world frame below 64 units and was flagged, audit 31a F6); 1 for a plane.
+/// (0, 0, 5) kept the world frame below 64 units and was flagged, audit 31a F6); 1 for a plane, and
+/// for a quadric without a centre of its own on it (a plane pair about a point of its crossing line).
 Rational size_squared(const Mat4<Rational>& A_local);
 
 /// The nearest double to each coordinate (an exactly representable origin).
@@ -53,7 +54,7 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 /// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
 /// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
 /// terminator; for a line of centres (a cylinder, whose given centre is any point of its axis)
-/// wherever the light's height is within 64 radii (about the reach of its samples) of the lamp's
+/// wherever the light's height is within 64 radii (beyond the 16 half-widths its samples reach) of the lamp's
 /// foot on the axis (shadow_origin puts the frame there); for another quadric with a centre wherever
 /// the light's height is within 4 sizes of it
 /// (s2 = size_squared), met or not: its terminator may be unbounded, and is
@@ -74,7 +75,8 @@ Vec3<Rational> light_height_origin(const std::optional<Vec3<Rational>>& o, const
 /// along it: a lamp 1e8 away put the samples 7.6e7 from a frame there, where a double P was 6.8e-4
 /// off; and the axis point at the light's height, tried first, is 2e9 away along an axis 1e-9 from
 /// level: audit 32a F3, F4.) Otherwise the frame at the light's height where
-/// wants_light_height_frame, else o. A cone lit by a lamp: always above its apex (o) at the light's
+/// wants_light_height_frame, else o. A cone lit by a lamp: always above its apex (o, where a double
+/// holds the apex; else the world origin) at the light's
 /// height. Its P is the pair of planes through the lamp and the generators, whose gradient vanishes
 /// on the terminator at the apex, and R's gradient where h crosses the terminator: rounded, each is
 /// about sqrt(eps) times the origin's distance from that point off there, and no one frame holds

@@ -28,6 +28,9 @@ struct SampleReport {
   std::vector<RootPoint> points;
   long long attempts = 0;  ///< lines drawn
   bool exhausted = false;  ///< fewer points than asked were found
+  /// A section that is a pair of parallel lines: the point of their midline its chords pass through
+  /// (sample_section), whose chords' ends are the sample's farthest points from it.
+  std::optional<Vec3<Rational>> middle;
 };
 
 /// A quadric's core, exactly. With K = A_xyz,xyz and k = A_xyz,w: a basis of K's kernel (none where
@@ -43,6 +46,9 @@ struct QuadricCore {
   bool found = false;
   /// y moved along the kernel to the point of its line (plane) nearest p.
   Vec3<Rational> nearest(const Vec3<Rational>& p) const;
+  /// A line of centres (an elliptic or hyperbolic cylinder, a pair of crossing planes): K's kernel a
+  /// line, k in K's range.
+  bool line_of_centres() const { return found && kernel.cols() == 1 && kn.isZero(); }
 };
 QuadricCore quadric_core(const Mat4<Rational>& A);
 
