@@ -1337,14 +1337,11 @@ Vec3<Q> reflected_item_base(const Mat4<Q>& A, const Vec4<Q>& plane, const std::o
 }
 
 namespace {
-/// Results and their references in the frame x = o + l y (a map of points T; quadrics go to
-/// T^T X T, planes to T^T p), compared there up to scale (cross_residual).
+/// Results and their references in the frame x = o + l y (own_frame), compared there up to scale
+/// (cross_residual).
 struct ItemFrame {
   Mat4<Q> T;
-  ItemFrame(const Vec3<Q>& o, const Q& l) : T(Mat4<Q>::Identity() * l) {
-    T(3, 3) = 1;
-    T.topRightCorner<3, 1>() = o;
-  }
+  ItemFrame(const Vec3<Q>& o, const Q& l) : T(own_frame(o, l)) {}
   Measure error(const Mat4<Q>& hat, const Mat4<Q>& ref) const {
     return to_measure(cross_residual(Mat4<Q>(T.transpose() * hat * T), Mat4<Q>(T.transpose() * ref * T)));
   }

@@ -1,5 +1,6 @@
 #include <qverify/core/predicates.hpp>
 #include <qverify/eval/certified_bound.hpp>
+#include <qverify/eval/frames.hpp>
 
 #include <qverify/exact/interval.hpp>
 #include <qverify/exact/root_point.hpp>
@@ -19,6 +20,13 @@
 namespace qverify {
 
 using Q = Rational;
+
+Mat4<Q> own_frame(const Vec3<Q>& c, const Q& s) {
+  Mat4<Q> T = Mat4<Q>::Identity() * s;
+  T(3, 3) = 1;
+  T.topRightCorner<3, 1>() = c;
+  return T;
+}
 
 namespace {
 
@@ -248,14 +256,6 @@ template <class M> Q best_scale(const M& hat, const M& ref) {
   return boost::multiprecision::isfinite(l) ? to_rational(l) : Q(0);
 }
 
-/// The map of points x = c + s y into a geometry's own frame (c its centre and s > 0 its length, in
-/// the results' frame).
-Mat4<Q> own_frame(const Vec3<Q>& c, const Q& s) {
-  Mat4<Q> T = Mat4<Q>::Identity() * s;
-  T(3, 3) = 1;
-  T.topRightCorner<3, 1>() = c;
-  return T;
-}
 /// best_scale in the geometry's own frame T (own_frame): a lambda that is the same wherever the item
 /// stands and in any units (E = hat - lambda ref is exact for every lambda, and T^T E T = T^T hat T -
 /// lambda T^T ref T). In the results' frame the least squares weighed the entries the placement made
@@ -268,13 +268,7 @@ Q scale_about(const Vec4<Q>& hat, const Vec4<Q>& ref, const Mat4<Q>& T) {
   return best_scale(Vec4<Q>(T.transpose() * hat), Vec4<Q>(T.transpose() * ref));
 }
 /// The power of two at most x (x > 0 and finite; 1 otherwise).
-Q pow2_below(double x) {
-  if (!(x > 0) || !std::isfinite(x)) return Q(1);
-  int e = 0;
-  (void)std::frexp(x, &e);  // x in [2^(e-1), 2^e)
-  const boost::multiprecision::mpz_int p = boost::multiprecision::mpz_int(1) << std::abs(e - 1);
-  return e - 1 >= 0 ? Q(p) : Q(1) / Q(p);
-}
+Q pow2_below(double x) { return x > 0 && std::isfinite(x) ? exact_pow2(floor_log2(Q(x))) : Q(1); }
 /// A geometry's own frame: about its centre y0 + e, by the power of two below its largest |B R| entry.
 Mat4<Q> geometry_frame(const Geometry& geo, const std::optional<Vec3<Q>>& o) {
   double big = 0;

@@ -57,10 +57,7 @@ bool double_holds(const Q& x) {
 
 namespace {
 /// A line of centres (an elliptic or hyperbolic cylinder): K's kernel a line, k in K's range.
-bool has_line_of_centres(const Mat4<Q>& A) {
-  const QuadricCore core = quadric_core(A);
-  return core.found && core.kernel.cols() == 1 && core.kn.isZero();
-}
+bool has_line_of_centres(const Mat4<Q>& A) { return quadric_core(A).line_of_centres(); }
 }  // namespace
 
 namespace {

@@ -148,6 +148,10 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 /// a; the whole line family misses where b^2 < 4 a c), enclosed from below.
 std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
+/// The map of points x = c + s y into an item's or a geometry's own frame (c its centre, s > 0 its
+/// length, in the results' frame): quadrics go to T^T X T, planes to T^T p.
+Mat4<Rational> own_frame(const Vec3<Rational>& c, const Rational& s);
+
 /// The geometry of a reflection item where A is an ellipsoid; nullopt otherwise.
 struct ReflectionGeometry {
   std::shared_ptr<const Geometry> surface;
