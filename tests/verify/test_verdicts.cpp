@@ -651,6 +651,11 @@ TEST_CASE("R off where no sample is: certified where h is parallel to the polar 
     VerifyOptions opt;
     opt.samples = n;
     CHECK(verify_results(sc, rs, opt).failed == 1);
+    // the same R as an exact candidate: not proportional to the exact one, whatever the samples
+    ResultSet exact = rs;
+    exact.precision = *parse_precision("exact");
+    CHECK(verify_results(sc, exact, opt).failed == 1);
+    CHECK(verify_results(sc, exact_results(sc), opt).failed == 0);
   }
 }
 

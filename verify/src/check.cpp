@@ -217,6 +217,14 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
                                                   got.polar_plane ? &*got.polar_plane : nullptr, got.R ? &*got.R : nullptr))
       problems.push_back(std::move(zero));
     if (got.P && exact && !Vec4<Q>(*got.P * Le).isZero()) problems.push_back("P L != 0: L is not the apex of P");
+    // Exact proof mode: P (the cone from L through the terminator), the polar plane and R (the plane
+    // pair of the polar plane and h) are each unique up to a factor, so proportional to the exact ones,
+    // whatever the samples: on points alone an exact R wrong everywhere but on the one chord that
+    // --samples 1 draws passed (an R vanishing on the terminator only where a plane w meets it).
+    if (exact && rep.exact_status == "ok" && (got.P || got.polar_plane || got.R) &&
+        shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr,
+                            got.R ? &*got.R : nullptr, Vec3<Q>(item_base(1, Aw, Lw) - o)) != 0)
+      problems.push_back("P, the polar plane or R is not proportional to the exact one (exact proof mode)");
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
   // The results judged as matrices against the exact ones, up to a factor (the largest relative cross
@@ -418,6 +426,10 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       rep.M_error = to_d(m_err);
       if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
     }
+    // Exact proof mode: B is M^T A M up to a factor, whatever the samples (as for a shadow's results)
+    if (exact && rep.exact_status == "ok" && got.B &&
+        reflection_matrix_error(*got.B, B_ref, reflected_item_base(Aw, plane, got.origin)) != 0)
+      problems.push_back("B is not proportional to M^T A M (exact proof mode)");
     if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
     if (got.B)
       if (std::string zero = reflection_zero_problem(Aw, *got.B); !zero.empty()) problems.push_back(std::move(zero));
