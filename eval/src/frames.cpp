@@ -58,15 +58,11 @@ bool double_holds(const Q& x) {
 namespace {
 /// A line of centres (an elliptic or hyperbolic cylinder): K's kernel a line, k in K's range.
 bool has_line_of_centres(const Mat4<Q>& A) { return quadric_core(A).line_of_centres(); }
-}  // namespace
 
-namespace {
 /// A cone: a centre (K invertible) on the quadric (its apex).
 bool is_cone(const Mat4<Q>& A) {
-  const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  if (K.determinant() == 0) return false;
-  const Vec3<Q> c = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-  return quadric_value(A, c) == 0;
+  const QuadricCore core = quadric_core(A);
+  return core.found && core.kernel.cols() == 0 && quadric_value(A, core.y) == 0;
 }
 }  // namespace
 

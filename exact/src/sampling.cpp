@@ -238,6 +238,12 @@ Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
 /// error by as much. Points out[from..] farther than kReachCap steps from the base b (L-infinity,
 /// judged on their double approximations: a sampling choice, not a measure) are dropped.
 constexpr int kReachCap = 16;
+void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, const Q& reach) {
+  const double cap = kReachCap * reach.convert_to<double>();
+  const Vec3<double> base(b(0).convert_to<double>(), b(1).convert_to<double>(), b(2).convert_to<double>());
+  const auto far = [&](const RootPoint& x) { return !((x.approx_cartesian() - base).cwiseAbs().maxCoeff() <= cap); };
+  out.erase(std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(from), out.end(), far), out.end());
+}
 
 /// 2^e exactly.
 Q two_to(long e) {
@@ -300,12 +306,6 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
   pair.across = e;
   pair.along = Vec3<Q>(a * rough_sqrt(Q(e.squaredNorm() / a.squaredNorm())));
   return pair;
-}
-void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, const Q& reach) {
-  const double cap = kReachCap * reach.convert_to<double>();
-  const Vec3<double> base(b(0).convert_to<double>(), b(1).convert_to<double>(), b(2).convert_to<double>());
-  const auto far = [&](const RootPoint& x) { return !((x.approx_cartesian() - base).cwiseAbs().maxCoeff() <= cap); };
-  out.erase(std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(from), out.end(), far), out.end());
 }
 
 }  // namespace

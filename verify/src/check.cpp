@@ -206,6 +206,15 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   const Mat4<Q> P_ref = s * Ae - pi_ref * pi_ref.transpose();
   rep.reference = P_ref;
   // The same world points for every frame: sampled on the world terminator, then moved exactly.
+  // The results' cross residual against the exact ones in the item's frame (shadow_matrix_error),
+  // computed once: the exact proof mode and the matrices' check both judge it.
+  std::optional<Measure> matrix_err;
+  const auto matrix_error = [&] {
+    if (!matrix_err)
+      matrix_err = shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr,
+                                       got.R ? &*got.R : nullptr, Vec3<Q>(item_base(1, Aw, Lw) - o));
+    return *matrix_err;
+  };
   // What is judged without points: also where the terminator has none to sample.
   const auto point_free_checks = [&] {
     std::vector<std::string>& problems = rep.problems;
@@ -221,19 +230,14 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
     // pair of the polar plane and h) are each unique up to a factor, so proportional to the exact ones,
     // whatever the samples: on points alone an exact R wrong everywhere but on the one chord that
     // --samples 1 draws passed (an R vanishing on the terminator only where a plane w meets it).
-    if (exact && rep.exact_status == "ok" && (got.P || got.polar_plane || got.R) &&
-        shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr, got.polar_plane ? &*got.polar_plane : nullptr,
-                            got.R ? &*got.R : nullptr, Vec3<Q>(item_base(1, Aw, Lw) - o)) != 0)
+    if (exact && rep.exact_status == "ok" && (got.P || got.polar_plane || got.R) && matrix_error() != 0)
       problems.push_back("P, the polar plane or R is not proportional to the exact one (exact proof mode)");
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
   // The results judged as matrices against the exact ones, up to a factor (the largest relative cross
   // residual, exactly): where the terminator is a single point, or has real points at infinity only.
   const auto as_matrices = [&](const char* where) {
-    const QuadricCheck c = matrices_check(shadow_matrix_error(Ae, Le, got.P ? &*got.P : nullptr,
-                                                              got.polar_plane ? &*got.polar_plane : nullptr,
-                                                              got.R ? &*got.R : nullptr, Vec3<Q>(item_base(1, Aw, Lw) - o)),
-                                          exact, T);
+    const QuadricCheck c = matrices_check(matrix_error(), exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the terminator is ") + where +
                              ", where the results are judged as matrices: P, the polar plane or R " +
@@ -417,6 +421,13 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   const Mat4<Q> M_ref = translation<Q>(Vec3<Q>(-o)) * Mw * translation<Q>(o);
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(Mw.transpose() * Aw * Mw), o);
   rep.reference = B_ref;
+  // B's cross residual against M^T A M about the item's base point, computed once (the exact proof
+  // mode and the matrices' check both judge it; got.B given).
+  std::optional<Measure> B_err;
+  const auto B_error = [&] {
+    if (!B_err) B_err = reflection_matrix_error(*got.B, B_ref, reflected_item_base(Aw, plane, got.origin));
+    return *B_err;
+  };
   // What is judged without points: also where the quadric has none to sample.
   Measure m_err = 0;
   const auto point_free_checks = [&] {
@@ -427,8 +438,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
     }
     // Exact proof mode: B is M^T A M up to a factor, whatever the samples (as for a shadow's results)
-    if (exact && rep.exact_status == "ok" && got.B &&
-        reflection_matrix_error(*got.B, B_ref, reflected_item_base(Aw, plane, got.origin)) != 0)
+    if (exact && rep.exact_status == "ok" && got.B && B_error() != 0)
       problems.push_back("B is not proportional to M^T A M (exact proof mode)");
     if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
     if (got.B)
@@ -441,7 +451,7 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as eval
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
   if (pts.points.empty() && !without_real_points(Aw) && got.B) {
-    const QuadricCheck c = matrices_check(reflection_matrix_error(*got.B, B_ref, reflected_item_base(Aw, plane, got.origin)), exact, T);
+    const QuadricCheck c = matrices_check(B_error(), exact, T);
     if (!c.passed)
       rep.problems.push_back(std::string("the quadric's real points all lie at infinity, where B is judged as a "
                                          "matrix: B ") +
