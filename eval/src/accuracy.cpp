@@ -1154,6 +1154,15 @@ CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<
   return *best;
 }
 
+namespace {
+/// A quadric in coordinates x' with x = turn x' (a rotation): T^T X T, T = diag(turn, 1).
+Mat4<Q> turned(const Mat4<Q>& X, const Mat3<Q>& turn) {
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topLeftCorner<3, 3>() = turn;
+  return T.transpose() * X * T;
+}
+}  // namespace
+
 ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_world, const ItemPoints& pts)
     : unit_(length_unit(pts.size)) {
   if (pts.points.empty() || pts.exhausted) return;
@@ -1169,6 +1178,8 @@ ReflectionBounds::ReflectionBounds(const Mat4<Q>& A_world, const Mat4<Q>& M_worl
   floored_ = floor_(0, to_measure(ball.reach)) > 0 || saddle_directions(B_ref_).has_value();
   // (the mirror turns the axes: a box, where the ball had one, is not carried)
   ball_ = {Vec3<Q>(Vec4<Q>(M * Vec4<Q>(ball.centre(0), ball.centre(1), ball.centre(2), Q(1))).head<3>()), ball.reach, std::nullopt};
+  turned_ = cylinder_turn(B_ref_, ball_);
+  if (turned_) B_ref_turned_ = turned(B_ref_, turned_->turn);
 }
 
 CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin_world, const Mat4<Q>& B_world,
@@ -1179,7 +1190,14 @@ CoveredBound ReflectionBounds::operator()(const std::optional<Vec3<Q>>& origin_w
   const std::optional<Vec3<Q>> origin = origin_in_units(origin_world, unit_);
   const Mat4<Q> B = quadric_in_units(B_world, unit_);
   const double size = size_in_units(size_world, unit_);
-  out.bound = geo_ ? reflection_bound(*geo_, origin, B, size, target) : ball_quadric_bound(B, B_ref_, ball_, origin, floor_, size);
+  if (geo_)
+    out.bound = reflection_bound(*geo_, origin, B, size, target);
+  else if (turned_)  // (x = turn x': the frame's origin o is turn o' there)
+    out.bound = ball_quadric_bound(turned(B, turned_->turn), B_ref_turned_, turned_->ball,
+                                   origin ? std::optional<Vec3<Q>>(Vec3<Q>(turned_->turn.transpose() * *origin)) : std::nullopt,
+                                   floor_, size);
+  else
+    out.bound = ball_quadric_bound(B, B_ref_, ball_, origin, floor_, size);
   out.certified = {"B"};
   out.parts = {{{"B"}, out.bound}};
   return out;

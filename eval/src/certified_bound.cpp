@@ -14,6 +14,7 @@
 #include <queue>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <utility>
 
@@ -862,7 +863,10 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
     kind_ = Kind::centre;
     const Q r = A(3, 3) + k.dot(y);
     r_ = abs(to_measure(r));
-    if (r != 0 && mu > 0) steady_ = sqrt(to_measure(Q(mu * abs(r))) / sigma_);
+    // |K y|^2 >= lambda |r| >= sqrt(mu) |r|, lambda the least non-zero |eigenvalue| of K (header);
+    // the first floor, mu |r| / sigma, was sigma / lambda times lower: 100 for an elliptic cylinder of
+    // semi-axes 1 and 100, whose reflection's bound was 10^6 times its error (audit 33a F3)
+    if (r != 0 && mu > 0) steady_ = sqrt(Measure(sqrt(mu_) * r_));
     if (core.kernel.cols() == 0 && mu > 0) linear_ = sqrt(mu_);
     return;
   }
@@ -1156,6 +1160,56 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     out.gradient = euclidean ? 0.0 : gradient;
     return out;
   });
+}
+
+std::optional<TurnedBall> cylinder_turn(const Mat4<Q>& ref, const Ball& ball) {
+  const QuadricCore core = quadric_core(ref);
+  if (!core.line_of_centres()) return std::nullopt;
+  const Mat3<Q> K = spatial_part(ref);
+  const Vec3<Q> a = core.kernel.col(0);
+  const Vec3<Q> y0 = core.nearest(ball.centre);
+  const Q r = quadric_value(ref, y0);
+  // elliptic with real points: the non-zero eigenvalues (product trace(adj K), sum trace K) of one
+  // sign, r of the other
+  if (r == 0 || !(adjugate3<Q>(K).trace() > 0) || !(K.trace() * r < 0)) return std::nullopt;
+  const Mat3<Q> Pa = a * a.transpose() / a.squaredNorm();
+  const Mat3<Q> Kplus = Mat3<Q>(K + Pa).inverse() - Pa;
+  // the rotation: K's eigenvectors (double, K scaled into range), det 1, as a quaternion rounded to
+  // 30 bits, made exact
+  Q big = 0;
+  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
+  Eigen::Matrix3d Kd;
+  for (Eigen::Index i = 0; i < 9; ++i) Kd(i) = Q(K(i) / big).convert_to<double>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  Eigen::Matrix3d V = eig.eigenvectors();
+  if (V.determinant() < 0) V.col(0) = -V.col(0);
+  const Eigen::Quaterniond qd(V);
+  const auto grid = [](double v) { return Q(std::ldexp(std::round(std::ldexp(v, 30)), -30)); };
+  const Q w = grid(qd.w()), x = grid(qd.x()), y = grid(qd.y()), z = grid(qd.z());
+  const Q n = w * w + x * x + y * y + z * z;
+  if (n == 0) return std::nullopt;
+  Mat3<Q> R;
+  R << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),  //
+      2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),    //
+      2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  R /= n;
+  TurnedBall out;
+  out.turn = R;
+  out.ball.centre = R.transpose() * ball.centre;
+  out.ball.reach = ball.reach;
+  const Measure reach = to_measure(ball.reach), ra = abs(to_measure(r)), an = msqrt(a.squaredNorm());
+  Vec3<Q> half;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3<Q> u = R.col(i);
+    const Measure h = abs(to_measure(u.dot(Vec3<Q>(y0 - ball.centre)))) + reach * abs(to_measure(u.dot(a))) / an +
+                      sqrt(ra * abs(to_measure(u.dot(Kplus * u))));
+    const double hd = Measure(h * Measure(1 + 1e-15)).convert_to<double>();  // (above h: its last digits, the rounding)
+    if (!std::isfinite(hd)) return std::nullopt;
+    half(i) = to_rational(hd);
+  }
+  out.ball.half = half;
+  return out;
 }
 
 CertifiedBound ball_plane_bound(const Vec4<Q>& hat_in, const Vec4<Q>& ref_in, const Ball& ball,

@@ -141,14 +141,78 @@ Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs
 /// v (non-zero) scaled to L-infinity length `reach`.
 Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach / max_abs(v))); }
 
+/// The axes of a non-singular form G (k x k, exact) in the metric M = diag(m) of an orthogonal basis
+/// whose vectors' squared lengths are m (so that a basis of unequal lengths is not taken for an
+/// anisotropic form): U, their directions, from a floating decomposition of S^-1 G S^-1, S =
+/// sqrt(M / max m) in double, taken back as S^-1 y; rq, their exact Rayleigh quotients u^T G u /
+/// u^T M u (exact, so that an axis 10^9 shorter than the others, whose eigenvalue the double
+/// decomposition does not resolve, still has its own). nullopt where a decomposition fails or a
+/// quotient is 0.
+template <int k>
+struct FormAxes {
+  Eigen::Matrix<double, k, k> U;
+  std::array<Q, k> rq;
+};
+template <int k>
+std::optional<FormAxes<k>> form_axes(const Eigen::Matrix<Q, k, k>& G, const Eigen::Matrix<Q, k, 1>& m) {
+  Q big = 0;
+  for (Eigen::Index i = 0; i < G.size(); ++i) big = std::max(big, Q(abs(G(i))));
+  if (big == 0) return std::nullopt;
+  const Q mmax = m.maxCoeff();
+  Eigen::Matrix<double, k, 1> sd;
+  for (int i = 0; i < k; ++i) sd(i) = std::sqrt(Q(m(i) / mmax).template convert_to<double>());
+  if (!sd.allFinite() || !(sd.minCoeff() > 0)) return std::nullopt;
+  Eigen::Matrix<double, k, k> Gd;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) Gd(i, j) = Q(G(i, j) / big).template convert_to<double>() / (sd(i) * sd(j));
+  if (!Gd.allFinite()) return std::nullopt;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, k, k>> eig(Gd);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  FormAxes<k> f;
+  f.U = sd.cwiseInverse().asDiagonal() * eig.eigenvectors();
+  if (!f.U.allFinite()) return std::nullopt;
+  for (int c = 0; c < k; ++c) {
+    Eigen::Matrix<Q, k, 1> u;
+    for (int i = 0; i < k; ++i) u(i) = Q(f.U(i, c));
+    if (u.isZero()) return std::nullopt;
+    Q& r = f.rq[static_cast<std::size_t>(c)];
+    r = Q(u.dot(Eigen::Matrix<Q, k, 1>(G * u)) / u.dot(Eigen::Matrix<Q, k, 1>(m.cwiseProduct(u))));
+    if (r == 0) return std::nullopt;
+  }
+  return f;
+}
+
+/// The smallest |rq| of the axes.
+template <int k>
+Q least_quotient(const FormAxes<k>& f) {
+  Q lo = abs(f.rq[0]);
+  for (const Q& r : f.rq) lo = std::min(lo, Q(abs(r)));
+  return lo;
+}
+
+/// The semi-axes of the form's level set, relative to its longest: column c is U_c / sqrt(|rq_c| /
+/// lo), lo the least |rq| (in double, lo / |rq| in (0, 1]), each entry rounded to 40 bits of its
+/// column's largest (smaller numbers in every sampled point, and the last bits of the decomposition,
+/// which may differ between builds, mostly gone; 40 bits keep a column's error along an axis 10^9
+/// shorter below a thousandth of that axis). nullopt if the columns come out dependent.
+template <int k>
+std::optional<Eigen::Matrix<Q, k, k>> semi_axes(const FormAxes<k>& f) {
+  const Q lo = least_quotient(f);
+  Eigen::Matrix<Q, k, k> W;
+  for (int c = 0; c < k; ++c) {
+    const double axis = std::sqrt(Q(lo / abs(f.rq[static_cast<std::size_t>(c)])).template convert_to<double>());
+    if (!(axis > 0) || !std::isfinite(axis)) return std::nullopt;
+    const int top = std::ilogb(f.U.col(c).cwiseAbs().maxCoeff() * axis);
+    for (int i = 0; i < k; ++i) W(i, c) = Q(std::ldexp(std::round(std::ldexp(f.U(i, c) * axis, 40 - top)), top - 40));
+  }
+  if (W.determinant() == 0) return std::nullopt;
+  return W;
+}
+
 /// Directions shaped by a definite form G (k x k, exact; the quadratic part of an ellipsoid, or of
 /// an elliptic section in two in-plane coordinates of an orthogonal basis whose squared lengths are m:
-/// the axes are G's in that metric, so that a basis of unequal lengths is not taken for an
-/// anisotropic section; the first form of this, without m, shaped every section of a plane with a
-/// long normal and made verify 10% slower): W = V |D|^-1/2, V the eigenvectors of G from a
-/// floating decomposition of G scaled into double's range, D their exact Rayleigh quotients (exact,
-/// so that an axis 10^9 shorter than the others, whose eigenvalue the double decomposition does not
-/// resolve, still has its own), W made exact from doubles. A line through the centre along W v, v
+/// form_axes; the first form of this, without m, shaped every section of a plane with a long normal
+/// and made verify 10% slower): W = semi_axes, so that a line through the centre along W v, v
 /// random, meets the ellipse or ellipsoid at about W v / |v|: all over it. Random directions v
 /// themselves meet a coin of radius 1 and thickness 2 10^-9 within about 10^-8 of its centre, so the
 /// sampled object size was 2.6e-8 and the rim was never checked: a double B of that coin 0.73
@@ -160,50 +224,15 @@ std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k
   // (exactly: a parabola's in-plane form is singular, and the Rayleigh quotient of its null vector as
   // a double decomposition gives it is some tiny number of either sign)
   if (*definiteness<Q, k>(G) == 0) return std::nullopt;
-  Q big = 0;
-  for (Eigen::Index i = 0; i < G.size(); ++i) big = std::max(big, Q(abs(G(i))));
-  if (big == 0) return std::nullopt;
-  // in the basis's own metric M = diag(m) (an orthogonal basis whose vectors' squared lengths are m):
-  // the decomposition of S^-1 G S^-1, S = sqrt(M / max m) in double, its eigenvectors y taken back as
-  // S^-1 y; the Rayleigh quotients u^T G u / u^T M u exact
-  const Q mmax = m.maxCoeff();
-  Eigen::Matrix<double, k, 1> sd;
-  for (int i = 0; i < k; ++i) sd(i) = std::sqrt(Q(m(i) / mmax).template convert_to<double>());
-  if (!sd.allFinite() || !(sd.minCoeff() > 0)) return std::nullopt;
-  Eigen::Matrix<double, k, k> Gd;
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) Gd(i, j) = Q(G(i, j) / big).template convert_to<double>() / (sd(i) * sd(j));
-  if (!Gd.allFinite()) return std::nullopt;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, k, k>> eig(Gd);
-  if (eig.info() != Eigen::Success) return std::nullopt;
-  const Eigen::Matrix<double, k, k> U = sd.cwiseInverse().asDiagonal() * eig.eigenvectors();
-  if (!U.allFinite()) return std::nullopt;
-  std::array<Q, k> rq;
-  for (int c = 0; c < k; ++c) {
-    Eigen::Matrix<Q, k, 1> u;
-    for (int i = 0; i < k; ++i) u(i) = Q(U(i, c));
-    if (u.isZero()) return std::nullopt;
-    rq[static_cast<std::size_t>(c)] = Q(u.dot(Eigen::Matrix<Q, k, 1>(G * u)) / u.dot(Eigen::Matrix<Q, k, 1>(m.cwiseProduct(u))));
+  const auto f = form_axes<k>(G, m);
+  if (!f) return std::nullopt;
+  Q hi = 0;
+  for (const Q& r : f->rq) {
+    if ((r > 0) != (f->rq[0] > 0)) return std::nullopt;  // (not for a definite G)
+    hi = std::max(hi, Q(abs(r)));
   }
-  Q lo = abs(rq[0]), hi = abs(rq[0]);
-  for (const Q& r : rq) {
-    if (r == 0 || (r > 0) != (rq[0] > 0)) return std::nullopt;  // (not for a definite G)
-    lo = std::min(lo, Q(abs(r))), hi = std::max(hi, Q(abs(r)));
-  }
-  if (hi <= 256 * lo) return std::nullopt;  // axes within a factor 16
-  Eigen::Matrix<Q, k, k> W;
-  for (int c = 0; c < k; ++c) {
-    // the semi-axis relative to the longest, 1 / sqrt(|rq| / lo), in double (lo / |rq| in (0, 1]);
-    // each entry rounded to 40 bits of its column's largest (smaller numbers in every sampled point,
-    // and the last bits of the decomposition, which may differ between builds, mostly gone; 40 bits
-    // keep a column's error along an axis 10^9 shorter below a thousandth of that axis)
-    const double axis = std::sqrt(Q(lo / abs(rq[static_cast<std::size_t>(c)])).template convert_to<double>());
-    if (!(axis > 0) || !std::isfinite(axis)) return std::nullopt;
-    const int top = std::ilogb(U.col(c).cwiseAbs().maxCoeff() * axis);
-    for (int i = 0; i < k; ++i) W(i, c) = Q(std::ldexp(std::round(std::ldexp(U(i, c) * axis, 40 - top)), top - 40));
-  }
-  if (W.determinant() == 0) return std::nullopt;
-  return W;
+  if (hi <= 256 * least_quotient(*f)) return std::nullopt;  // axes within a factor 16
+  return semi_axes(*f);
 }
 
 /// A rational point at A's core, to draw lines through: its centre; the point of its axis (plane) of
@@ -269,7 +298,8 @@ constexpr int kPairReach = 16;
 /// two ends first (t = +-kPairReach, the farthest points), then seeded ones within.
 struct Stretch {
   int ends = 2;
-  Q next(Draw& draw) { return ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(kPairReach * draw.unit()); }
+  int inner = kPairReach;  // the seeded ones' reach
+  Q next(Draw& draw) { return ends > 0 ? Q(ends-- == 2 ? kPairReach : -kPairReach) : Q(inner * draw.unit()); }
 };
 
 /// A section that is a pair of real parallel lines (a cylinder's terminator under a point or a
@@ -306,6 +336,61 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
   pair.across = e;
   pair.along = Vec3<Q>(a * rough_sqrt(Q(e.squaredNorm() / a.squaredNorm())));
   return pair;
+}
+
+/// How far along a hyperbolic cylinder's cross-section its chords reach: directions
+/// W_0 + s W_1 (W_0 the real semi-axis, W_1 the other), |s| <= 63/65, where the hyperbola is
+/// 65/16 (about 4) times as far from the centre as W_0 + s W_1 in its own semi-axes.
+const Q kHyperbolaEnd(63, 65);
+
+/// Where a cylinder's lines are drawn (sample_quadric): directions r + t sigma a through its axis
+/// point b, a the axis (primitive), r across it, sigma a rational within 2^-23 of |r| / |a|. b is a
+/// centre and a K's kernel, so the line's quadratic is r's and it meets the cylinder at b +-
+/// lambda (r + t sigma a): at the cross-section's radius in r's direction, sqrt(1 + t^2) times as
+/// far out. r is shaped by the cross-section: `across` holds its semi-axes (semi_axes, in the plane
+/// across the axis), the longest first for an ellipse, the real one first for a hyperbola. The first
+/// two lines are the farthest: r = across_0 (an ellipse's long semi-axis; a hyperbola's across_0 +
+/// kHyperbolaEnd across_1) and t = +-kPairReach; the seeded ones stay short of them (an ellipse's r
+/// = across v, v random; a hyperbola's |s| <= kHyperbolaEnd 15/16; |t| <= kPairReach - 1), so the
+/// sample's size, its largest distance from b, is the ends' at every seed and count and scales with
+/// the scene. Random directions across the axis met an elliptic cylinder anywhere between its
+/// semi-axes (and a hyperbolic one unboundedly far out): one with semi-axes 1 and 100 was sized 28.9
+/// to 1603 by the seed and the count, and a reflection 9 times the target off at the long axis's
+/// ends passed where the sample's ball did not reach them (audit 33a F3); a circular one's size moved
+/// by 2e-8 with the seed (sigma of a random r; F7). nullopt (random directions across the axis) where
+/// A's value at its axis is 0 (a pair of planes crossing at the axis, or the axis alone) or has no
+/// real points there.
+struct CylinderChords {
+  Vec3<Q> axis;
+  Eigen::Matrix<Q, 3, 2> across;
+  bool hyperbolic = false;
+};
+std::optional<CylinderChords> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& axis, const Vec3<Q>& centre) {
+  const Q c = quadric_value(A, centre);
+  if (c == 0) return std::nullopt;
+  Eigen::Matrix<Q, 3, 2> plane;  // a x e_j, a x (a x e_j): orthogonal, of squared lengths m
+  for (int j = 0; j < 3; ++j) {
+    plane.col(0) = axis.cross(Vec3<Q>::Unit(j));
+    if (!plane.col(0).isZero()) break;
+  }
+  plane.col(1) = axis.cross(Vec3<Q>(plane.col(0)));
+  const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * plane;
+  if (G.determinant() == 0) return std::nullopt;  // (not for a line of centres)
+  const auto f = form_axes<2>(G, Eigen::Matrix<Q, 2, 1>(plane.col(0).squaredNorm(), plane.col(1).squaredNorm()));
+  if (!f) return std::nullopt;
+  const auto W = semi_axes(*f);
+  if (!W) return std::nullopt;
+  // real directions: those where G's sign is the opposite of c's
+  const bool real0 = (f->rq[0] > 0) != (c > 0), real1 = (f->rq[1] > 0) != (c > 0);
+  if (!real0 && !real1) return std::nullopt;
+  CylinderChords out;
+  out.axis = axis;
+  out.hyperbolic = real0 != real1;
+  // first: the real semi-axis of a hyperbola, the longer of an ellipse (the one of the least |rq|)
+  const int first = out.hyperbolic ? (real0 ? 0 : 1) : (abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1);
+  out.across.col(0) = plane * Eigen::Matrix<Q, 2, 1>(W->col(first));
+  out.across.col(1) = plane * Eigen::Matrix<Q, 2, 1>(W->col(1 - first));
+  return out;
 }
 
 }  // namespace
@@ -487,22 +572,35 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   Lines lines(A, b);
   bool stepped = false;
   const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));
-  // A cylinder (an axis of centres, through b): lines r + t a, r across the axis a, meet it at the
-  // same distance across whatever t (a is K's kernel and b a centre: the line's quadratic is r's),
-  // so its points lie within kPairReach cross-section radii of b along the axis, scaled as in
-  // ParallelPair; random directions met it as far out as they were near parallel to the axis (10^9
-  // out for an axis 10^-9 from level). The first two lines are at the stretch's ends (t = +-kPairReach;
-  // the farthest points where the cylinder is circular; an elliptic one's reach also depends on r).
-  const std::optional<Vec3<Q>> axis = [&]() -> std::optional<Vec3<Q>> {
-    const QuadricCore core = quadric_core(A);
-    if (!core.line_of_centres()) return std::nullopt;
-    return primitive_direction(Vec3<Q>(core.kernel.col(0)));
-  }();
+  // A cylinder (an axis of centres, through b): lines r + t a within kPairReach cross-section radii
+  // of b along the axis (CylinderChords); random directions met it as far out as they were near
+  // parallel to the axis (10^9 out for an axis 10^-9 from level). Where its cross-section has no
+  // shape (CylinderChords says where), r random across the axis.
+  const QuadricCore core = quadric_core(A);
+  const std::optional<Vec3<Q>> axis =
+      core.line_of_centres() ? std::optional<Vec3<Q>>(primitive_direction(Vec3<Q>(core.kernel.col(0)))) : std::nullopt;
+  const std::optional<CylinderChords> chords = axis ? cylinder_chords(A, *axis, Vec3<Q>(b.head<3>())) : std::nullopt;
   Stretch stretch;
-  const auto direction = [&]() -> Vec3<Q> {
-    if (axis && !stepped) {
+  if (chords) stretch.inner = kPairReach - 1;
+  const auto across = [&]() -> Vec3<Q> {
+    if (!chords) {
       Vec3<Q> r = axis->cross(draw.vec3());  // (not 0 for every draw: the axis is not 0)
       while (r.isZero()) r = axis->cross(draw.vec3());
+      return r;
+    }
+    const bool end = stretch.ends > 0;  // (the stretch's two ends: the same r)
+    if (chords->hyperbolic) {
+      const Q s = end ? kHyperbolaEnd : Q(kHyperbolaEnd * 15 / 16 * draw.unit());
+      return Vec3<Q>(chords->across.col(0) + s * chords->across.col(1));
+    }
+    if (end) return chords->across.col(0);
+    Vec3<Q> v = draw.vec3();
+    while (v(0) == 0 && v(1) == 0) v = draw.vec3();
+    return Vec3<Q>(chords->across * Eigen::Matrix<Q, 2, 1>(v(0), v(1)));
+  };
+  const auto direction = [&]() -> Vec3<Q> {
+    if (axis && !stepped) {
+      const Vec3<Q> r = across();
       return Vec3<Q>(r + stretch.next(draw) * rough_sqrt(Q(r.squaredNorm() / axis->squaredNorm())) * *axis);
     }
     return shape && !stepped ? Vec3<Q>(*shape * draw.vec3()) : draw.vec3();

@@ -388,6 +388,36 @@ TEST_CASE("elliptic and parabolic cylinders: the same size at every seed and cou
   }
 }
 
+TEST_CASE("a cylinder reflected: its chords' ends size it, the same at every seed, count and scale", "[accuracy][sampling]") {
+  // Its lines' directions across the axis were random: a circular cylinder's size moved by 2e-8 with
+  // the seed (sigma of a random r, audit 33a F7), a hyperbolic one's from 28 to 167 (F3). The first two
+  // lines are now the farthest (sampling.cpp, CylinderChords): along a circular or elliptic one's long
+  // semi-axis, along a hyperbolic one's real semi-axis plus 63/65 of the other, 16 times as far
+  // along the axis.
+  Mat4<Q> hyperbolic = Mat4<Q>::Zero();  // x^2 - y^2 / 100 = 1
+  hyperbolic(0, 0) = 1, hyperbolic(1, 1) = Q(-1, 100), hyperbolic(3, 3) = -1;
+  const double far = std::sqrt(1 + std::pow(630.0 / 65, 2)) * 65 / 16;  // (1, 10 s) / sqrt(1 - s^2), s = 63/65
+  for (const auto& [name, A, expected] :
+       {std::tuple<const char*, Mat4<Q>, double>{"circular", cylinder_quadric<Q>(Vec3<Q>(1, 2, 3), Vec3<Q>(3, 4, 12), Q(1)), 1.0},
+        {"hyperbolic", hyperbolic, far}}) {
+    INFO(name);
+    const Vec4<Q> mirror(1, 2, 2, -7);
+    const Mat4<Q> M = reference_mirror(mirror);
+    const ItemPoints first = reflected_points(A, M, kDefaultSamples, 1);
+    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+    CHECK(first.size.convert_to<double>() == Approx(expected * std::sqrt(257.0)).epsilon(1e-6));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int n : {1, 2, 7, kDefaultSamples}) {
+        INFO("seed " << seed << ", " << n << " samples");
+        CHECK(abs(reflected_points(A, M, n, seed).size - first.size) <= Measure("1e-60") * first.size);
+      }
+    Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
+    D.topLeftCorner<3, 3>() /= 3;
+    const ItemPoints scaled = reflected_points(Mat4<Q>(D * A * D), reference_mirror(Vec4<Q>(1, 2, 2, -21)), kDefaultSamples, 5);
+    CHECK(abs(scaled.size - 3 * first.size) <= Measure("1e-60") * first.size);
+  }
+}
+
 TEST_CASE("an item's size does not fall to 0 with one sample - the default sample sizes it", "[accuracy][sampling]") {
   // One point of a cylinder's terminator (two lines) or of a cylinder has no extent of its own:
   // the size was 0, and every relative error and certified bound infinite (verify --samples 1,

@@ -732,7 +732,8 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
   // |(A x)_xyz| >= gradient_floor(A, ball) at every sampled point of A within the ball, for central
   // quadrics, cylinders (an axis of centres) and paraboloids (none); 0 for a cone (its apex)
   const Mat4<Q> quadrics[] = {quadric_of({1, 1, -1}, {1, 0, 0}, -1), quadric_of({1, 4, 0}, {1, 2, 0}, -3),
-                              quadric_of({1, 2, 0}, {0, 1, Q(-1, 2)}, 0), quadric_of({0, 1, 0}, {1, 0, 0}, 0)};
+                              quadric_of({1, 2, 0}, {0, 1, Q(-1, 2)}, 0), quadric_of({0, 1, 0}, {1, 0, 0}, 0),
+                              quadric_of({1, Q(1, 100), -4}, {1, 0, 0}, -1), quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1)};
   for (const Mat4<Q>& A : quadrics) {
     const Ball ball{Vec3<Q>(1, -2, 3), Q(5)};
     const Measure floor = gradient_floor(A, ball);
@@ -754,6 +755,96 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
     CHECK(inside > 0);
   }
   CHECK(gradient_floor(quadric_of({1, 1, -1}, {0, 0, 0}, 0), Ball{Vec3<Q>(0, 0, 0), Q(1)}) == 0);
+  // near the truth where it is known: x^2 + y^2 / 10^4 = 1 has |(A x)_xyz| = 1/100 at (0, +-100) and
+  // more elsewhere (the floor was 10^-4: mu |r| / sigma, audit 33a F3)
+  const Measure flat = gradient_floor(quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1), Ball{Vec3<Q>(0, 0, 0), Q(200)});
+  CHECK(flat <= Measure(1) / 100);
+  CHECK(flat >= Measure(8) / 1000);  // (mu, proved, is within 2 of the least eigenvalue's square)
+}
+
+TEST_CASE("ball bound: a cylinder's ball turned to its axes, its box holding its points", "[accuracy][certified]") {
+  // cylinder_turn: an exact rotation, and per turned axis a half-width that every point of the
+  // cylinder in the ball keeps; for semi-axes 1 and 100 and a ball of reach 2000 about its axis, two
+  // half-widths are about 1 and 100 and the third the reach (the box is what bounds the cross terms)
+  Mat3<Q> turn;  // a rational rotation: the cylinder's axes off the world's
+  turn << Q(2, 3), Q(-1, 3), Q(2, 3), Q(2, 3), Q(2, 3), Q(-1, 3), Q(-1, 3), Q(2, 3), Q(2, 3);
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topLeftCorner<3, 3>() = turn.transpose();
+  T.topRightCorner<3, 1>() = -turn.transpose() * Vec3<Q>(1, 2, 3);  // x -> turn^T (x - (1, 2, 3))
+  const Mat4<Q> A = T.transpose() * quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1) * T;
+  const Ball ball{Vec3<Q>(1, 2, 3), Q(2000)};
+  const auto t = cylinder_turn(A, ball);
+  REQUIRE(t);
+  CHECK(Mat3<Q>(t->turn.transpose() * t->turn) == Mat3<Q>::Identity());
+  CHECK(t->turn.determinant() == 1);
+  REQUIRE(t->ball.half);
+  std::array<double, 3> h{};
+  for (int i = 0; i < 3; ++i) h[static_cast<std::size_t>(i)] = (*t->ball.half)(i).convert_to<double>();
+  std::sort(h.begin(), h.end());
+  CHECK(h[0] == Approx(1).epsilon(1e-6));
+  CHECK(h[1] == Approx(100).epsilon(1e-6));
+  CHECK(h[2] >= 2000);
+  const SampleReport s = sample_quadric(A, 256, 9, Q(1), Vec3<Q>(1, 2, 3));
+  REQUIRE(s.points.size() == 256);
+  for (const RootPoint& x : s.points) {
+    Vec3<Q> p;  // (near the point: the margin below covers the rounding)
+    const Vec3<double> pd = x.approx_cartesian();
+    for (int i = 0; i < 3; ++i) p(i) = to_rational(pd(i));
+    const Vec3<Q> turned = t->turn.transpose() * p - t->ball.centre;
+    for (int i = 0; i < 3; ++i) CHECK(abs(turned(i)) <= (*t->ball.half)(i) * (1 + Q(1, 1000000)));
+  }
+  // none for other quadrics: a hyperbolic cylinder, a pair of planes crossing at the axis, a sphere
+  CHECK_FALSE(cylinder_turn(quadric_of({1, -1, 0}, {0, 0, 0}, -1), ball));
+  CHECK_FALSE(cylinder_turn(quadric_of({1, -1, 0}, {0, 0, 0}, 0), ball));
+  CHECK_FALSE(cylinder_turn(quadric_of({1, 1, 1}, {0, 0, 0}, -1), ball));
+  CHECK_FALSE(cylinder_turn(quadric_of({1, 1, 0}, {0, 0, 0}, 1), ball));  // (no real point)
+}
+
+TEST_CASE("ball bound: a long elliptic cylinder reflected, sized by its long axis and bounded near its error",
+          "[accuracy][certified][sampling]") {
+  // x^2 + y^2 / 10^4 = 1 in the mirror x + 2y + 2z = 7. Random directions across its axis sized it
+  // 28.9 to 1603 by the seed and count; a B translated by 1.5e-12 was bounded at 1.9e-9 (its error
+  // 1e-15, the ball's cross terms over 1600 where the cylinder is 1 and 100 across, and a gradient
+  // floor 100 times too low) and failed; a B off at the long axis's ends passed at the seed whose
+  // ball did not reach them (audit 33a F3). Now its chords' ends are along the long axis, and B is
+  // bounded in a ball turned to its axes (cylinder_turn).
+  const Mat4<Q> A = quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1);
+  const Mat4<Q> M = reference_mirror(Vec4<Q>(1, 2, 2, -7));
+  const ItemPoints pts = reflected_points(A, M, 64, 1);
+  REQUIRE(pts.points.size() == 64);
+  CHECK(pts.size.convert_to<double>() == Approx(100 * std::sqrt(257.0)).epsilon(1e-6));  // (100, 0) + 16 x 100 along
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+    for (int n : {1, 7, 64}) {
+      INFO("seed " << seed << ", " << n << " samples");
+      CHECK(abs(reflected_points(A, M, n, seed).size - pts.size) <= Measure("1e-60") * pts.size);
+    }
+  Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large: 3 times the size, exactly
+  D.topLeftCorner<3, 3>() /= 3;
+  const Mat4<Q> M3 = reference_mirror(Vec4<Q>(1, 2, 2, -21));
+  CHECK(abs(reflected_points(Mat4<Q>(D * A * D), M3, 64, 2).size - 3 * pts.size) <= Measure("1e-60") * pts.size);
+  const ReflectionBounds bounds(A, M, pts);
+  const Mat4<Q> B_ref = M.transpose() * A * M;
+  const double size = size_down(pts.size);
+  {  // B translated by 1.5e-12 along x: within 1.5e-12 of every point
+    const Q d(3, 2000000000000LL);
+    const Mat4<Q> B = translated(B_ref, Vec3<Q>(d, 0, 0));
+    const CoveredBound b = bounds(std::nullopt, B, size, 1e-9);
+    const Measure sampled = reflection_error(pts, std::nullopt, B).geometric;
+    INFO("sampled " << sampled.str(6) << " bound " << b.bound.upper);
+    CHECK(sampled <= Measure(b.bound.upper));
+    CHECK(b.bound.upper <= 200 * 1.5e-12 / size);
+  }
+  {  // off by 4e-14 y^2: most at the long axis's ends
+    Mat4<Q> w = Mat4<Q>::Zero();
+    w(1, 1) = Q(4, 100000000000000LL);
+    const Mat4<Q> B = M.transpose() * Mat4<Q>(A + w) * M;
+    const CoveredBound b = bounds(std::nullopt, B, size, 1e-9);
+    const Measure sampled = reflection_error(pts, std::nullopt, B).geometric;
+    INFO("sampled " << sampled.str(6) << " bound " << b.bound.upper);
+    CHECK(sampled > Measure("1e-12"));
+    CHECK(sampled <= Measure(b.bound.upper));
+    CHECK(Measure(b.bound.upper) <= 2 * sampled);
+  }
 }
 
 TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points", "[accuracy][certified]") {

@@ -280,6 +280,9 @@ class ReflectionBounds {
   Ball ball_{Vec3<Rational>::Zero(), Rational(0), std::nullopt};  ///< reflected
   GradientFloor floor_;
   bool floored_ = false;
+  /// Where A is an elliptic cylinder: the ball turned to its axes (cylinder_turn), and B_ref there.
+  std::optional<TurnedBall> turned_;
+  Mat4<Rational> B_ref_turned_;
 };
 
 /// error_bound of eval: what ShadowBounds / ReflectionBounds cover is bounded over every point of
