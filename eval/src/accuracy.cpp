@@ -411,9 +411,9 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
   if (!core_centre) core_centre = s.middle;
   std::tie(out.size, centre) = object_size(out.points, A, core_centre);
-  // one point (no extent), or a parallel pair without its stretch's four ends (fewer than 4 points):
-  // sized with the default sample as well (unsized_sample)
-  if ((out.size == 0 || (s.middle && n < 4)) && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
+  // one point (no extent), or fewer points than the sample's farthest ends (a parallel pair's four,
+  // a hyperbola's two): sized with the default sample as well (unsized_sample)
+  if ((out.size == 0 || n < s.ends) && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
     std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A, core_centre);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)

@@ -338,44 +338,27 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
   return pair;
 }
 
-/// How far along a hyperbolic cylinder's cross-section its chords reach: directions
-/// W_0 + s W_1 (W_0 the real semi-axis, W_1 the other), |s| <= 63/65, where the hyperbola is
-/// 65/16 (about 4) times as far from the centre as W_0 + s W_1 in its own semi-axes.
+/// How far along a hyperbola its chords reach (a hyperbolic cylinder's cross-section, a terminator
+/// on a hyperboloid): directions W_0 + s W_1 through its centre (W_0 the real semi-axis, W_1 the
+/// other), |s| <= 63/65, where the hyperbola is 65/16 (about 4) times as far from the centre as W_0
+/// + s W_1 in its own semi-axes; seeded chords |s| <= 63/65 15/16 (about 2.4 times), short of that.
 const Q kHyperbolaEnd(63, 65);
+Q hyperbola_inner(Draw& draw) { return Q(kHyperbolaEnd * 15 / 16 * draw.unit()); }
 
-/// Where a cylinder's lines are drawn (sample_quadric): directions r + t sigma a through its axis
-/// point b, a the axis (primitive), r across it, sigma a rational within 2^-23 of |r| / |a|. b is a
-/// centre and a K's kernel, so the line's quadratic is r's and it meets the cylinder at b +-
-/// lambda (r + t sigma a): at the cross-section's radius in r's direction, sqrt(1 + t^2) times as
-/// far out. r is shaped by the cross-section: `across` holds its semi-axes (semi_axes, in the plane
-/// across the axis), the longest first for an ellipse, the real one first for a hyperbola. The first
-/// two lines are the farthest: r = across_0 (an ellipse's long semi-axis; a hyperbola's across_0 +
-/// kHyperbolaEnd across_1) and t = +-kPairReach; the seeded ones stay short of them (an ellipse's r
-/// = across v, v random; a hyperbola's |s| <= kHyperbolaEnd 15/16; |t| <= kPairReach - 1), so the
-/// sample's size, its largest distance from b, is the ends' at every seed and count and scales with
-/// the scene. Random directions across the axis met an elliptic cylinder anywhere between its
-/// semi-axes (and a hyperbolic one unboundedly far out): one with semi-axes 1 and 100 was sized 28.9
-/// to 1603 by the seed and the count, and a reflection 9 times the target off at the long axis's
-/// ends passed where the sample's ball did not reach them (audit 33a F3); a circular one's size moved
-/// by 2e-8 with the seed (sigma of a random r; F7). nullopt (random directions across the axis) where
-/// A's value at its axis is 0 (a pair of planes crossing at the axis, or the axis alone) or has no
-/// real points there.
-struct CylinderChords {
-  Vec3<Q> axis;
+/// The semi-axes of a central conic through whose centre b lines are drawn in a plane spanned by
+/// `plane` (two orthogonal vectors; a line b + lambda r, r = plane v, meets it where lambda^2
+/// r^T K r = -c, c = A(b), K = A_xyz,xyz: b is the conic's centre, so r^T (A b) = 0): `across`
+/// holds them (semi_axes of plane^T K plane in the plane's metric), the longest first for an
+/// ellipse, the real one first for a hyperbola. nullopt where c = 0 (lines crossing at b), the
+/// form is singular, or no direction is real.
+struct ConicAxes {
   Eigen::Matrix<Q, 3, 2> across;
   bool hyperbolic = false;
 };
-std::optional<CylinderChords> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& axis, const Vec3<Q>& centre) {
-  const Q c = quadric_value(A, centre);
+std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 2>& plane, const Q& c) {
   if (c == 0) return std::nullopt;
-  Eigen::Matrix<Q, 3, 2> plane;  // a x e_j, a x (a x e_j): orthogonal, of squared lengths m
-  for (int j = 0; j < 3; ++j) {
-    plane.col(0) = axis.cross(Vec3<Q>::Unit(j));
-    if (!plane.col(0).isZero()) break;
-  }
-  plane.col(1) = axis.cross(Vec3<Q>(plane.col(0)));
   const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * plane;
-  if (G.determinant() == 0) return std::nullopt;  // (not for a line of centres)
+  if (G.determinant() == 0) return std::nullopt;
   const auto f = form_axes<2>(G, Eigen::Matrix<Q, 2, 1>(plane.col(0).squaredNorm(), plane.col(1).squaredNorm()));
   if (!f) return std::nullopt;
   const auto W = semi_axes(*f);
@@ -383,14 +366,45 @@ std::optional<CylinderChords> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& a
   // real directions: those where G's sign is the opposite of c's
   const bool real0 = (f->rq[0] > 0) != (c > 0), real1 = (f->rq[1] > 0) != (c > 0);
   if (!real0 && !real1) return std::nullopt;
-  CylinderChords out;
-  out.axis = axis;
+  ConicAxes out;
   out.hyperbolic = real0 != real1;
   // first: the real semi-axis of a hyperbola, the longer of an ellipse (the one of the least |rq|)
   const int first = out.hyperbolic ? (real0 ? 0 : 1) : (abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1);
   out.across.col(0) = plane * Eigen::Matrix<Q, 2, 1>(W->col(first));
   out.across.col(1) = plane * Eigen::Matrix<Q, 2, 1>(W->col(1 - first));
   return out;
+}
+
+/// Two orthogonal vectors across n (not 0): n x e_j (the first not 0), n x (n x e_j); a function of
+/// n alone, so the same for every scene that has it.
+Eigen::Matrix<Q, 3, 2> plane_across(const Vec3<Q>& n) {
+  Eigen::Matrix<Q, 3, 2> plane;
+  for (int j = 0; j < 3; ++j) {
+    plane.col(0) = n.cross(Vec3<Q>::Unit(j));
+    if (!plane.col(0).isZero()) break;
+  }
+  plane.col(1) = n.cross(Vec3<Q>(plane.col(0)));
+  return plane;
+}
+
+/// Where a cylinder's lines are drawn (sample_quadric): directions r + t sigma a through its axis
+/// point b, a the axis (primitive), r across it, sigma a rational within 2^-23 of |r| / |a|. b is a
+/// centre and a K's kernel, so the line's quadratic is r's and it meets the cylinder at b +-
+/// lambda (r + t sigma a): at the cross-section's radius in r's direction, sqrt(1 + t^2) times as
+/// far out. r is shaped by the cross-section (conic_axes, in the plane across the axis). The first
+/// two lines are the farthest: r = across_0 (an ellipse's long semi-axis; a hyperbola's across_0 +
+/// kHyperbolaEnd across_1) and t = +-kPairReach (r is exactly across a: the same distance); the
+/// seeded ones stay short of them (an ellipse's r = across v, v random; a hyperbola's
+/// hyperbola_inner; |t| <= kPairReach - 1), so the sample's size, its largest distance from b, is
+/// the ends' at every seed and count and scales with the scene. Random directions across the axis
+/// met an elliptic cylinder anywhere between its semi-axes (and a hyperbolic one unboundedly far
+/// out): one with semi-axes 1 and 100 was sized 28.9 to 1603 by the seed and the count, and a
+/// reflection 9 times the target off at the long axis's ends passed where the sample's ball did not
+/// reach them (audit 33a F3); a circular one's size moved by 2e-8 with the seed (sigma of a random
+/// r; F7). nullopt (random directions across the axis) where conic_axes has none: A's value at its
+/// axis is 0 (a pair of planes crossing at the axis, or the axis alone), or it has no real points.
+std::optional<ConicAxes> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& axis, const Vec3<Q>& centre) {
+  return conic_axes(A, plane_across(axis), quadric_value(A, centre));
 }
 
 }  // namespace
@@ -505,6 +519,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   if (pair) {
     b = pair->mid;
     rep.middle = Vec3<Q>(b.head<3>());
+    rep.ends = 4;
   }
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
@@ -516,19 +531,34 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   // an elliptic section: in-plane directions shaped by its axes (shaped_directions), in the plane's
   // basis a = n x e_j, n x a, n the normal's primitive integers (the same basis for every positive
   // multiple of A and L, as the shifts below)
-  Eigen::Matrix<Q, 3, 2> in_plane;
-  for (int j = 0; j < 3; ++j) {
-    in_plane.col(0) = shift_normal.cross(Vec3<Q>::Unit(j));
-    if (!in_plane.col(0).isZero()) break;
-  }
-  in_plane.col(1) = shift_normal.cross(Vec3<Q>(in_plane.col(0)));
+  const Eigen::Matrix<Q, 3, 2> in_plane = plane_across(shift_normal);
   // (the basis is orthogonal, its vectors' lengths |a| and |n| |a|: the form's axes in that metric)
   const auto shape = shaped_directions<2>(
       Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane),
       Eigen::Matrix<Q, 2, 1>(in_plane.col(0).squaredNorm(), in_plane.col(1).squaredNorm()));
+  // a hyperbola (a hyperboloid's terminator), b its centre: chords along its axes (conic_axes), the
+  // first the farthest (kHyperbolaEnd), its two points as far from b; the others short of it
+  // (hyperbola_inner). Random directions met it as far out as they were near its asymptotes, and
+  // its size was the seed's.
+  const std::optional<ConicAxes> hyperbola = [&]() -> std::optional<ConicAxes> {
+    if (pair || shape || K.determinant() == 0) return std::nullopt;
+    const Vec4<Q> Ab = A * b;
+    for (int j = 0; j < 2; ++j)  // (b is the section's centre: no in-plane direction is conjugate to it)
+      if (Vec3<Q>(in_plane.col(j)).dot(Vec3<Q>(Ab.head<3>())) != 0) return std::nullopt;
+    auto axes = conic_axes(A, in_plane, Q(b.dot(Ab) / (b(3) * b(3))));
+    if (!axes || !axes->hyperbolic) return std::nullopt;
+    return axes;
+  }();
+  if (hyperbola) rep.ends = 2;
   Stretch stretch;  // a parallel pair's chords (ParallelPair)
+  bool hyperbola_end = true;
   const auto direction = [&]() -> Vec3<Q> {
     if (pair) return Vec3<Q>(pair->across + stretch.next(draw) * pair->along);
+    if (hyperbola && !stepped) {
+      const Q s = hyperbola_end ? kHyperbolaEnd : hyperbola_inner(draw);
+      hyperbola_end = false;
+      return Vec3<Q>(hyperbola->across.col(0) + s * hyperbola->across.col(1));
+    }
     if (!shape || stepped) return normal.cross(draw.vec3());
     Vec3<Q> r = draw.vec3();
     while (r(0) == 0 && r(1) == 0) r = draw.vec3();
@@ -579,7 +609,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   const QuadricCore core = quadric_core(A);
   const std::optional<Vec3<Q>> axis =
       core.line_of_centres() ? std::optional<Vec3<Q>>(primitive_direction(Vec3<Q>(core.kernel.col(0)))) : std::nullopt;
-  const std::optional<CylinderChords> chords = axis ? cylinder_chords(A, *axis, Vec3<Q>(b.head<3>())) : std::nullopt;
+  const std::optional<ConicAxes> chords = axis ? cylinder_chords(A, *axis, Vec3<Q>(b.head<3>())) : std::nullopt;
   Stretch stretch;
   if (chords) stretch.inner = kPairReach - 1;
   const auto across = [&]() -> Vec3<Q> {
@@ -590,7 +620,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
     }
     const bool end = stretch.ends > 0;  // (the stretch's two ends: the same r)
     if (chords->hyperbolic) {
-      const Q s = end ? kHyperbolaEnd : Q(kHyperbolaEnd * 15 / 16 * draw.unit());
+      const Q s = end ? kHyperbolaEnd : hyperbola_inner(draw);
       return Vec3<Q>(chords->across.col(0) + s * chords->across.col(1));
     }
     if (end) return chords->across.col(0);

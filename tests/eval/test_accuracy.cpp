@@ -388,6 +388,45 @@ TEST_CASE("elliptic and parabolic cylinders: the same size at every seed and cou
   }
 }
 
+TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator has one size at every seed and count",
+          "[accuracy][sampling]") {
+  // Random chords through a hyperbola's centre met it as far out as they were near its asymptotes:
+  // one terminator was sized 1.4 at one seed and 33 at another, 11 and 1120 another. Now the first
+  // chord is the farthest (W_0 + 63/65 W_1 in its semi-axes, sampling.cpp conic_axes) and the others
+  // stay short of it; the size scales with the scene and moves with it.
+  Mat4<Q> h1 = Mat4<Q>::Zero();  // x^2 + y^2 - z^2 = 1
+  h1(0, 0) = 1, h1(1, 1) = 1, h1(2, 2) = -1, h1(3, 3) = -1;
+  Mat4<Q> h2 = Mat4<Q>::Zero();  // x^2 + y^2 / 100 - 4 z^2 + 2 x = 1
+  h2(0, 0) = 1, h2(1, 1) = Q(1, 100), h2(2, 2) = -4, h2(0, 3) = h2(3, 0) = 1, h2(3, 3) = -1;
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"one sheet, a lamp beside", h1, {3, 0, 0, 1}},
+                                   {"one sheet, a far lamp", h1, {1000, 7, 3, 1}},
+                                   {"one sheet, a sun", h1, {1, 0, Q(1, 5), 0}},
+                                   {"long, a lamp", h2, {2, 3, 1, 1}},
+                                   {"long, a far lamp", h2, {1000, 7, 3, 1}}}) {
+    INFO(name);
+    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
+    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int n : {1, 2, 7, kDefaultSamples}) {
+        INFO("seed " << seed << ", " << n << " samples");
+        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
+      }
+    Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
+    D.topLeftCorner<3, 3>() /= 3;
+    const Vec4<Q> L3(3 * L(0), 3 * L(1), 3 * L(2), L(3));
+    const Mat4<Q> A3 = D * A * D;
+    CHECK(abs(terminator_points(A3, L3, kDefaultSamples, item_seed(2, 1, A3, L3)).size - 3 * first.size) <=
+          Measure("1e-60") * first.size);
+    const Vec3<Q> t(1000000, -3, Q(1, 7));  // and moved by t
+    Mat4<Q> T = Mat4<Q>::Identity();
+    T.topRightCorner<3, 1>() = -t;
+    const Mat4<Q> At = T.transpose() * A * T;
+    const Vec4<Q> Lt = L(3) == 0 ? L : Vec4<Q>(L(0) + t(0), L(1) + t(1), L(2) + t(2), Q(1));
+    CHECK(abs(terminator_points(At, Lt, kDefaultSamples, item_seed(3, 1, At, Lt)).size - first.size) <=
+          Measure("1e-60") * first.size);
+  }
+}
+
 TEST_CASE("a cylinder reflected: its chords' ends size it, the same at every seed, count and scale", "[accuracy][sampling]") {
   // Its lines' directions across the axis were random: a circular cylinder's size moved by 2e-8 with
   // the seed (sigma of a random r, audit 33a F7), a hyperbolic one's from 28 to 167 (F3). The first two

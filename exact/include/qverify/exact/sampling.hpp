@@ -31,6 +31,9 @@ struct SampleReport {
   /// A section that is a pair of parallel lines: the point of their midline its chords pass through
   /// (sample_section), whose chords' ends are the sample's farthest points from it.
   std::optional<Vec3<Rational>> middle;
+  /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends,
+  /// a hyperbola's first chord): fewer than that do not reach its size (0: no such ends).
+  int ends = 0;
 };
 
 /// A quadric's core, exactly. With K = A_xyz,xyz and k = A_xyz,w: a basis of K's kernel (none where
