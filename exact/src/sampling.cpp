@@ -387,6 +387,42 @@ Eigen::Matrix<Q, 3, 2> plane_across(const Vec3<Q>& n) {
   return plane;
 }
 
+/// A section that is a parabola (a paraboloid's terminator under a parallel light): chords across
+/// its axis, at distances 0 < X <= 16 f from its vertex along the axis (f its focal length), the
+/// first at 16 f (its points, 8 f either side, the farthest from the middle of that stretch of axis;
+/// the others at most 15 f out, nearer). In the plane's coordinates x = b + u v + s w (v the in-plane
+/// form's kernel, along the axis, w = n x v across it; exactly: v^T K w = 0 = v^T K v) A is
+/// c0 + 2 beta u + 2 gamma s + lambda s^2, vertex at s_v = -gamma / lambda, u_v = (gamma^2 / lambda
+/// - c0) / (2 beta); about it lambda s'^2 = -2 beta u', Y^2 = 4 f X with X = u' |v|, Y = s' |w|, so
+/// 16 f is u' = -8 beta |w|^2 / (lambda |v|^2): rational, a function of A and the plane alone.
+/// Random chords through a point inside met it as far out as they were near its axis, and its
+/// size (from the sample's centroid) was the seed's. nullopt where the section is no parabola.
+struct ParabolaChords {
+  Vec4<Q> vertex;
+  Vec3<Q> along, across;
+  Q end;  ///< the farthest chord's u'
+  Vec4<Q> at(const Q& u) const { return Vec4<Q>(vertex + u * Vec4<Q>(along(0), along(1), along(2), Q(0))); }
+};
+std::optional<ParabolaChords> parabola_chords(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 2>& plane, const Vec3<Q>& n,
+                                              const Vec4<Q>& b) {
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * K * plane;
+  if (G.determinant() != 0 || G.isZero()) return std::nullopt;
+  Eigen::Matrix<Q, 2, 1> v2(-G(0, 1), G(0, 0));  // G's kernel (G of rank 1)
+  if (v2.isZero()) v2 = Eigen::Matrix<Q, 2, 1>(-G(1, 1), G(0, 1));
+  ParabolaChords out;
+  out.along = primitive_direction(Vec3<Q>(plane * v2));
+  out.across = n.cross(out.along);
+  const Vec4<Q> v4(out.along(0), out.along(1), out.along(2), Q(0)), w4(out.across(0), out.across(1), out.across(2), Q(0));
+  const Vec4<Q> Ab = A * b;
+  const Q lambda = w4.dot(A * w4), beta = v4.dot(Ab) / b(3), gamma = w4.dot(Ab) / b(3), c0 = b.dot(Ab) / (b(3) * b(3));
+  if (lambda == 0 || beta == 0) return std::nullopt;  // (a line pair, or lines)
+  const Q sv = -gamma / lambda, uv = (gamma * gamma / lambda - c0) / (2 * beta);
+  out.vertex = Vec4<Q>(b / b(3) + uv * v4 + sv * w4);
+  out.end = -8 * beta * out.across.squaredNorm() / (lambda * out.along.squaredNorm());
+  return out;
+}
+
 /// Where a cylinder's lines are drawn (sample_quadric): directions r + t sigma a through its axis
 /// point b, a the axis (primitive), r across it, sigma a rational within 2^-23 of |r| / |a|. b is a
 /// centre and a K's kernel, so the line's quadratic is r's and it meets the cylinder at b +-
@@ -550,10 +586,26 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     return axes;
   }();
   if (hyperbola) rep.ends = 2;
+  const std::optional<ParabolaChords> parabola =
+      pair || shape || hyperbola || K.determinant() == 0 ? std::nullopt : parabola_chords(A, in_plane, shift_normal, b);
+  if (parabola) {  // (its size from the middle of its stretch of axis where A has no centre: a paraboloid)
+    rep.middle = Vec3<Q>(parabola->at(parabola->end / 2).head<3>());
+    rep.ends = 2;
+  }
   Stretch stretch;  // a parallel pair's chords (ParallelPair)
-  bool hyperbola_end = true;
+  bool hyperbola_end = true, parabola_end = true;
   const auto direction = [&]() -> Vec3<Q> {
     if (pair) return Vec3<Q>(pair->across + stretch.next(draw) * pair->along);
+    if (parabola && !stepped) {  // (each chord from its own base on the axis)
+      Q u = parabola->end;
+      if (!parabola_end) {
+        do u = Q(parabola->end * 15 / 16 * abs(draw.unit())); while (u == 0);
+      }
+      parabola_end = false;
+      b = parabola->at(u);
+      lines.set_base(b);
+      return parabola->across;
+    }
     if (hyperbola && !stepped) {
       const Q s = hyperbola_end ? kHyperbolaEnd : hyperbola_inner(draw);
       hyperbola_end = false;

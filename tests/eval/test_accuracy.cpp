@@ -152,7 +152,7 @@ TEST_CASE("R on its second plane is measured above a point that does not depend 
   for (std::uint64_t seed : {1u, 2u, 3u, 7u}) {
     const ItemPoints pts = terminator_points(A, L, 16, seed);
     REQUIRE(!pts.points.empty());
-    first_midpoints.push_back(pts.points.front().p());
+    first_midpoints.push_back(pts.points.back().p());  // (the first chord is the same at every seed: the farthest)
     bool zero = true;
     // (one size for all: a hyperboloid's size is measured over the samples, ItemPoints::size; the
     // anchor is what this checks)
@@ -423,6 +423,44 @@ TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator ha
     const Mat4<Q> At = T.transpose() * A * T;
     const Vec4<Q> Lt = L(3) == 0 ? L : Vec4<Q>(L(0) + t(0), L(1) + t(1), L(2) + t(2), Q(1));
     CHECK(abs(terminator_points(At, Lt, kDefaultSamples, item_seed(3, 1, At, Lt)).size - first.size) <=
+          Measure("1e-60") * first.size);
+  }
+}
+
+TEST_CASE("a parabola is sampled across its axis up to 16 focal lengths from its vertex - one size at every seed",
+          "[accuracy][sampling]") {
+  // A paraboloid's terminator under a parallel light is a parabola. Random chords through a point
+  // inside met it as far out as they were near its axis, and it was sized from the sample's centroid:
+  // 0.6 to 95 by seed and count. Now the chords cross its axis at X in (0, 16 f], the first at 16 f,
+  // and the size is measured from the middle of that stretch of axis (sampling.cpp, ParabolaChords).
+  Mat4<Q> bowl = Mat4<Q>::Zero();  // x^2 + 2 y^2 = z
+  bowl(0, 0) = 1, bowl(1, 1) = 2, bowl(2, 3) = bowl(3, 2) = Q(-1, 2);
+  Mat4<Q> saddle = Mat4<Q>::Zero();  // x^2 - 3 y^2 + 2 x = 2 z
+  saddle(0, 0) = 1, saddle(1, 1) = -3, saddle(0, 3) = saddle(3, 0) = 1, saddle(2, 3) = saddle(3, 2) = -1;
+  // the bowl under (0, 1, 0): the parabola x^2 = z in y = 0, f = 1/4: the chord at z = 4, x = +-2, from (0, 0, 2)
+  CHECK(terminator_points(bowl, Vec4<Q>(0, 1, 0, 0), kDefaultSamples, 1).size.convert_to<double>() ==
+        Approx(2 * std::sqrt(2.0)).epsilon(1e-12));
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"bowl", bowl, {1, 2, -4, 0}},
+                                   {"bowl, level sun", bowl, {3, -1, Q(1, 7), 0}},
+                                   {"saddle", saddle, {1, 2, -4, 0}},
+                                   {"saddle, level sun", saddle, {0, 1, 0, 0}}}) {
+    INFO(name);
+    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
+    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int n : {1, 2, 7, kDefaultSamples}) {
+        INFO("seed " << seed << ", " << n << " samples");
+        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
+      }
+    Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
+    D.topLeftCorner<3, 3>() /= 3;
+    const Mat4<Q> A3 = D * A * D;
+    CHECK(abs(terminator_points(A3, L, kDefaultSamples, item_seed(2, 1, A3, L)).size - 3 * first.size) <=
+          Measure("1e-60") * first.size);
+    Mat4<Q> T = Mat4<Q>::Identity();  // and moved
+    T.topRightCorner<3, 1>() = -Vec3<Q>(1000000, -3, Q(1, 7));
+    const Mat4<Q> At = T.transpose() * A * T;
+    CHECK(abs(terminator_points(At, L, kDefaultSamples, item_seed(3, 1, At, L)).size - first.size) <=
           Measure("1e-60") * first.size);
   }
 }
