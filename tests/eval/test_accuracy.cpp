@@ -465,6 +465,33 @@ TEST_CASE("a parabola is sampled across its axis up to 16 focal lengths from its
   }
 }
 
+TEST_CASE("a single line (a parabolic cylinder under a sun) is sampled 16 focal lengths either side of one point",
+          "[accuracy][sampling]") {
+  // Its points are rational: taken on the line itself, the ends first (sampling.cpp, SingleLine).
+  // Random chords met it as far out as they were near parallel to it: sized 0.3 to 112 by seed and
+  // count (audit 33a F4).
+  Mat4<Q> A = Mat4<Q>::Zero();  // (x + y / 10)^2 = z - 3: f = 1/2 / (2 |K|_F), |K|_F = 101/100
+  A(0, 0) = 1, A(1, 1) = Q(1, 100), A(0, 1) = A(1, 0) = Q(1, 10), A(2, 3) = A(3, 2) = Q(-1, 2), A(3, 3) = 3;
+  for (const Vec4<Q>& L : {Vec4<Q>(1, 2, -4, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(3, -1, Q(1, 7), 0)}) {
+    INFO("light " << L.transpose());
+    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
+    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+    CHECK(first.size.convert_to<double>() == Approx(16 * 0.5 / (2 * 1.01)).epsilon(1e-6));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int n : {1, 2, 7, kDefaultSamples}) {
+        INFO("seed " << seed << ", " << n << " samples");
+        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
+      }
+    for (int k : {2, 3}) {  // the scene k times as large: k times the size (exactly for a power of 2)
+      Mat4<Q> D = Mat4<Q>::Identity();
+      D.topLeftCorner<3, 3>() /= k;
+      const Mat4<Q> Ak = D * A * D;
+      const Measure size = terminator_points(Ak, L, kDefaultSamples, item_seed(2, 1, Ak, L)).size;
+      CHECK(abs(size - k * first.size) <= (k == 2 ? Measure("1e-60") : Measure("1e-6")) * first.size);
+    }
+  }
+}
+
 TEST_CASE("a cylinder reflected: its chords' ends size it, the same at every seed, count and scale", "[accuracy][sampling]") {
   // Its lines' directions across the axis were random: a circular cylinder's size moved by 2e-8 with
   // the seed (sigma of a random r, audit 33a F7), a hyperbolic one's from 28 to 167 (F3). The first two
