@@ -152,25 +152,4 @@ std::optional<Vec3<Q>> shadow_origin(const Mat4<Q>& A, const Vec4<Q>& L, const s
   return height ? std::optional<Vec3<Q>>(light_height_origin(o, L)) : o;
 }
 
-Q exact_pow2(long e) {
-  const Q p(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e < 0 ? -e : e));
-  return e >= 0 ? p : Q(1 / p);
-}
-
-long floor_log2(const Q& x) {
-  // 2^e <= x < 2^(e+1): compare bit lengths of numerator and denominator, then adjust.
-  const auto n = numerator(x), d = denominator(x);
-  long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));
-  Q p = exact_pow2(e);
-  while (p > x) {
-    p /= 2;
-    --e;
-  }
-  while (p * 2 <= x) {
-    p *= 2;
-    ++e;
-  }
-  return e;
-}
-
 }  // namespace qverify

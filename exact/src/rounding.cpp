@@ -144,4 +144,25 @@ Rational to_rational(const Float128& x) {
 
 Rational to_rational(const Mpfr& x) { return mpfr_to_rational(x.backend().data()); }
 
+Rational exact_pow2(long e) {
+  const Rational p(boost::multiprecision::mpz_int(1) << static_cast<unsigned>(e < 0 ? -e : e));
+  return e >= 0 ? p : Rational(1 / p);
+}
+
+long floor_log2(const Rational& x) {
+  // 2^e <= x < 2^(e+1): compare bit lengths of numerator and denominator, then adjust.
+  const auto n = numerator(x), d = denominator(x);
+  long e = static_cast<long>(msb(n)) - static_cast<long>(msb(d));
+  Rational p = exact_pow2(e);
+  while (p > x) {
+    p /= 2;
+    --e;
+  }
+  while (p * 2 <= x) {
+    p *= 2;
+    ++e;
+  }
+  return e;
+}
+
 }  // namespace qverify

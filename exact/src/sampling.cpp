@@ -1,6 +1,7 @@
 #include <qverify/core/predicates.hpp>
 #include <qverify/core/quadric.hpp>
 #include <qverify/exact/integer_point.hpp>
+#include <qverify/exact/rounding.hpp>
 #include <qverify/exact/sampling.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -274,11 +275,6 @@ void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, 
   out.erase(std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(from), out.end(), far), out.end());
 }
 
-/// 2^e exactly.
-Q two_to(long e) {
-  const Q p(BigInt(1) << static_cast<unsigned>(e < 0 ? -e : e));
-  return e >= 0 ? p : Q(1 / p);
-}
 
 /// A positive rational within 2^-23 of sqrt(r) (r > 0), a function of r alone: r = r' 4^k with r'
 /// near 1 (exactly, by the bit lengths of its numerator and denominator), sqrt(r') in double
@@ -286,9 +282,9 @@ Q two_to(long e) {
 /// plane's normal of long decimals squared, overflowed.)
 Q rough_sqrt(const Q& r) {
   const long k = (static_cast<long>(msb(numerator(r))) - static_cast<long>(msb(denominator(r)))) / 2;
-  const double x = std::sqrt(Q(r * two_to(-2 * k)).convert_to<double>());  // (r' in [1/8, 8])
+  const double x = std::sqrt(Q(r * exact_pow2(-2 * k)).convert_to<double>());  // (r' in [1/8, 8])
   const int e = std::ilogb(x);
-  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24)) * two_to(k);
+  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24)) * exact_pow2(k);
 }
 
 /// How far along its lines a pair of parallel lines is sampled, in half-widths of the pair.

@@ -10,6 +10,7 @@
 ///   Q_local = T^T Q T,  plane_local = T^T plane,  L_local = T^-1 L,
 ///   M_local = T^-1 M T,  T = translation by origin.
 
+#include <qverify/exact/rounding.hpp>  // floor_log2, exact_pow2
 #include <qverify/scene/scene.hpp>
 
 #include <optional>
@@ -102,10 +103,5 @@ inline Vec4<Rational> plane_from_local(const Vec4<Rational>& p, const Vec3<Ratio
 inline Vec4<Rational> point_to_local(const Vec4<Rational>& L, const Vec3<Rational>& o) {
   return translation<Rational>(Vec3<Rational>(-o)) * L;
 }
-
-/// Exact power-of-two exponent e with 2^e <= x < 2^(e+1) (x > 0).
-long floor_log2(const Rational& x);
-/// 2^e, exactly.
-Rational exact_pow2(long e);
 
 }  // namespace qverify

@@ -38,6 +38,11 @@ Rational to_rational(const Float128& x);
 Rational to_rational(const Mpfr& x);
 inline const Rational& to_rational(const Rational& x) { return x; }
 
+/// Exact power-of-two exponent e with 2^e <= x < 2^(e+1) (x > 0).
+long floor_log2(const Rational& x);
+/// 2^e, exactly.
+Rational exact_pow2(long e);
+
 /// Exact rational value of a finite scalar of any precision (an interval: its midpoint).
 template <class S> Rational exact_value(const S& x) { return to_rational(x); }
 
