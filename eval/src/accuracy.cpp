@@ -55,19 +55,29 @@ std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3
   return anchor ? core.nearest(*anchor) : core.y;
 }
 
+/// x - c to 80 digits per coordinate, from the exact difference (IntegerPoint::offset).
+Vec3<Measure> offset_from(const RootPoint& x, const Vec3<Q>& c) {
+  const IntegerPoint n(x);
+  return Vec3<Measure>(n.offset(0, c(0)), n.offset(1, c(1)), n.offset(2, c(2)));
+}
+
 std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A,
                                         const std::optional<Vec3<Q>>& core_centre) {
   if (pts.empty()) return {0, Vec3<Q>::Zero()};
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  // (every distance from the exact offset of the point from the centre: the points rounded to 80
+  // digits first, a cylinder of radius 1e-100 at 3 from the origin was sized 3e-80, its rounding
+  // noise, and a B off by 1.5 radii passed; audit 34a F1)
   if (K.determinant() == 0 && !core_centre) {
-    std::vector<Vec3<Measure>> xs;
-    for (const RootPoint& x : pts) xs.push_back(cartesian(x));
-    Vec3<Measure> c = Vec3<Measure>::Zero();
-    for (const auto& x : xs) c += x;
-    c /= Measure(static_cast<long>(xs.size()));
-    const Vec3<Q> cq(exact_measure(c(0)), exact_measure(c(1)), exact_measure(c(2)));
+    // the centroid, as offsets from a rational point near the first (exact differences again)
+    const Vec3<Measure> x0 = cartesian(pts.front());
+    const Vec3<Q> r0(exact_measure(x0(0)), exact_measure(x0(1)), exact_measure(x0(2)));
+    Vec3<Measure> m = Vec3<Measure>::Zero();
+    for (const RootPoint& x : pts) m += offset_from(x, r0);
+    m /= Measure(static_cast<long>(pts.size()));
+    const Vec3<Q> cq(r0(0) + exact_measure(m(0)), r0(1) + exact_measure(m(1)), r0(2) + exact_measure(m(2)));
     Measure best = 0;
-    for (const auto& x : xs) best = mmax(best, sqrt((x - c).squaredNorm()));
+    for (const RootPoint& x : pts) best = mmax(best, sqrt(offset_from(x, cq).squaredNorm()));
     return {best, cq};
   }
   const Vec3<Q> cq = K.determinant() == 0 ? *core_centre : Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
@@ -92,7 +102,7 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
   }
   Measure best = 0;
   for (std::size_t k = 0; k < pts.size(); ++k)
-    if (!bounded[k] || d2[k].sup() >= floor) best = mmax(best, sqrt((cartesian(pts[k]) - c).squaredNorm()));
+    if (!bounded[k] || d2[k].sup() >= floor) best = mmax(best, sqrt(offset_from(pts[k], cq).squaredNorm()));
   return {best, cq};
 }
 
@@ -1208,7 +1218,7 @@ void CoveredBound::check(const std::function<Measure(const std::string&)>& sampl
     if (p.bound.euclidean) continue;
     for (const std::string& n : p.names)
       if (sampled(n) > Measure(p.bound.upper))
-        throw std::logic_error("certified error bound " + std::to_string(p.bound.upper) + " of " + n +
+        throw std::logic_error("certified error bound " + Measure(p.bound.upper).str(6) + " of " + n +
                                " below an error measured on an exact point (" + sampled(n).str(6) +
                                "): a bug in the bound");
   }

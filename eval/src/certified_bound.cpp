@@ -496,6 +496,41 @@ Q eigen_floor(const Mat3<Q>& S) {
   }
   return Q(0);
 }
+/// tau > 0 below every positive eigenvalue of S (symmetric, exact), proved exactly; 0 where S has
+/// none or none is found. S's characteristic polynomial has real roots only, so Descartes' rule
+/// counts them exactly: tau is proved where p(x + tau) has as many sign changes as p(x) (as many
+/// roots above tau as above 0). Tried just below the least positive eigenvalue of a double
+/// decomposition, then smaller.
+Q positive_eigen_floor(const Mat3<Q>& S) {
+  const Q a2 = -S.trace(), a1 = adjugate3<Q>(S).trace(), a0 = -S.determinant();
+  const auto changes = [&](const Q& t) {  // sign changes of p(x + t)'s coefficients
+    const std::array<Q, 4> c{Q(1), Q(3 * t + a2), Q(3 * t * t + 2 * a2 * t + a1), Q(t * t * t + a2 * t * t + a1 * t + a0)};
+    int n = 0, last = 1;
+    for (const Q& x : c)
+      if (x != 0) {
+        const int sg = x > 0 ? 1 : -1;
+        n += sg != last ? 1 : 0;
+        last = sg;
+      }
+    return n;
+  };
+  const int positive = changes(Q(0));
+  if (positive == 0) return Q(0);
+  Q big = 0;
+  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(S(i))));
+  Eigen::Matrix3d d;
+  for (Eigen::Index i = 0; i < 9; ++i) d(i) = Q(S(i) / big).convert_to<double>();
+  const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d, Eigen::EigenvaluesOnly).eigenvalues();
+  double m = 0;
+  for (int i = 2; i >= 0 && ev(i) > 0; --i) m = ev(i);  // the least positive
+  // (first just below the estimate, which is within a few ulps of it times S's condition: tight)
+  for (double f : {1 - 0x1p-30, 0.5, 1.0 / 32, 1.0 / 512, 1.0 / 8192}) {
+    const Q tau = to_rational(m * f) * big;
+    if (tau > 0 && changes(tau) == positive) return tau;
+  }
+  return Q(0);
+}
+
 /// The centre of A and its value there, when A is an ellipsoid with real points (not a single point).
 std::optional<EllipsoidParts> ellipsoid(const Mat4<Q>& A) {
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
@@ -867,6 +902,13 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
     // the first floor, mu |r| / sigma, was sigma / lambda times lower: 100 for an elliptic cylinder of
     // semi-axes 1 and 100, whose reflection's bound was 10^6 times its error (audit 33a F3)
     if (r != 0 && mu > 0) steady_ = sqrt(Measure(sqrt(mu_) * r_));
+    // and |K y|^2 >= lambda_s |r|, lambda_s the least |eigenvalue| of the sign of -r (header): a
+    // hyperbolic cylinder's real axis, where the least of all was its imaginary one's, 10^6 times
+    // smaller for x^2 10^6 - y^2 = 1 (audit 34a F3)
+    if (r != 0) {
+      const Q tau = positive_eigen_floor(r > 0 ? Mat3<Q>(-K) : K);
+      if (tau > 0) steady_ = std::max(steady_, Measure(sqrt(Measure(to_measure(tau) * r_))));
+    }
     if (core.kernel.cols() == 0 && mu > 0) linear_ = sqrt(mu_);
     return;
   }

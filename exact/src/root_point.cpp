@@ -351,4 +351,11 @@ Measure IntegerPoint::coordinate(int i) const { return root_value(u(i), v(i), d,
 
 Measure IntegerPoint::magnitude(int i) const { return root_magnitude(u(i), v(i), d, root(), den()); }
 
+Measure IntegerPoint::offset(int i, const Rational& c) const {
+  // x_i / x_3 - c = ((u_i + v_i s) cd - cn (u_3 + v_3 s)) / ((u_3 + v_3 s) cd), c = cn / cd, s = sqrt(d)
+  const BigInt cn = numerator(c), cd = denominator(c);
+  const BigInt U = u(i) * cd - cn * u(3), V = v(i) * cd - cn * v(3);
+  return root_value(U, V, d, root(), cd) / root_value(u(3), v(3), d, root(), BigInt(1));
+}
+
 }  // namespace qverify

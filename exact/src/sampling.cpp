@@ -142,6 +142,22 @@ Q max_abs(const Vec3<Q>& v) { return std::max({Q(abs(v(0))), Q(abs(v(1))), Q(abs
 /// v (non-zero) scaled to L-infinity length `reach`.
 Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach / max_abs(v))); }
 
+/// sqrt(r) = x 2^k (r > 0), a function of r alone: r = r' 4^k with r' near 1 (exactly, by the bit
+/// lengths of its numerator and denominator), x = sqrt(r') in double, correctly rounded. (Through a
+/// double alone a ratio beyond 1e308, a plane's normal of long decimals squared, overflowed; below
+/// 1e-308 it underflowed to 0.)
+std::pair<double, long> split_sqrt(const Q& r) {
+  const long k = (static_cast<long>(msb(numerator(r))) - static_cast<long>(msb(denominator(r)))) / 2;
+  return {std::sqrt(Q(r * exact_pow2(-2 * k)).convert_to<double>()), k};  // (r' in [1/8, 8])
+}
+/// A positive rational within 2^-52 of sqrt(r) (relative): x 2^k of split_sqrt. (With 24 bits, as it
+/// was, a cylinder's size, which its stretch's ends make, moved by 1.5e-8 when it was turned: audit
+/// 34a F6.)
+Q rough_sqrt(const Q& r) {
+  const auto [x, k] = split_sqrt(r);
+  return Q(x) * exact_pow2(k);
+}
+
 /// The axes of a non-singular form G (k x k, exact) in the metric M = diag(m) of an orthogonal basis
 /// whose vectors' squared lengths are m (so that a basis of unequal lengths is not taken for an
 /// anisotropic form): U, their directions, from a floating decomposition of S^-1 G S^-1, S =
@@ -192,8 +208,7 @@ Q least_quotient(const FormAxes<k>& f) {
 }
 
 /// The semi-axes of the form's level set, relative to its longest: column c is U_c / sqrt(|rq_c| /
-/// lo), lo the least |rq| (in double, lo / |rq| in (0, 1]), each entry rounded to 40 bits of its
-/// column's largest (smaller numbers in every sampled point, and the last bits of the decomposition,
+/// lo), lo the least |rq| (split_sqrt), each entry rounded to 40 bits of its column's largest (smaller numbers in every sampled point, and the last bits of the decomposition,
 /// which may differ between builds, mostly gone; 40 bits keep a column's error along an axis 10^9
 /// shorter below a thousandth of that axis). nullopt if the columns come out dependent.
 template <int k>
@@ -201,10 +216,14 @@ std::optional<Eigen::Matrix<Q, k, k>> semi_axes(const FormAxes<k>& f) {
   const Q lo = least_quotient(f);
   Eigen::Matrix<Q, k, k> W;
   for (int c = 0; c < k; ++c) {
-    const double axis = std::sqrt(Q(lo / abs(f.rq[static_cast<std::size_t>(c)])).template convert_to<double>());
-    if (!(axis > 0) || !std::isfinite(axis)) return std::nullopt;
-    const int top = std::ilogb(f.U.col(c).cwiseAbs().maxCoeff() * axis);
-    for (int i = 0; i < k; ++i) W(i, c) = Q(std::ldexp(std::round(std::ldexp(f.U(i, c) * axis, 40 - top)), top - 40));
+    // (the ratio's root as x 2^e, split_sqrt: in one double a ratio of 1e-600 underflowed to 0 and
+    // the shape was dropped; audit 34a F5)
+    const auto [axis, e] = split_sqrt(Q(lo / abs(f.rq[static_cast<std::size_t>(c)])));
+    const double top_d = f.U.col(c).cwiseAbs().maxCoeff() * axis;
+    if (!(top_d > 0) || !std::isfinite(top_d)) return std::nullopt;
+    const int top = std::ilogb(top_d);
+    for (int i = 0; i < k; ++i)
+      W(i, c) = Q(std::ldexp(std::round(std::ldexp(f.U(i, c) * axis, 40 - top)), top - 40)) * exact_pow2(e);
   }
   if (W.determinant() == 0) return std::nullopt;
   return W;
@@ -276,16 +295,6 @@ void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, 
 }
 
 
-/// A positive rational within 2^-23 of sqrt(r) (r > 0), a function of r alone: r = r' 4^k with r'
-/// near 1 (exactly, by the bit lengths of its numerator and denominator), sqrt(r') in double
-/// (correctly rounded) to 24 bits, times 2^k. (Through a double alone a ratio beyond 1e308, a
-/// plane's normal of long decimals squared, overflowed.)
-Q rough_sqrt(const Q& r) {
-  const long k = (static_cast<long>(msb(numerator(r))) - static_cast<long>(msb(denominator(r)))) / 2;
-  const double x = std::sqrt(Q(r * exact_pow2(-2 * k)).convert_to<double>());  // (r' in [1/8, 8])
-  const int e = std::ilogb(x);
-  return Q(std::ldexp(std::round(std::ldexp(x, 24 - e)), e - 24)) * exact_pow2(k);
-}
 
 /// How far along its lines a pair of parallel lines is sampled, in half-widths of the pair.
 constexpr int kPairReach = 16;
@@ -301,7 +310,7 @@ struct Stretch {
 /// A section that is a pair of real parallel lines (a cylinder's terminator under a point or a
 /// parallel light, a pair of parallel planes cut): where its chords are drawn, and which way. Chords
 /// through a point of the lines' midline m in the directions e + t a (e across the lines in the
-/// plane, a along them, scaled by a rational within 2^-24 of |e| / |a|) all meet the lines at the
+/// plane, a along them, scaled by a rational within 2^-52 of |e| / |a|) all meet the lines at the
 /// same distance s from it across (a is the section's singular point at infinity: A a is orthogonal
 /// to the plane, so (e + t a)^T A (e + t a) = e^T A e and (e + t a)^T A m = e^T A m = 0), at
 /// m +- s (e + t a), |t| <= kPairReach: the points within kPairReach half-widths of m along the lines
@@ -424,7 +433,7 @@ std::optional<ParabolaChords> parabola_chords(const Mat4<Q>& A, const Eigen::Mat
 /// not change): on the plane A(b + y) = A(b) + 2 y . q, q the in-plane part of (A b)_xyz, so the line
 /// is m + t d, m = b - A(b) / (2 |q|^2) q (the point nearest b), d = n x q (primitive): rational
 /// points, taken as they are, with |t d| <= 16 f, f = |q| / (2 |K|_F) (a parabolic cylinder's focal
-/// length: q is k_n there and |K|_F = |lambda| |g|^2), through a rational within 2^-23 of |q| /
+/// length: q is k_n there and |K|_F = |lambda| |g|^2), through a rational within 2^-52 of |q| /
 /// (|K|_F |d|). The ends t = +-t_max first (the farthest from m, which sizes it), then seeded ones
 /// within 15/16 of them. Random chords through a point beside it met it as far out as they were near
 /// parallel to it: sized 0.3 to 112 by seed and count (audit 33a F4). nullopt where A's quadratic
@@ -451,7 +460,7 @@ std::optional<SingleLine> single_line(const Mat4<Q>& A, const Eigen::Matrix<Q, 3
 }
 
 /// Where a cylinder's lines are drawn (sample_quadric): directions r + t sigma a through its axis
-/// point b, a the axis (primitive), r across it, sigma a rational within 2^-23 of |r| / |a|. b is a
+/// point b, a the axis (primitive), r across it, sigma a rational within 2^-52 of |r| / |a|. b is a
 /// centre and a K's kernel, so the line's quadratic is r's and it meets the cylinder at b +-
 /// lambda (r + t sigma a): at the cross-section's radius in r's direction, sqrt(1 + t^2) times as
 /// far out. r is shaped by the cross-section (conic_axes, in the plane across the axis). The first

@@ -492,6 +492,30 @@ TEST_CASE("a single line (a parabolic cylinder under a sun) is sampled 16 focal 
   }
 }
 
+TEST_CASE("a cylinder of radius 1e-100 at 3 from the origin is sized by its radius, not by rounding", "[accuracy][sampling]") {
+  // The points were rounded to 80 digits before the centre was subtracted: sized 3e-80, the rounding
+  // noise, 2e19 times its 16 radii, and a B of twice its radius passed (audit 34a F1; its oblique
+  // mirror, whose ball then missed a sampled point, stopped verify with an internal error, F2).
+  Mat4<Q> A = Mat4<Q>::Zero();  // x^2 + y^2 = 1e-200
+  const Q tiny = Q(1) / Q(boost::multiprecision::pow(boost::multiprecision::mpz_int(10), 200));
+  A(0, 0) = 1, A(1, 1) = 1, A(3, 3) = -tiny;
+  const double radius = 1e-100;
+  const Mat4<Q> M = reference_mirror(Vec4<Q>(0, 0, 1, -3));
+  for (int n : {1, 2, kDefaultSamples}) {
+    INFO(n << " samples");
+    const ItemPoints pts = reflected_points(A, M, n, 1);
+    REQUIRE(!pts.points.empty());
+    CHECK(pts.size.convert_to<double>() == Approx(radius * std::sqrt(257.0)).epsilon(1e-9));
+    Mat4<Q> B = M.transpose() * A * M;  // twice the radius: 1.5 radii off everywhere
+    B(3, 3) *= 4;
+    CHECK(reflection_error(pts, std::nullopt, B).geometric > Measure("0.05"));
+  }
+  const ItemPoints lit = terminator_points(A, Vec4<Q>(1, 2, 3, 1), kDefaultSamples, 1);
+  REQUIRE(!lit.points.empty());
+  CHECK(lit.size.convert_to<double>() < 20 * radius);
+  CHECK(lit.size.convert_to<double>() > radius);
+}
+
 TEST_CASE("a cylinder reflected: its chords' ends size it, the same at every seed, count and scale", "[accuracy][sampling]") {
   // Its lines' directions across the axis were random: a circular cylinder's size moved by 2e-8 with
   // the seed (sigma of a random r, audit 33a F7), a hyperbolic one's from 28 to 167 (F3). The first two

@@ -733,7 +733,8 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
   // quadrics, cylinders (an axis of centres) and paraboloids (none); 0 for a cone (its apex)
   const Mat4<Q> quadrics[] = {quadric_of({1, 1, -1}, {1, 0, 0}, -1), quadric_of({1, 4, 0}, {1, 2, 0}, -3),
                               quadric_of({1, 2, 0}, {0, 1, Q(-1, 2)}, 0), quadric_of({0, 1, 0}, {1, 0, 0}, 0),
-                              quadric_of({1, Q(1, 100), -4}, {1, 0, 0}, -1), quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1)};
+                              quadric_of({1, Q(1, 100), -4}, {1, 0, 0}, -1), quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1),
+                              quadric_of({1000000, -1, 0}, {0, 0, 0}, -1), quadric_of({-1, Q(1, 100), 4}, {1, 0, 0}, 1)};
   for (const Mat4<Q>& A : quadrics) {
     const Ball ball{Vec3<Q>(1, -2, 3), Q(5)};
     const Measure floor = gradient_floor(A, ball);
@@ -760,6 +761,12 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
   const Measure flat = gradient_floor(quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1), Ball{Vec3<Q>(0, 0, 0), Q(200)});
   CHECK(flat <= Measure(1) / 100);
   CHECK(flat >= Measure(8) / 1000);  // (mu, proved, is within 2 of the least eigenvalue's square)
+  // 10^6 x^2 - y^2 = 1: |(A x)_xyz| = 1000 at its vertices (+-1/1000, 0) and more elsewhere; the least
+  // eigenvalue of all (-1, the imaginary axis's) gave 1, 1000 times too low (audit 34a F3): the floor
+  // takes the eigenvalues of the sign of -A(centre) only
+  const Measure hyperbolic = gradient_floor(quadric_of({1000000, -1, 0}, {0, 0, 0}, -1), Ball{Vec3<Q>(0, 0, 0), Q(200)});
+  CHECK(hyperbolic <= 1000);
+  CHECK(hyperbolic >= Measure(999));
 }
 
 TEST_CASE("ball bound: a cylinder's ball turned to its axes, its box holding its points", "[accuracy][certified]") {

@@ -206,8 +206,10 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
 /// sigma = |K|_F >= its largest singular value (both proved exactly):
 ///  - K y0 = -k has a rational solution (A's centre, or any point of its axis of centres) and
 ///    r = A(y0): on A, y^T K y = -r for y = x - y0, so (Cauchy-Schwarz) |K y| >= |r| / |y| >=
-///    |r| / (|c - y0| + outer), and |K y|^2 >= lambda |r| >= sqrt(mu) |r| (lambda the least non-zero
-///    |eigenvalue| of K; in K's eigenvectors, |r| = |sum l_i y_i^2| <= sum l_i^2 y_i^2 / lambda);
+///    |r| / (|c - y0| + outer), and |K y|^2 >= lambda |r| >= sqrt(mu) |r| (lambda the least |l_i|
+///    of the eigenvalues l_i of K of the sign of -r: in K's eigenvectors -r = sum l_i y_i^2, whose
+///    terms of that sign sum to at least |r|, and each |l_i| y_i^2 <= l_i^2 y_i^2 / lambda; with
+///    tau <= lambda proved exactly, positive_eigen_floor, else lambda >= sqrt(mu));
 ///    where K is invertible also |K y| >= sqrt(mu) |y| >= sqrt(mu) (inner - |c - y0|), a cone's too
 ///    away from its apex;
 ///  - it has none (a paraboloid, a parabolic cylinder): with k_n, k's part in K's kernel, and y0 with
@@ -224,7 +226,7 @@ class GradientFloor {
  private:
   enum class Kind { none, centre, paraboloid } kind_ = Kind::none;
   Measure scale_ = 0, d0_ = 0;                   ///< |scale|, |c - y0|
-  Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(mu |r| / sigma), sqrt(mu) (K invertible)
+  Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(lambda |r|), sqrt(mu) (K invertible)
   Measure kn_ = 0, a0_ = 0, sigma_ = 0, mu_ = 0; ///< paraboloid: |k_n|, |A(y0)|, sigma, mu
   bool grows_ = false;                           ///< a paraboloid (the kernel is k_n's line)
   bool flat_ = false;                            ///< a parabolic cylinder (the kernel a plane, k_n in it)

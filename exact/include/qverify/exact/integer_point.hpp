@@ -62,6 +62,9 @@ struct IntegerPoint {
   Measure coordinate(int i) const;
   /// |x_i| to 80 digits.
   Measure magnitude(int i) const;
+  /// x_i / x_3 - c (a Cartesian offset from a rational point) to 80 digits, from the exact
+  /// difference: a point 1e-100 from c and 3 from the origin, rounded first, was its rounding noise.
+  Measure offset(int i, const Rational& c) const;
 
  private:
   mutable std::optional<Measure> root_;
