@@ -388,6 +388,34 @@ TEST_CASE("elliptic and parabolic cylinders: the same size at every seed and cou
   }
 }
 
+namespace {
+/// An item's terminator size: the same at every seed and count (to 1e-60), 3 times as large in the
+/// scene 3 times as large (to 1e-60, or `scaled` where the stretch's ends are 2^-52 from nominal),
+/// the same moved by (10^6, -3, 1/7). Returns the default sample.
+ItemPoints check_one_size(const Mat4<Q>& A, const Vec4<Q>& L, const Measure& scaled = Measure("1e-60")) {
+  const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
+  REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
+  for (std::uint64_t seed = 1; seed <= 4; ++seed)
+    for (int n : {1, 2, 7, kDefaultSamples}) {
+      INFO("seed " << seed << ", " << n << " samples");
+      CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
+    }
+  Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
+  D.topLeftCorner<3, 3>() /= 3;
+  const Vec4<Q> L3(3 * L(0), 3 * L(1), 3 * L(2), L(3));
+  const Mat4<Q> A3 = D * A * D;
+  CHECK(abs(terminator_points(A3, L3, kDefaultSamples, item_seed(2, 1, A3, L3)).size - 3 * first.size) <= scaled * first.size);
+  const Vec3<Q> t(1000000, -3, Q(1, 7));  // and moved by t
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topRightCorner<3, 1>() = -t;
+  const Mat4<Q> At = T.transpose() * A * T;
+  const Vec4<Q> Lt = L(3) == 0 ? L : Vec4<Q>(L(0) + t(0), L(1) + t(1), L(2) + t(2), Q(1));
+  CHECK(abs(terminator_points(At, Lt, kDefaultSamples, item_seed(3, 1, At, Lt)).size - first.size) <=
+        Measure("1e-60") * first.size);
+  return first;
+}
+}  // namespace
+
 TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator has one size at every seed and count",
           "[accuracy][sampling]") {
   // Random chords through a hyperbola's centre met it as far out as they were near its asymptotes:
@@ -404,26 +432,7 @@ TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator ha
                                    {"long, a lamp", h2, {2, 3, 1, 1}},
                                    {"long, a far lamp", h2, {1000, 7, 3, 1}}}) {
     INFO(name);
-    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
-    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
-    for (std::uint64_t seed = 1; seed <= 4; ++seed)
-      for (int n : {1, 2, 7, kDefaultSamples}) {
-        INFO("seed " << seed << ", " << n << " samples");
-        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
-      }
-    Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
-    D.topLeftCorner<3, 3>() /= 3;
-    const Vec4<Q> L3(3 * L(0), 3 * L(1), 3 * L(2), L(3));
-    const Mat4<Q> A3 = D * A * D;
-    CHECK(abs(terminator_points(A3, L3, kDefaultSamples, item_seed(2, 1, A3, L3)).size - 3 * first.size) <=
-          Measure("1e-60") * first.size);
-    const Vec3<Q> t(1000000, -3, Q(1, 7));  // and moved by t
-    Mat4<Q> T = Mat4<Q>::Identity();
-    T.topRightCorner<3, 1>() = -t;
-    const Mat4<Q> At = T.transpose() * A * T;
-    const Vec4<Q> Lt = L(3) == 0 ? L : Vec4<Q>(L(0) + t(0), L(1) + t(1), L(2) + t(2), Q(1));
-    CHECK(abs(terminator_points(At, Lt, kDefaultSamples, item_seed(3, 1, At, Lt)).size - first.size) <=
-          Measure("1e-60") * first.size);
+    check_one_size(A, L);
   }
 }
 
@@ -445,23 +454,7 @@ TEST_CASE("a parabola is sampled across its axis up to 16 focal lengths from its
                                    {"saddle", saddle, {1, 2, -4, 0}},
                                    {"saddle, level sun", saddle, {0, 1, 0, 0}}}) {
     INFO(name);
-    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
-    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
-    for (std::uint64_t seed = 1; seed <= 4; ++seed)
-      for (int n : {1, 2, 7, kDefaultSamples}) {
-        INFO("seed " << seed << ", " << n << " samples");
-        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
-      }
-    Mat4<Q> D = Mat4<Q>::Identity();  // the scene 3 times as large
-    D.topLeftCorner<3, 3>() /= 3;
-    const Mat4<Q> A3 = D * A * D;
-    CHECK(abs(terminator_points(A3, L, kDefaultSamples, item_seed(2, 1, A3, L)).size - 3 * first.size) <=
-          Measure("1e-60") * first.size);
-    Mat4<Q> T = Mat4<Q>::Identity();  // and moved
-    T.topRightCorner<3, 1>() = -Vec3<Q>(1000000, -3, Q(1, 7));
-    const Mat4<Q> At = T.transpose() * A * T;
-    CHECK(abs(terminator_points(At, L, kDefaultSamples, item_seed(3, 1, At, L)).size - first.size) <=
-          Measure("1e-60") * first.size);
+    check_one_size(A, L);
   }
 }
 
@@ -474,21 +467,12 @@ TEST_CASE("a single line (a parabolic cylinder under a sun) is sampled 16 focal 
   A(0, 0) = 1, A(1, 1) = Q(1, 100), A(0, 1) = A(1, 0) = Q(1, 10), A(2, 3) = A(3, 2) = Q(-1, 2), A(3, 3) = 3;
   for (const Vec4<Q>& L : {Vec4<Q>(1, 2, -4, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(3, -1, Q(1, 7), 0)}) {
     INFO("light " << L.transpose());
-    const ItemPoints first = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
-    REQUIRE(first.points.size() == static_cast<std::size_t>(kDefaultSamples));
-    CHECK(first.size.convert_to<double>() == Approx(16 * 0.5 / (2 * 1.01)).epsilon(1e-6));
-    for (std::uint64_t seed = 1; seed <= 4; ++seed)
-      for (int n : {1, 2, 7, kDefaultSamples}) {
-        INFO("seed " << seed << ", " << n << " samples");
-        CHECK(abs(terminator_points(A, L, n, item_seed(seed, 1, A, L)).size - first.size) <= Measure("1e-60") * first.size);
-      }
-    for (int k : {2, 3}) {  // the scene k times as large: k times the size (exactly for a power of 2)
-      Mat4<Q> D = Mat4<Q>::Identity();
-      D.topLeftCorner<3, 3>() /= k;
-      const Mat4<Q> Ak = D * A * D;
-      const Measure size = terminator_points(Ak, L, kDefaultSamples, item_seed(2, 1, Ak, L)).size;
-      CHECK(abs(size - k * first.size) <= (k == 2 ? Measure("1e-60") : Measure("1e-6")) * first.size);
-    }
+    const ItemPoints first = check_one_size(A, L, Measure("1e-15"));  // (its reach: a root of a ratio, to 2^-52)
+    CHECK(first.size.convert_to<double>() == Approx(16 * 0.5 / (2 * 1.01)).epsilon(1e-12));
+    Mat4<Q> D = Mat4<Q>::Identity();  // twice as large: exactly twice (the root of 4 times a ratio)
+    D.topLeftCorner<3, 3>() /= 2;
+    const Mat4<Q> A2 = D * A * D;
+    CHECK(abs(terminator_points(A2, L, kDefaultSamples, 5).size - 2 * first.size) <= Measure("1e-60") * first.size);
   }
 }
 
