@@ -39,12 +39,6 @@ FI enclosed(const Q& q) {
 
 bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
 
-/// Largest distance of the points from A's centre (`core_centre` where A has a line or plane of
-/// centres: centre_of_core; their centroid where A has none, a paraboloid, rounded to a rational at
-/// 80 digits: the distances are measured from that exact point), to 80 digits, and the centre. With a centre, a filter first: each point's squared distance is
-/// enclosed from its coordinates' enclosures, and only the points whose upper
-/// bound reaches the largest lower bound (or that the intervals cannot bound)
-/// can be the farthest; only those are rounded to 80 digits.
 /// Where A has a line or a plane of centres (a cylinder, a plane pair), the centre nearest `anchor`
 /// (the point sample_section and sample_quadric draw their lines about: quadric_base): a cylinder's
 /// axis point nearest its lamp, about which its sample is symmetric, not the sample's centroid, which
@@ -61,6 +55,13 @@ Vec3<Measure> offset_from(const RootPoint& x, const Vec3<Q>& c) {
   return Vec3<Measure>(n.offset(0, c(0)), n.offset(1, c(1)), n.offset(2, c(2)));
 }
 
+/// Largest distance of the points from A's centre, to 80 digits, and the centre: `core_centre`
+/// where K is singular and one is given (centre_of_core, or the sampler's middle of a stretch:
+/// SampleReport::middle); where K is singular and none is, their centroid, rounded to a rational (the
+/// distances are measured from that exact point). Each distance from the point's exact offset from the
+/// centre (offset_from). With a centre, a filter first: each point's squared distance is enclosed
+/// from its coordinates' enclosures, and only the points whose upper bound reaches the largest lower
+/// bound (or that the intervals cannot bound) can be the farthest; only those are measured.
 std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A,
                                         const std::optional<Vec3<Q>>& core_centre) {
   if (pts.empty()) return {0, Vec3<Q>::Zero()};
@@ -416,8 +417,9 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   out.points = s.points;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  // (a parallel pair on a quadric without a centre, a parabolic cylinder: its middle, about which its
-  // sample is symmetric, not the sample's centroid, which moved with an odd count)
+  // (where A has no centre, the middle of a stretch the sampler draws: a parabolic cylinder's parallel
+  // pair, a parabola, a single line; about it the sample is symmetric or its ends are the farthest,
+  // not the sample's centroid, which moved with the seed and count)
   std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
   if (!core_centre) core_centre = s.middle;
   std::tie(out.size, centre) = object_size(out.points, A, core_centre);
@@ -1544,8 +1546,9 @@ std::string error_bound_rule(const AccuracyOptions& accuracy) {
       "(R also on the polar plane inside it where h does not meet the terminator), and, where A is an ellipsoid, B "
       "are bounded over every point of their geometry by interval branch and bound; other terminators (hyperbolas, "
       "parabolas, line pairs) and other quadrics reflected are unbounded, and there the object size is the largest "
-      "distance of the sampled points from A's centre (a cylinder's axis point they are drawn about; their centroid "
-      "where A has no centre; the middle of a parabolic cylinder's terminator lines) and the same results are "
+      "distance of the sampled points from A's centre (a cylinder's axis point they are drawn about; where A has no "
+      "centre, the middle of a parallel pair's, a parabola's or a single line's stretch, else their centroid) and "
+      "the same results are "
       "bounded over every point of their geometry within that distance of the centre, by interval bounds over shells "
       "of that ball. Where the reference's gradient vanishes on the geometry (a cone's apex; R where its plane h "
       "crosses the terminator) a first-order distance means nothing: there the shells bound the Euclidean distance to "
