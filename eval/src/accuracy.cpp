@@ -39,16 +39,6 @@ FI enclosed(const Q& q) {
 
 bool positive(const FI& x) { return x.inf() > 0 && std::isfinite(x.sup()); }
 
-/// Where A has a line or a plane of centres (a cylinder, a plane pair), the centre nearest `anchor`
-/// (the point sample_section and sample_quadric draw their lines about: quadric_base): a cylinder's
-/// axis point nearest its lamp, about which its sample is symmetric, not the sample's centroid, which
-/// moved with the sample. nullopt where A has one centre (K invertible) or none (a paraboloid).
-std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
-  const QuadricCore core = quadric_core(A);
-  if (core.kernel.cols() == 0 || !core.found || !core.kn.isZero()) return std::nullopt;
-  return anchor ? core.nearest(*anchor) : core.y;
-}
-
 /// x - c to 80 digits per coordinate, from the exact difference (IntegerPoint::offset).
 Vec3<Measure> offset_from(const RootPoint& x, const Vec3<Q>& c) {
   const IntegerPoint n(x);
@@ -73,6 +63,12 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
     // the centroid, as offsets from a rational point near the first (exact differences again)
     const Vec3<Measure> x0 = cartesian(pts.front());
     const Vec3<Q> r0(exact_measure(x0(0)), exact_measure(x0(1)), exact_measure(x0(2)));
+    // one point (or one point repeated) has no extent: 0, exactly (not the rounding of the centroid's
+    // rounding), so that the default sample sizes it (terminator_points)
+    const RootPoint& f = pts.front();
+    if (std::all_of(pts.begin(), pts.end(),
+                    [&](const RootPoint& x) { return x.p() == f.p() && x.q() == f.q() && x.delta() == f.delta(); }))
+      return {0, r0};
     Vec3<Measure> m = Vec3<Measure>::Zero();
     for (const RootPoint& x : pts) m += offset_from(x, r0);
     m /= Measure(static_cast<long>(pts.size()));
@@ -82,8 +78,6 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
     return {best, cq};
   }
   const Vec3<Q> cq = K.determinant() == 0 ? *core_centre : Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
-  Vec3<Measure> c;
-  for (int i = 0; i < 3; ++i) c(i) = to_measure(cq(i));
   std::vector<FI> d2(pts.size());
   std::vector<char> bounded(pts.size(), 0);
   double floor = 0;

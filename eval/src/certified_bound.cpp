@@ -898,7 +898,8 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
     kind_ = Kind::centre;
     const Q r = A(3, 3) + k.dot(y);
     r_ = abs(to_measure(r));
-    // |K y|^2 >= lambda |r| >= sqrt(mu) |r|, lambda the least non-zero |eigenvalue| of K (header);
+    // |K y|^2 >= lambda |r| >= sqrt(mu) |r|, lambda the least |eigenvalue| of K of the sign of -r,
+    // at least the least non-zero one (header);
     // the first floor, mu |r| / sigma, was sigma / lambda times lower: 100 for an elliptic cylinder of
     // semi-axes 1 and 100, whose reflection's bound was 10^6 times its error (audit 33a F3)
     if (r != 0 && mu > 0) steady_ = sqrt(Measure(sqrt(mu_) * r_));
@@ -906,7 +907,8 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
     // hyperbolic cylinder's real axis, where the least of all was its imaginary one's, 10^6 times
     // smaller for x^2 10^6 - y^2 = 1 (audit 34a F3)
     if (r != 0) {
-      const Q tau = positive_eigen_floor(r > 0 ? Mat3<Q>(-K) : K);
+      const Mat3<Q> S = spatial_part(A);  // (symmetric: its characteristic polynomial's roots are real)
+      const Q tau = positive_eigen_floor(r > 0 ? Mat3<Q>(-S) : S);
       if (tau > 0) steady_ = std::max(steady_, Measure(sqrt(Measure(to_measure(tau) * r_))));
     }
     if (core.kernel.cols() == 0 && mu > 0) linear_ = sqrt(mu_);
@@ -1246,9 +1248,10 @@ std::optional<TurnedBall> cylinder_turn(const Mat4<Q>& ref, const Ball& ball) {
     const Vec3<Q> u = R.col(i);
     const Measure h = abs(to_measure(u.dot(Vec3<Q>(y0 - ball.centre)))) + reach * abs(to_measure(u.dot(a))) / an +
                       sqrt(ra * abs(to_measure(u.dot(Kplus * u))));
-    const double hd = Measure(h * Measure(1 + 1e-15)).convert_to<double>();  // (above h: its last digits, the rounding)
-    if (!std::isfinite(hd)) return std::nullopt;
-    half(i) = to_rational(hd);
+    // (above h, exactly: its 80 digits' error is far below 2^-64; through a double, a half-width
+    // below 1e-308 rounded to a subnormal or 0)
+    if (!boost::multiprecision::isfinite(h)) return std::nullopt;
+    half(i) = exact_measure(h) * (1 + exact_pow2(-64));
   }
   out.ball.half = half;
   return out;

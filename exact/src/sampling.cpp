@@ -148,7 +148,7 @@ Vec3<Q> scaled_to(const Vec3<Q>& v, const Q& reach) { return Vec3<Q>(v * Q(reach
 /// 1e-308 it underflowed to 0.)
 std::pair<double, long> split_sqrt(const Q& r) {
   const long k = (static_cast<long>(msb(numerator(r))) - static_cast<long>(msb(denominator(r)))) / 2;
-  return {std::sqrt(Q(r * exact_pow2(-2 * k)).convert_to<double>()), k};  // (r' in [1/8, 8])
+  return {std::sqrt(Q(r * exact_pow2(-2 * k)).convert_to<double>()), k};  // (r' in [1/4, 4])
 }
 /// A positive rational within 2^-52 of sqrt(r) (relative): x 2^k of split_sqrt. (With 24 bits, as it
 /// was, a cylinder's size, which its stretch's ends make, moved by 1.5e-8 when it was turned: audit
@@ -160,14 +160,15 @@ Q rough_sqrt(const Q& r) {
 
 /// The axes of a non-singular form G (k x k, exact) in the metric M = diag(m) of an orthogonal basis
 /// whose vectors' squared lengths are m (so that a basis of unequal lengths is not taken for an
-/// anisotropic form): U, their directions, from a floating decomposition of S^-1 G S^-1, S =
-/// sqrt(M / max m) in double, taken back as S^-1 y; rq, their exact Rayleigh quotients u^T G u /
-/// u^T M u (exact, so that an axis 10^9 shorter than the others, whose eigenvalue the double
-/// decomposition does not resolve, still has its own). nullopt where a decomposition fails or a
-/// quotient is 0.
+/// anisotropic form): Y, the eigenvectors of a floating decomposition of S^-1 G S^-1, S = sqrt(M /
+/// max m) in double (sd its diagonal), their directions u = S^-1 y taken back exactly (a rational
+/// division by each double of sd); rq, their exact Rayleigh quotients u^T G u / u^T M u (exact, so
+/// that an axis 10^9 shorter than the others, whose eigenvalue the double decomposition does not
+/// resolve, still has its own). nullopt where a decomposition fails or a quotient is 0.
 template <int k>
 struct FormAxes {
-  Eigen::Matrix<double, k, k> U;
+  Eigen::Matrix<double, k, k> Y;
+  Eigen::Matrix<double, k, 1> sd;
   std::array<Q, k> rq;
 };
 template <int k>
@@ -186,11 +187,12 @@ std::optional<FormAxes<k>> form_axes(const Eigen::Matrix<Q, k, k>& G, const Eige
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, k, k>> eig(Gd);
   if (eig.info() != Eigen::Success) return std::nullopt;
   FormAxes<k> f;
-  f.U = sd.cwiseInverse().asDiagonal() * eig.eigenvectors();
-  if (!f.U.allFinite()) return std::nullopt;
+  f.Y = eig.eigenvectors();
+  f.sd = sd;
+  if (!f.Y.allFinite()) return std::nullopt;
   for (int c = 0; c < k; ++c) {
     Eigen::Matrix<Q, k, 1> u;
-    for (int i = 0; i < k; ++i) u(i) = Q(f.U(i, c));
+    for (int i = 0; i < k; ++i) u(i) = Q(f.Y(i, c)) / Q(sd(i));
     if (u.isZero()) return std::nullopt;
     Q& r = f.rq[static_cast<std::size_t>(c)];
     r = Q(u.dot(Eigen::Matrix<Q, k, 1>(G * u)) / u.dot(Eigen::Matrix<Q, k, 1>(m.cwiseProduct(u))));
@@ -207,10 +209,14 @@ Q least_quotient(const FormAxes<k>& f) {
   return lo;
 }
 
-/// The semi-axes of the form's level set, relative to its longest: column c is U_c / sqrt(|rq_c| /
-/// lo), lo the least |rq| (split_sqrt), each entry rounded to 40 bits of its column's largest (smaller numbers in every sampled point, and the last bits of the decomposition,
-/// which may differ between builds, mostly gone; 40 bits keep a column's error along an axis 10^9
-/// shorter below a thousandth of that axis). nullopt if the columns come out dependent.
+/// The semi-axes of the form's level set, relative to its longest: column c is u_c / sqrt(|rq_c| /
+/// lo), lo the least |rq| (split_sqrt), u_c = S^-1 y_c with y_c's entries rounded to 40 bits of its
+/// largest (smaller numbers in every sampled point, and the last bits of the decomposition, which may
+/// differ between builds, mostly gone; 40 bits keep a column's error along an axis 10^9 shorter below
+/// a thousandth of that axis). Rounded before S^-1, in the metric's own units: rounded after it, to
+/// 40 bits of the column's largest coordinate, the coordinate along a basis vector 2^40 times longer
+/// than the other (a plane's normal of long decimals) was 0, and the shape lost (audit 34b F1).
+/// nullopt if the columns come out dependent.
 template <int k>
 std::optional<Eigen::Matrix<Q, k, k>> semi_axes(const FormAxes<k>& f) {
   const Q lo = least_quotient(f);
@@ -219,11 +225,11 @@ std::optional<Eigen::Matrix<Q, k, k>> semi_axes(const FormAxes<k>& f) {
     // (the ratio's root as x 2^e, split_sqrt: in one double a ratio of 1e-600 underflowed to 0 and
     // the shape was dropped; audit 34a F5)
     const auto [axis, e] = split_sqrt(Q(lo / abs(f.rq[static_cast<std::size_t>(c)])));
-    const double top_d = f.U.col(c).cwiseAbs().maxCoeff() * axis;
+    const double top_d = f.Y.col(c).cwiseAbs().maxCoeff() * axis;
     if (!(top_d > 0) || !std::isfinite(top_d)) return std::nullopt;
     const int top = std::ilogb(top_d);
     for (int i = 0; i < k; ++i)
-      W(i, c) = Q(std::ldexp(std::round(std::ldexp(f.U(i, c) * axis, 40 - top)), top - 40)) * exact_pow2(e);
+      W(i, c) = Q(std::ldexp(std::round(std::ldexp(f.Y(i, c) * axis, 40 - top)), top - 40)) / Q(f.sd(i)) * exact_pow2(e);
   }
   if (W.determinant() == 0) return std::nullopt;
   return W;
@@ -345,10 +351,13 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
 
 /// How far along a hyperbola its chords reach (a hyperbolic cylinder's cross-section, a terminator
 /// on a hyperboloid): directions W_0 + s W_1 through its centre (W_0 the real semi-axis, W_1 the
-/// other), |s| <= 63/65, where the hyperbola is 65/16 (about 4) times as far from the centre as W_0
-/// + s W_1 in its own semi-axes; seeded chords |s| <= 63/65 15/16 (about 2.4 times), short of that.
+/// other), |s| <= s_end (ConicAxes::end), s_end = 63/65, where the hyperbola is 65/16 (about 4) times
+/// as far from the centre as W_0 + s W_1 in its own semi-axes; but at most 16 |W_0| / |W_1|, about
+/// 16 real semi-axes out, where the other is longer: a hyperboloid near a cylinder (x^2 + y^2 -
+/// 10^-24 z^2 = 1, its terminator two near-parallel branches 1e12 semi-axes long out to s = 63/65)
+/// is sampled as the cylinder is, within 16 half-widths, not 3.7e12 (audit 34b F6). Seeded chords
+/// |s| <= s_end 15/16, short of the ends.
 const Q kHyperbolaEnd(63, 65);
-Q hyperbola_inner(Draw& draw) { return Q(kHyperbolaEnd * 15 / 16 * draw.unit()); }
 
 /// The semi-axes of a central conic through whose centre b lines are drawn in a plane spanned by
 /// `plane` (two orthogonal vectors; a line b + lambda r, r = plane v, meets it where lambda^2
@@ -359,6 +368,8 @@ Q hyperbola_inner(Draw& draw) { return Q(kHyperbolaEnd * 15 / 16 * draw.unit());
 struct ConicAxes {
   Eigen::Matrix<Q, 3, 2> across;
   bool hyperbolic = false;
+  Q end{kHyperbolaEnd};  ///< a hyperbola's s_end (kHyperbolaEnd)
+  Q inner(Draw& draw) const { return Q(end * 15 / 16 * draw.unit()); }
 };
 std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 2>& plane, const Q& c) {
   if (c == 0) return std::nullopt;
@@ -368,15 +379,19 @@ std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 
   if (!f) return std::nullopt;
   const auto W = semi_axes(*f);
   if (!W) return std::nullopt;
-  // real directions: those where G's sign is the opposite of c's
+  // real directions: those where G's sign is the opposite of c's; a hyperbola exactly where det G < 0
+  // (the quotients' signs, of approximate axes, must agree: beyond a ratio of 1e16 they may not)
   const bool real0 = (f->rq[0] > 0) != (c > 0), real1 = (f->rq[1] > 0) != (c > 0);
   if (!real0 && !real1) return std::nullopt;
   ConicAxes out;
-  out.hyperbolic = real0 != real1;
+  out.hyperbolic = G.determinant() < 0;
+  if (out.hyperbolic != (real0 != real1)) return std::nullopt;
   // first: the real semi-axis of a hyperbola, the longer of an ellipse (the one of the least |rq|)
   const int first = out.hyperbolic ? (real0 ? 0 : 1) : (abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1);
   out.across.col(0) = plane * Eigen::Matrix<Q, 2, 1>(W->col(first));
   out.across.col(1) = plane * Eigen::Matrix<Q, 2, 1>(W->col(1 - first));
+  if (out.hyperbolic)
+    out.end = std::min(kHyperbolaEnd, Q(16 * rough_sqrt(Q(out.across.col(0).squaredNorm() / out.across.col(1).squaredNorm()))));
   return out;
 }
 
@@ -433,9 +448,9 @@ std::optional<ParabolaChords> parabola_chords(const Mat4<Q>& A, const Eigen::Mat
 /// not change): on the plane A(b + y) = A(b) + 2 y . q, q the in-plane part of (A b)_xyz, so the line
 /// is m + t d, m = b - A(b) / (2 |q|^2) q (the point nearest b), d = n x q (primitive): rational
 /// points, taken as they are, with |t d| <= 16 f, f = |q| / (2 |K|_F) (a parabolic cylinder's focal
-/// length: q is k_n there and |K|_F = |lambda| |g|^2), through a rational within 2^-52 of |q| /
-/// (|K|_F |d|). The ends t = +-t_max first (the farthest from m, which sizes it), then seeded ones
-/// within 15/16 of them. Random chords through a point beside it met it as far out as they were near
+/// length: q is k_n there and |K|_F = |lambda| |g|^2), through a rational within 2^-52 of f / |d|.
+/// The ends t = +-t_max first (the farthest from m, and from any point, of the points between
+/// them), then seeded ones within 15/16 of them. Random chords through a point beside it met it as far out as they were near
 /// parallel to it: sized 0.3 to 112 by seed and count (audit 33a F4). nullopt where A's quadratic
 /// part does not vanish on the plane, or K = 0 (no length: a plane).
 struct SingleLine {
@@ -465,9 +480,9 @@ std::optional<SingleLine> single_line(const Mat4<Q>& A, const Eigen::Matrix<Q, 3
 /// lambda (r + t sigma a): at the cross-section's radius in r's direction, sqrt(1 + t^2) times as
 /// far out. r is shaped by the cross-section (conic_axes, in the plane across the axis). The first
 /// two lines are the farthest: r = across_0 (an ellipse's long semi-axis; a hyperbola's across_0 +
-/// kHyperbolaEnd across_1) and t = +-kPairReach (r is exactly across a: the same distance); the
+/// ConicAxes::end across_1) and t = +-kPairReach (r is exactly across a: the same distance); the
 /// seeded ones stay short of them (an ellipse's r = across v, v random; a hyperbola's
-/// hyperbola_inner; |t| <= kPairReach - 1), so the sample's size, its largest distance from b, is
+/// ConicAxes::inner; |t| <= kPairReach - 1), so the sample's size, its largest distance from b, is
 /// the ends' at every seed and count and scales with the scene. Random directions across the axis
 /// met an elliptic cylinder anywhere between its semi-axes (and a hyperbolic one unboundedly far
 /// out): one with semi-axes 1 and 100 was sized 28.9 to 1603 by the seed and the count, and a
@@ -501,6 +516,12 @@ QuadricCore quadric_core(const Mat4<Q>& A) {
   core.y = lu.solve(Vec3<Q>(-kr));
   core.found = Vec3<Q>(K * core.y + kr).isZero();
   return core;
+}
+
+std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
+  const QuadricCore core = quadric_core(A);
+  if (core.kernel.cols() == 0 || !core.found || !core.kn.isZero()) return std::nullopt;
+  return anchor ? core.nearest(*anchor) : core.y;
 }
 
 Vec3<Q> QuadricCore::nearest(const Vec3<Q>& p) const {
@@ -606,7 +627,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   const Eigen::Matrix<Q, 3, 2> in_plane = plane_across(shift_normal);
   if (const std::optional<SingleLine> line = pair ? std::nullopt : single_line(A, in_plane, shift_normal, b)) {
     rep.middle = Vec3<Q>(line->m.head<3>());
-    rep.ends = 1;
+    rep.ends = 2;  // (measured from an axis point, one end may be farther than the other)
     Stretch ends;
     ends.inner = kPairReach - 1;
     while (static_cast<int>(rep.points.size()) < n) {
@@ -621,8 +642,8 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
       Eigen::Matrix<Q, 2, 2>(in_plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * in_plane),
       Eigen::Matrix<Q, 2, 1>(in_plane.col(0).squaredNorm(), in_plane.col(1).squaredNorm()));
   // a hyperbola (a hyperboloid's terminator), b its centre: chords along its axes (conic_axes), the
-  // first the farthest (kHyperbolaEnd), its two points as far from b; the others short of it
-  // (hyperbola_inner). Random directions met it as far out as they were near its asymptotes, and
+  // first two the farthest (s = +-ConicAxes::end), their points as far from b; the others short of
+  // them (ConicAxes::inner). Random directions met it as far out as they were near its asymptotes, and
   // its size was the seed's.
   const std::optional<ConicAxes> hyperbola = [&]() -> std::optional<ConicAxes> {
     if (pair || shape || K.determinant() == 0) return std::nullopt;
@@ -633,7 +654,10 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     if (!axes || !axes->hyperbolic) return std::nullopt;
     return axes;
   }();
-  if (hyperbola) rep.ends = 2;
+  if (hyperbola) {
+    rep.middle = Vec3<Q>(b.head<3>() / b(3));
+    rep.ends = 4;
+  }
   const std::optional<ParabolaChords> parabola =
       pair || shape || hyperbola || K.determinant() == 0 ? std::nullopt : parabola_chords(A, in_plane, shift_normal, b);
   if (parabola) {  // (its size from the middle of its stretch of axis where A has no centre: a paraboloid)
@@ -641,7 +665,30 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     rep.ends = 2;
   }
   Stretch stretch;  // a parallel pair's chords (ParallelPair)
-  bool hyperbola_end = true, parabola_end = true;
+  int hyperbola_ends = 2;  // (s = +-its end)
+  bool parabola_end = true;
+  // Measured from a point other than the stretch's middle (A's centre; a cylinder's axis point), a
+  // seeded point may lie farther out than the ends (10% farther for a hyperbola on a hyperboloid
+  // whose centre is off the section's): such points are dropped, as far as 80 digits tell, so that
+  // the ends size the sample at every seed and count; unless more than n are (the farthest point is
+  // then inside the stretch: from it a single seeded sample would be all there is). Not a parabola's
+  // on a hyperboloid: its vertex may be farther than its 16 f chord, and it stays sized by its sample.
+  int dropped = 0;
+  const std::optional<Vec3<Q>> size_from =
+      !hyperbola ? std::nullopt
+      : Mat3<Q>(A.topLeftCorner<3, 3>()).determinant() != 0
+          ? std::optional<Vec3<Q>>(Vec3<Q>(-(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()))))
+          : centre_of_core(A, anchor);
+  std::optional<Measure> ends_reach;  // the ends' largest squared distance from size_from
+  const auto distance2 = [&](const RootPoint& x) {
+    const IntegerPoint ip(x);
+    Measure d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Measure o = ip.offset(i, (*size_from)(i));
+      d2 += o * o;
+    }
+    return d2;
+  };
   const auto direction = [&]() -> Vec3<Q> {
     if (pair) return Vec3<Q>(pair->across + stretch.next(draw) * pair->along);
     if (parabola && !stepped) {  // (each chord from its own base on the axis)
@@ -655,8 +702,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
       return parabola->across;
     }
     if (hyperbola && !stepped) {
-      const Q s = hyperbola_end ? kHyperbolaEnd : hyperbola_inner(draw);
-      hyperbola_end = false;
+      const Q s = hyperbola_ends > 0 ? Q(hyperbola_ends-- == 2 ? hyperbola->end : -hyperbola->end) : hyperbola->inner(draw);
       return Vec3<Q>(hyperbola->across.col(0) + s * hyperbola->across.col(1));
     }
     if (!shape || stepped) return normal.cross(draw.vec3());
@@ -671,6 +717,19 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     const std::size_t had = rep.points.size();
     hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
     if (stepped) keep_near(rep.points, had, b, reach);
+    if (size_from && !stepped) {
+      if (!ends_reach && static_cast<int>(rep.points.size()) >= rep.ends) {
+        Measure far = 0;
+        for (int i = 0; i < rep.ends; ++i) far = std::max(far, distance2(rep.points[static_cast<std::size_t>(i)]));
+        ends_reach = far;
+      } else if (ends_reach && dropped <= n) {
+        const Measure cap = *ends_reach * (1 - Measure("1e-60"));
+        const auto beyond = std::remove_if(rep.points.begin() + static_cast<std::ptrdiff_t>(had), rep.points.end(),
+                                           [&](const RootPoint& x) { return distance2(x) > cap; });
+        dropped += static_cast<int>(rep.points.end() - beyond);
+        rep.points.erase(beyond, rep.points.end());
+      }
+    }
     // no line has met the section yet (the base may be its singular point, a cone's apex, which
     // every line through it only touches): move the base point within the plane
     if (rep.attempts % 8 == 0 && hits == 0) {
@@ -703,9 +762,9 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   bool stepped = false;
   const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));
   // A cylinder (an axis of centres, through b): lines r + t a within kPairReach cross-section radii
-  // of b along the axis (CylinderChords); random directions met it as far out as they were near
+  // of b along the axis (cylinder_chords); random directions met it as far out as they were near
   // parallel to the axis (10^9 out for an axis 10^-9 from level). Where its cross-section has no
-  // shape (CylinderChords says where), r random across the axis.
+  // shape (cylinder_chords says where), r random across the axis.
   const QuadricCore core = quadric_core(A);
   const std::optional<Vec3<Q>> axis =
       core.line_of_centres() ? std::optional<Vec3<Q>>(primitive_direction(Vec3<Q>(core.kernel.col(0)))) : std::nullopt;
@@ -720,7 +779,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
     }
     const bool end = stretch.ends > 0;  // (the stretch's two ends: the same r)
     if (chords->hyperbolic) {
-      const Q s = end ? kHyperbolaEnd : hyperbola_inner(draw);
+      const Q s = end ? chords->end : chords->inner(draw);
       return Vec3<Q>(chords->across.col(0) + s * chords->across.col(1));
     }
     if (end) return chords->across.col(0);

@@ -355,7 +355,7 @@ TEST_CASE("a cylinder is sampled within 16 half-widths of its middle - the same 
     const Vec4<Q> mirror(1, 2, 2, -7);
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       const ItemPoints reflected = reflected_points(cyl, reference_mirror(mirror), kDefaultSamples, item_seed(seed, 2, cyl, mirror));
-      CHECK(reflected.size <= Measure("16.0313") * to_measure(r));  // sqrt(1 + 16^2) (1 + 2^-23)
+      CHECK(reflected.size <= Measure("16.0313") * to_measure(r));  // sqrt(1 + 16^2) (1 + 2^-52), rounded up
       CHECK(reflected.size >= 16 * to_measure(r));
     }
   }
@@ -430,9 +430,37 @@ TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator ha
                                    {"one sheet, a far lamp", h1, {1000, 7, 3, 1}},
                                    {"one sheet, a sun", h1, {1, 0, Q(1, 5), 0}},
                                    {"long, a lamp", h2, {2, 3, 1, 1}},
-                                   {"long, a far lamp", h2, {1000, 7, 3, 1}}}) {
+                                   {"long, a far lamp", h2, {1000, 7, 3, 1}},
+                                   // (its polar plane's normal 2^40 times longer than its basis's other vector:
+                                   // the axes were rounded to 0 along it, and the chords random; audit 34b F1)
+                                   {"one sheet, a lamp of 17 digits", h1,
+                                    {Q(33000000000000003, 10000000000000000), Q(69999999999999996, 100000000000000000),
+                                     Q(11000000000000001, 10000000000000000), 1}}}) {
     INFO(name);
     check_one_size(A, L);
+  }
+  {  // a hyperboloid near a cylinder, x^2 + y^2 - 10^-24 z^2 = 1: sampled as the cylinder is, within
+     // about 16 half-widths, not 3.7e12 out along its near-parallel branches (audit 34b F6)
+    Mat4<Q> near = h1;
+    near(2, 2) = -Q(1) / Q(boost::multiprecision::pow(boost::multiprecision::mpz_int(10), 24));
+    const ItemPoints pts = check_one_size(near, Vec4<Q>(3, 0, 0, 1));
+    CHECK(pts.size < 17);
+    CHECK(pts.size > 15);
+  }
+  // measured from A's centre, off the section's (review of 84335e0: seeded chords reached 10% farther
+  // than the end chord; such points are now dropped), or from the section's centre where A has none
+  // (a saddle lit by a lamp: the sample's centroid moved with odd counts)
+  Mat4<Q> off = Mat4<Q>::Zero();  // x^2 / 4 + 7 y^2 / 2 - 4 z^2 = 1, its section by x + 2 y + 2 z = 2
+  off(0, 0) = Q(1, 4), off(1, 1) = Q(7, 2), off(2, 2) = -4, off(3, 3) = -1;
+  Mat4<Q> saddle = Mat4<Q>::Zero();  // x^2 - 3 y^2 + 2 x = 2 z
+  saddle(0, 0) = 1, saddle(1, 1) = -3, saddle(0, 3) = saddle(3, 0) = 1, saddle(2, 3) = saddle(3, 2) = -1;
+  for (const auto& [name, A, L] : {std::tuple<const char*, Mat4<Q>, Vec4<Q>>{"off-centre section", off, {2, Q(2, 7), Q(-1, 4), 1}},
+                                   {"a saddle under a lamp", saddle, {1, 2, 3, 1}}}) {
+    INFO(name);
+    const ItemPoints first = check_one_size(A, L);
+    // the ends are the farthest of every sample
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+      CHECK(terminator_points(A, L, 256, item_seed(seed, 1, A, L)).size <= first.size);
   }
 }
 
@@ -474,6 +502,11 @@ TEST_CASE("a single line (a parabolic cylinder under a sun) is sampled 16 focal 
     const Mat4<Q> A2 = D * A * D;
     CHECK(abs(terminator_points(A2, L, kDefaultSamples, 5).size - 2 * first.size) <= Measure("1e-60") * first.size);
   }
+  // a hyperbolic cylinder lit from its asymptotic plane: the single line x = 5/4, y = 3/4, measured
+  // from the axis point nearest the lamp, as far from either end (one end alone sized it at 1 sample)
+  Mat4<Q> hyperbolic = Mat4<Q>::Zero();  // x^2 - y^2 = 1
+  hyperbolic(0, 0) = 1, hyperbolic(1, 1) = -1, hyperbolic(3, 3) = -1;
+  check_one_size(hyperbolic, Vec4<Q>(2, 2, 1, 1), Measure("1e-15"));
 }
 
 TEST_CASE("a cylinder of radius 1e-100 at 3 from the origin is sized by its radius, not by rounding", "[accuracy][sampling]") {
@@ -503,7 +536,7 @@ TEST_CASE("a cylinder of radius 1e-100 at 3 from the origin is sized by its radi
 TEST_CASE("a cylinder reflected: its chords' ends size it, the same at every seed, count and scale", "[accuracy][sampling]") {
   // Its lines' directions across the axis were random: a circular cylinder's size moved by 2e-8 with
   // the seed (sigma of a random r, audit 33a F7), a hyperbolic one's from 28 to 167 (F3). The first two
-  // lines are now the farthest (sampling.cpp, CylinderChords): along a circular or elliptic one's long
+  // lines are now the farthest (sampling.cpp, cylinder_chords): along a circular or elliptic one's long
   // semi-axis, along a hyperbolic one's real semi-axis plus 63/65 of the other, 16 times as far
   // along the axis.
   Mat4<Q> hyperbolic = Mat4<Q>::Zero();  // x^2 - y^2 / 100 = 1
@@ -544,6 +577,14 @@ TEST_CASE("an item's size does not fall to 0 with one sample - the default sampl
   const ItemPoints mirrored = reflected_points(cyl, M, 1, 7);
   REQUIRE(mirrored.points.size() == 1);
   CHECK(mirrored.size > 0);
+  // a paraboloid, measured from its points' centroid: one irrational point is exactly 0 from it (not
+  // the rounding of its rounding, 1e-160 of its distance from the origin, which kept the default
+  // sample from sizing it: review of c9c51a4)
+  Mat4<Q> bowl = Mat4<Q>::Zero();  // x^2 + 2 y^2 = z
+  bowl(0, 0) = 1, bowl(1, 1) = 2, bowl(2, 3) = bowl(3, 2) = Q(-1, 2);
+  const ItemPoints bowl_one = reflected_points(bowl, M, 1, 7);
+  REQUIRE(bowl_one.points.size() == 1);
+  CHECK(bowl_one.size > Measure(1) / 10);
   // a cone lit from inside: its terminator is its apex alone, of size 0 at any count
   const Mat4<Q> cone = cone_quadric<Q>(Vec3<Q>(1, 2, 3), Vec3<Q>(0, 0, 1), Q(1, 2));
   const ItemPoints apex = terminator_points(cone, Vec4<Q>(1, 2, 10, 1), 1, 7);

@@ -28,11 +28,14 @@ struct SampleReport {
   std::vector<RootPoint> points;
   long long attempts = 0;  ///< lines drawn
   bool exhausted = false;  ///< fewer points than asked were found
-  /// A section that is a pair of parallel lines: the point of their midline its chords pass through
-  /// (sample_section), whose chords' ends are the sample's farthest points from it.
+  /// The middle of the stretch sample_section draws, from which its ends are the farthest points: a
+  /// pair of parallel lines' midline point its chords pass through, a hyperbola's centre, the middle
+  /// of a parabola's stretch of axis, a single line's point nearest the base. (The object size is
+  /// measured from it where A has no centre of its own: eval/accuracy.hpp.)
   std::optional<Vec3<Rational>> middle;
-  /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends,
-  /// a hyperbola's first chord): fewer than that do not reach its size (0: no such ends).
+  /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends, a
+  /// hyperbola's two end chords' 4, a parabola's end chord's 2, a single line's 2 ends): fewer than
+  /// that do not reach its size (0: no such ends).
   int ends = 0;
 };
 
@@ -68,6 +71,13 @@ Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
 Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi,
                             const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
+/// Where A has a line or a plane of centres (a cylinder, a plane pair), the centre nearest `anchor`
+/// (the point sample_section and sample_quadric draw their lines about: quadric_base): a cylinder's
+/// axis point nearest its lamp, about which its sample is symmetric, not the sample's centroid, which
+/// moved with the sample; the object size is measured from it (eval/accuracy.hpp). nullopt where A
+/// has one centre (K invertible) or none (a paraboloid).
+std::optional<Vec3<Rational>> centre_of_core(const Mat4<Rational>& A, const std::optional<Vec3<Rational>>& anchor);
+
 /// The point sample_quadric draws its lines through, a function of A and `anchor` alone: A's centre,
 /// the point of its axis (plane) of centres nearest `anchor` (any where none is given), a point
 /// inside a paraboloid on its axis. Finite.
@@ -87,7 +97,10 @@ Vec4<Rational> quadric_base(const Mat4<Rational>& A, const std::optional<Vec3<Ra
 /// result within 0.01 of the terminator passed.
 Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& light);
 
-/// Up to n points of A ∩ {pi . x = 0}, all finite, on lines through section_base(A, pi, anchor).
+/// Up to n points of A ∩ {pi . x = 0}, all finite, on lines through section_base(A, pi, anchor)
+/// (a parabola: chords across its axis from bases on it; a single line: its own rational points).
+/// A hyperbola's seeded points farther than its ends from the point its size is measured from (A's
+/// centre, or centre_of_core) are dropped (up to n of them), so that the ends size it.
 /// Where no line through the base point meets the
 /// section (the base is a cone's apex, which every line through it only touches) the base moves
 /// within the plane by steps of L-infinity length `reach` (> 0: reach_length), and the points kept
