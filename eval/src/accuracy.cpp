@@ -46,20 +46,19 @@ Vec3<Measure> offset_from(const RootPoint& x, const Vec3<Q>& c) {
 }
 
 /// Largest distance of the points from A's centre, to 80 digits, and the centre: `core_centre`
-/// where K is singular and one is given (centre_of_core, or the sampler's middle of a stretch:
-/// SampleReport::middle); where K is singular and none is, their centroid, rounded to a rational (the
-/// distances are measured from that exact point). Each distance from the point's exact offset from the
+/// where one is given (centre_of_core, or where A has none the sampler's middle of a stretch:
+/// SampleReport::middle); where none is, their centroid, rounded to a rational (the distances are
+/// measured from that exact point). Each distance from the point's exact offset from the
 /// centre (offset_from). With a centre, a filter first: each point's squared distance is enclosed
 /// from its coordinates' enclosures, and only the points whose upper bound reaches the largest lower
 /// bound (or that the intervals cannot bound) can be the farthest; only those are measured.
-std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const Mat4<Q>& A,
+std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts,
                                         const std::optional<Vec3<Q>>& core_centre) {
   if (pts.empty()) return {0, Vec3<Q>::Zero()};
-  const Mat3<Q> K = A.topLeftCorner<3, 3>();
   // (every distance from the exact offset of the point from the centre: the points rounded to 80
   // digits first, a cylinder of radius 1e-100 at 3 from the origin was sized 3e-80, its rounding
   // noise, and a B off by 1.5 radii passed; audit 34a F1)
-  if (K.determinant() == 0 && !core_centre) {
+  if (!core_centre) {
     // the centroid, as offsets from a rational point near the first (exact differences again)
     const Vec3<Measure> x0 = cartesian(pts.front());
     const Vec3<Q> r0(exact_measure(x0(0)), exact_measure(x0(1)), exact_measure(x0(2)));
@@ -77,7 +76,7 @@ std::pair<Measure, Vec3<Q>> object_size(const std::vector<RootPoint>& pts, const
     for (const RootPoint& x : pts) best = mmax(best, sqrt(offset_from(x, cq).squaredNorm()));
     return {best, cq};
   }
-  const Vec3<Q> cq = K.determinant() == 0 ? *core_centre : Vec3<Q>(-(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>())));
+  const Vec3<Q> cq = *core_centre;
   std::vector<FI> d2(pts.size());
   std::vector<char> bounded(pts.size(), 0);
   double floor = 0;
@@ -416,11 +415,11 @@ ItemPoints terminator_points(const Mat4<Q>& A_given, const Vec4<Q>& L_given, int
   // not the sample's centroid, which moved with the seed and count)
   std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
   if (!core_centre) core_centre = s.middle;
-  std::tie(out.size, centre) = object_size(out.points, A, core_centre);
+  std::tie(out.size, centre) = object_size(out.points, core_centre);
   // one point (no extent), or fewer points than the sample's farthest ends (a parallel pair's four,
   // a hyperbola's two): sized with the default sample as well (unsized_sample)
   if ((out.size == 0 || n < s.ends) && !out.points.empty() && !s.exhausted && n < kDefaultSamples)
-    std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), A, core_centre);
+    std::tie(out.size, centre) = object_size(unsized_sample(A, L, out.points), core_centre);
   if (!out.points.empty()) {
     const Q u = length_unit(out.size);  // (in units of the sampled size, as the bounds)
     if (const auto whole = terminator_size(object_in_units(A, u), point_in_units(L, u), Vec3<Q>(centre / u)))
@@ -449,12 +448,12 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
   const std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
-  std::tie(out.size, centre) = object_size(s.points, A, core_centre);
+  std::tie(out.size, centre) = object_size(s.points, core_centre);
   if (out.size == 0 && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
         sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, plane), Q(1), anchor).points;
     more.insert(more.end(), s.points.begin(), s.points.end());
-    std::tie(out.size, centre) = object_size(more, A, core_centre);
+    std::tie(out.size, centre) = object_size(more, core_centre);
   }
   if (!s.points.empty()) {
     const Q u = length_unit(out.size);

@@ -496,6 +496,17 @@ Q eigen_floor(const Mat3<Q>& S) {
   }
   return Q(0);
 }
+/// S / max |S_ij| in double, for a floating eigen-decomposition whose results are then proved or
+/// made exact (positive_eigen_floor, cylinder_turn); `big` the divisor (0: S = 0, a zero matrix).
+Eigen::Matrix3d scaled_to_double(const Mat3<Q>& S, Q& big) {
+  big = 0;
+  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(S(i))));
+  Eigen::Matrix3d d = Eigen::Matrix3d::Zero();
+  if (big != 0)
+    for (Eigen::Index i = 0; i < 9; ++i) d(i) = Q(S(i) / big).convert_to<double>();
+  return d;
+}
+
 /// tau > 0 below every positive eigenvalue of S (symmetric, exact), proved exactly; 0 where S has
 /// none or none is found. S's characteristic polynomial has real roots only, so Descartes' rule
 /// counts them exactly: tau is proved where p(x + tau) has as many sign changes as p(x) (as many
@@ -516,10 +527,8 @@ Q positive_eigen_floor(const Mat3<Q>& S) {
   };
   const int positive = changes(Q(0));
   if (positive == 0) return Q(0);
-  Q big = 0;
-  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(S(i))));
-  Eigen::Matrix3d d;
-  for (Eigen::Index i = 0; i < 9; ++i) d(i) = Q(S(i) / big).convert_to<double>();
+  Q big;
+  const Eigen::Matrix3d d = scaled_to_double(S, big);
   const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(d, Eigen::EigenvaluesOnly).eigenvalues();
   double m = 0;
   for (int i = 2; i >= 0 && ev(i) > 0; --i) m = ev(i);  // the least positive
@@ -1220,11 +1229,8 @@ std::optional<TurnedBall> cylinder_turn(const Mat4<Q>& ref, const Ball& ball) {
   const Mat3<Q> Kplus = Mat3<Q>(K + Pa).inverse() - Pa;
   // the rotation: K's eigenvectors (double, K scaled into range), det 1, as a quaternion rounded to
   // 30 bits, made exact
-  Q big = 0;
-  for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
-  Eigen::Matrix3d Kd;
-  for (Eigen::Index i = 0; i < 9; ++i) Kd(i) = Q(K(i) / big).convert_to<double>();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd);
+  Q big;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scaled_to_double(K, big));
   if (eig.info() != Eigen::Success) return std::nullopt;
   Eigen::Matrix3d V = eig.eigenvectors();
   if (V.determinant() < 0) V.col(0) = -V.col(0);

@@ -520,8 +520,8 @@ QuadricCore quadric_core(const Mat4<Q>& A) {
 
 std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
   const QuadricCore core = quadric_core(A);
-  if (core.kernel.cols() == 0 || !core.found || !core.kn.isZero()) return std::nullopt;
-  return anchor ? core.nearest(*anchor) : core.y;
+  if (!core.found || !core.kn.isZero()) return std::nullopt;
+  return anchor ? core.nearest(*anchor) : core.y;  // (K invertible: y, its centre, whatever the anchor)
 }
 
 Vec3<Q> QuadricCore::nearest(const Vec3<Q>& p) const {
@@ -674,11 +674,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   // then inside the stretch: from it a single seeded sample would be all there is). Not a parabola's
   // on a hyperboloid: its vertex may be farther than its 16 f chord, and it stays sized by its sample.
   int dropped = 0;
-  const std::optional<Vec3<Q>> size_from =
-      !hyperbola ? std::nullopt
-      : Mat3<Q>(A.topLeftCorner<3, 3>()).determinant() != 0
-          ? std::optional<Vec3<Q>>(Vec3<Q>(-(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * Vec3<Q>(A.topRightCorner<3, 1>()))))
-          : centre_of_core(A, anchor);
+  const std::optional<Vec3<Q>> size_from = hyperbola ? centre_of_core(A, anchor) : std::nullopt;
   std::optional<Measure> ends_reach;  // the ends' largest squared distance from size_from
   const auto distance2 = [&](const RootPoint& x) {
     const IntegerPoint ip(x);

@@ -71,11 +71,11 @@ Rational quadric_value(const Mat4<Rational>& A, const Vec3<Rational>& y);
 Vec4<Rational> section_base(const Mat4<Rational>& A, const Vec4<Rational>& pi,
                             const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
-/// Where A has a line or a plane of centres (a cylinder, a plane pair), the centre nearest `anchor`
-/// (the point sample_section and sample_quadric draw their lines about: quadric_base): a cylinder's
-/// axis point nearest its lamp, about which its sample is symmetric, not the sample's centroid, which
-/// moved with the sample; the object size is measured from it (eval/accuracy.hpp). nullopt where A
-/// has one centre (K invertible) or none (a paraboloid).
+/// The centre the object size is measured from (eval/accuracy.hpp), where A has one: its centre
+/// (K invertible); where A has a line or a plane of centres (a cylinder, a plane pair), the one
+/// nearest `anchor` (the point sample_section and sample_quadric draw their lines about:
+/// quadric_base): a cylinder's axis point nearest its lamp, about which its sample is symmetric, not
+/// the sample's centroid, which moved with the sample. nullopt where A has none (a paraboloid).
 std::optional<Vec3<Rational>> centre_of_core(const Mat4<Rational>& A, const std::optional<Vec3<Rational>>& anchor);
 
 /// The point sample_quadric draws its lines through, a function of A and `anchor` alone: A's centre,
