@@ -420,8 +420,14 @@ Eigen::Matrix<Q, 3, 2> plane_across(const Vec3<Q>& n) {
 struct ParabolaChords {
   Vec4<Q> vertex;
   Vec3<Q> along, across;
-  Q end;  ///< the farthest chord's u'
+  Q end;    ///< the farthest chord's u'
+  Q kappa;  ///< the parabola u' = kappa s'^2 (kappa = -lambda / (2 beta)): its rational points, by s'
   Vec4<Q> at(const Q& u) const { return Vec4<Q>(vertex + u * Vec4<Q>(along(0), along(1), along(2), Q(0))); }
+  /// Its point at s' (rational for a rational s').
+  Vec4<Q> point(const Q& s) const {
+    const Vec3<Q> x = Vec3<Q>(kappa * s * s * along + s * across);
+    return Vec4<Q>(at(Q(0)) + Vec4<Q>(x(0), x(1), x(2), Q(0)));
+  }
 };
 std::optional<ParabolaChords> parabola_chords(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 2>& plane, const Vec3<Q>& n,
                                               const Vec4<Q>& b) {
@@ -440,7 +446,39 @@ std::optional<ParabolaChords> parabola_chords(const Mat4<Q>& A, const Eigen::Mat
   const Q sv = -gamma / lambda, uv = (gamma * gamma / lambda - c0) / (2 * beta);
   out.vertex = Vec4<Q>(b / b(3) + uv * v4 + sv * w4);
   out.end = -8 * beta * out.across.squaredNorm() / (lambda * out.along.squaredNorm());
+  out.kappa = -lambda / (2 * beta);
   return out;
+}
+
+/// The point of a parabola's stretch (the chords' 0 < u' <= end, so s'^2 <= end / kappa) farthest
+/// from c, where it lies inside the stretch rather than on its end chord: a parabola on a hyperboloid
+/// (a lamp on its asymptotic cone), measured from A's centre, may be farthest at its vertex or
+/// between it and the end chord. With e = vertex - c, v = along, w = across (v . w = 0), the squared
+/// distance D(s) = |e + kappa s^2 v + s w|^2 is a quartic with D'(s) / 2 = a3 s^3 + a1 s + a0,
+/// a3 = 2 kappa^2 |v|^2 > 0, a1 = 2 kappa e.v + |w|^2, a0 = e.w. D has an interior maximum iff that
+/// cubic has three distinct real roots, 4 a1^3 + 27 a3 a0^2 < 0 (decided exactly), and it is the
+/// middle root, 2 sqrt(-p/3) cos(theta/3 - 2 pi/3) with p = a1/a3, q = a0/a3,
+/// cos theta = (3q / 2p) sqrt(-3/p) (to 80 digits), taken to a rational within 2^-52 of it: its
+/// point is a rational point of the parabola, as far from c as the maximum to about 2^-104 (D is flat
+/// there). nullopt where there is no interior maximum, or it lies beyond the end chord.
+std::optional<Vec4<Q>> parabola_far_point(const ParabolaChords& p, const Vec3<Q>& c) {
+  const Vec3<Q> e = Vec3<Q>(p.vertex.head<3>() / p.vertex(3) - c);
+  const Q a3 = 2 * p.kappa * p.kappa * p.along.squaredNorm();
+  const Q a1 = 2 * p.kappa * e.dot(p.along) + p.across.squaredNorm(), a0 = e.dot(p.across);
+  if (!(4 * a1 * a1 * a1 + 27 * a3 * a0 * a0 < 0)) return std::nullopt;  // (then a1 < 0)
+  const Measure pm = to_measure(Q(a1 / a3)), qm = to_measure(Q(a0 / a3));
+  using boost::multiprecision::acos, boost::multiprecision::cos, boost::multiprecision::sqrt;
+  const Measure cos_theta = std::clamp(Measure(3 * qm / (2 * pm) * sqrt(Measure(-3 / pm))), Measure(-1), Measure(1));
+  const Measure third = acos(Measure(-1)) * 2 / 3;  // (2 pi / 3)
+  const Measure middle = 2 * sqrt(Measure(-pm / 3)) * cos(Measure(acos(cos_theta) / 3 - third));
+  Q s = 0;
+  if (middle != 0) {
+    int k = 0;
+    const Measure f = frexp(middle, &k);  // (f in [1/2, 1): to 53 bits, whatever the scale)
+    s = Q(f.convert_to<double>()) * exact_pow2(k);
+  }
+  if (!(s * s < p.end / p.kappa)) return std::nullopt;
+  return p.point(s);
 }
 
 /// A section that is one finite line (A's quadratic part vanishes on the plane, its linear part
@@ -671,10 +709,16 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   // seeded point may lie farther out than the ends (10% farther for a hyperbola on a hyperboloid
   // whose centre is off the section's): such points are dropped, as far as 80 digits tell, so that
   // the ends size the sample at every seed and count; unless more than n are (the farthest point is
-  // then inside the stretch: from it a single seeded sample would be all there is). Not a parabola's
-  // on a hyperboloid: its vertex may be farther than its 16 f chord, and it stays sized by its sample.
+  // then inside the stretch: from it a single seeded sample would be all there is). A parabola on a
+  // hyperboloid may be farthest from A's centre inside its stretch (its vertex, or between it and the
+  // end chord): that point (parabola_far_point) is one of its ends, drawn first.
   int dropped = 0;
-  const std::optional<Vec3<Q>> size_from = hyperbola ? centre_of_core(A, anchor) : std::nullopt;
+  const std::optional<Vec3<Q>> size_from = hyperbola || parabola ? centre_of_core(A, anchor) : std::nullopt;
+  if (parabola && size_from && rep.points.empty())
+    if (const std::optional<Vec4<Q>> far = parabola_far_point(*parabola, *size_from)) {
+      rep.points.emplace_back(*far, Vec4<Q>::Zero(), Q(0));
+      ++rep.ends;
+    }
   std::optional<Measure> ends_reach;  // the ends' largest squared distance from size_from
   const auto distance2 = [&](const RootPoint& x) {
     const IntegerPoint ip(x);

@@ -34,7 +34,8 @@ struct SampleReport {
   /// measured from it where A has no centre of its own: eval/accuracy.hpp.)
   std::optional<Vec3<Rational>> middle;
   /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends, a
-  /// hyperbola's two end chords' 4, a parabola's end chord's 2, a single line's 2 ends): fewer than
+  /// hyperbola's two end chords' 4, a parabola's end chord's 2, and on a hyperboloid its point
+  /// farthest from A's centre where that lies inside its stretch, a single line's 2 ends): fewer than
   /// that do not reach its size (0: no such ends).
   int ends = 0;
 };
@@ -99,8 +100,9 @@ Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& light);
 
 /// Up to n points of A ∩ {pi . x = 0}, all finite, on lines through section_base(A, pi, anchor)
 /// (a parabola: chords across its axis from bases on it; a single line: its own rational points).
-/// A hyperbola's seeded points farther than its ends from the point its size is measured from (A's
-/// centre, or centre_of_core) are dropped (up to n of them), so that the ends size it.
+/// A hyperbola's or a parabola's seeded points farther than its ends from the point its size is
+/// measured from (A's centre, or centre_of_core) are dropped (up to n of them), so that the ends size
+/// it (a parabola on a hyperboloid: its end chord and its farthest point inside the stretch).
 /// Where no line through the base point meets the
 /// section (the base is a cone's apex, which every line through it only touches) the base moves
 /// within the plane by steps of L-infinity length `reach` (> 0: reach_length), and the points kept
