@@ -925,29 +925,41 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   }
   kind_ = Kind::paraboloid;
   kn_ = msqrt(core.kn.squaredNorm());
-  a0_ = abs(to_measure(quadric_value(A, y)));
+  const Q a0 = quadric_value(A, y);
+  a0_ = abs(to_measure(a0));
   grows_ = core.kernel.cols() == 1 && mu > 0;
   flat_ = core.kernel.cols() == 2;
+  // a paraboloid's vertex, the point of its axis on it: A(y + t k_n) = A(y) + 2 t |k_n|^2 (K k_n = 0,
+  // k_n . (K y + k) = |k_n|^2), exactly 0 at t = -A(y) / (2 |k_n|^2)
+  if (grows_) dv_ = msqrt((ball.centre - Vec3<Q>(y - a0 / (2 * core.kn.squaredNorm()) * core.kn)).squaredNorm());
 }
 
 Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) const {
   Measure f = 0;
+  // |x - p| on the shell, for a point p at distance d from the ball's centre: at least inner - d where
+  // the shell lies beyond p, d - outer where the whole shell is short of it
+  const auto away = [&](const Measure& d) { return std::max(Measure(inner - d), Measure(d - outer)); };
   if (kind_ == Kind::centre) {
     if (r_ > 0) f = r_ / (outer + d0_);
     f = std::max(f, steady_);
     if (linear_ > 0 && inner > d0_) f = std::max(f, Measure(linear_ * (inner - d0_)));
   } else if (kind_ == Kind::paraboloid) {
     f = kn_;
-    if (grows_ && inner > d0_) {
-      // |y| >= rho, |y|^2 = w + (k_n . y / |k_n|)^2 <= w + ((sigma w + a0) / (2 |k_n|))^2 with w = |Py|^2:
-      // w is at least the root of a2 w^2 + b2 w + c2 = 0 (the left side increases with w)
-      const Measure rho = inner - d0_, kn2 = kn_ * kn_;
-      const Measure a2 = sigma_ * sigma_ / (4 * kn2), b2 = 1 + sigma_ * a0_ / (2 * kn2), c2 = a0_ * a0_ / (4 * kn2) - rho * rho;
+    // |y| >= rho, |y|^2 = w + (k_n . y / |k_n|)^2 <= w + ((sigma w + a0) / (2 |k_n|))^2 with w = |Py|^2:
+    // w is at least the root of a2 w^2 + b2 w + c2 = 0 (the left side increases with w). About the
+    // axis point nearest the centre (a0 = |A(y0)|, rho beyond it) and about the vertex (a0 = 0, rho
+    // on either side: a terminator far out on a paraboloid, whose nearest axis point has a large
+    // |A(y0)|, and whose floor stayed at |k_n|, 10^5 times below its gradient; audit 34b F5)
+    const auto grown = [&](const Measure& rho, const Measure& a0) {
+      const Measure kn2 = kn_ * kn_;
+      const Measure a2 = sigma_ * sigma_ / (4 * kn2), b2 = 1 + sigma_ * a0 / (2 * kn2), c2 = a0 * a0 / (4 * kn2) - rho * rho;
       if (c2 < 0) {
         const Measure w = -2 * c2 / (b2 + sqrt(b2 * b2 - 4 * a2 * c2));
         f = std::max(f, Measure(sqrt(mu_ * w + kn2)));
       }
-    }
+    };
+    if (grows_ && inner > d0_) grown(inner - d0_, a0_);
+    if (grows_ && away(dv_) > 0) grown(away(dv_), Measure(0));
     if (flat_) {
       // a parabolic cylinder, K = lambda v v^T (|v| = 1, |lambda| = sigma): about y (the core point
       // nearest the centre c, c - y along v), x on A has lambda (v . (x - y))^2 = -(A(y) + 2 k_n . (x - c))

@@ -756,6 +756,22 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
     CHECK(inside > 0);
   }
   CHECK(gradient_floor(quadric_of({1, 1, -1}, {0, 0, 0}, 0), Ball{Vec3<Q>(0, 0, 0), Q(1)}) == 0);
+  {  // a ball far out on a paraboloid, x^2 / 9 + 2 y^2 / 9 = z / 3, about (5e5, 5e5, 2.5e11): its points
+     // (5e5 - 2j, 5e5 + j, 2.5e11 + 2 j^2) have |(A x)_xyz| = |(x / 9, 2 y / 9, -1 / 6)| ~ 1.24e5; the
+     // floor about the axis point nearest the ball (|A| = 8.3e10 there) was |k_n| = 1/6, about the
+     // vertex, 2.5e11 away, it grows with that distance (audit 34b F5: a sun's terminator out there
+     // had its P bounded at 1.45e-7 against 2e-13)
+    const Mat4<Q> bowl = quadric_of({Q(1, 9), Q(2, 9), 0}, {0, 0, Q(-1, 6)}, 0);
+    const Ball far{Vec3<Q>(500000, 500000, 250000000000), Q(10)};
+    const Measure floor = gradient_floor(bowl, far);
+    CHECK(floor >= 10000);
+    for (int j = -2; j <= 2; ++j) {
+      const Vec3<Q> x(500000 - 2 * j, 500000 + j, 250000000000 + 2 * j * j);
+      REQUIRE(quadric_value(bowl, x) == 0);
+      REQUIRE((x - far.centre).squaredNorm() <= far.reach * far.reach);
+      CHECK(to_measure(Q(Vec3<Q>(bowl.topLeftCorner<3, 3>() * x + bowl.topRightCorner<3, 1>()).squaredNorm())) >= floor * floor);
+    }
+  }
   // near the truth where it is known: x^2 + y^2 / 10^4 = 1 has |(A x)_xyz| = 1/100 at (0, +-100) and
   // more elsewhere (the floor was 10^-4: mu |r| / sigma, audit 33a F3)
   const Measure flat = gradient_floor(quadric_of({1, Q(1, 10000), 0}, {0, 0, 0}, -1), Ball{Vec3<Q>(0, 0, 0), Q(200)});
