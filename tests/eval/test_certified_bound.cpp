@@ -771,6 +771,20 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
       REQUIRE((x - far.centre).squaredNorm() <= far.reach * far.reach);
       CHECK(to_measure(Q(Vec3<Q>(bowl.topLeftCorner<3, 3>() * x + bowl.topRightCorner<3, 1>()).squaredNorm())) >= floor * floor);
     }
+    // and a parabolic cylinder, x^2 = 2 z, about (1000, 0, 500000), 500000 from its vertex line (the y
+    // axis): |(A x)_xyz| = |(x, 0, -1)| ~ 1000 at its points (1000 + t, y, (1000 + t)^2 / 2) there
+    const Mat4<Q> trough = quadric_of({1, 0, 0}, {0, 0, -1}, 0);
+    const Ball out{Vec3<Q>(1000, 0, 500000), Q(10)};
+    const Measure trough_floor = gradient_floor(trough, out);
+    CHECK(trough_floor >= 900);
+    for (const Q& t : {Q(-1, 200), Q(0), Q(1, 500)})
+      for (int y : {-8, 0, 4}) {
+        const Vec3<Q> x(1000 + t, y, (1000 + t) * (1000 + t) / 2);
+        REQUIRE(quadric_value(trough, x) == 0);
+        REQUIRE((x - out.centre).squaredNorm() <= out.reach * out.reach);
+        CHECK(to_measure(Q(Vec3<Q>(trough.topLeftCorner<3, 3>() * x + trough.topRightCorner<3, 1>()).squaredNorm())) >=
+              trough_floor * trough_floor);
+      }
   }
   // near the truth where it is known: x^2 + y^2 / 10^4 = 1 has |(A x)_xyz| = 1/100 at (0, +-100) and
   // more elsewhere (the floor was 10^-4: mu |r| / sigma, audit 33a F3)
