@@ -14,6 +14,14 @@
 
 namespace qverify::test {
 
+/// x^T diag(d) x + 2 (v . x) + c, as a matrix.
+inline Mat4<Rational> quadric_of(const Vec3<Rational>& d, const Vec3<Rational>& v, const Rational& c) {
+  Mat4<Rational> A = Mat4<Rational>::Zero();
+  for (int i = 0; i < 3; ++i) A(i, i) = d(i), A(i, 3) = A(3, i) = v(i);
+  A(3, 3) = c;
+  return A;
+}
+
 /// 2^e and 10^e as exact rationals (scales, units and exponents of the sweeps).
 inline Rational pow2(int e) {
   using boost::multiprecision::mpz_int;

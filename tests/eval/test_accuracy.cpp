@@ -530,17 +530,12 @@ TEST_CASE("a parabola on a hyperboloid is sized by its stretch's farthest point 
   // sized by its seeded sample it was 1 to 2.1 by seed (the first case). That point
   // (sampling.cpp, parabola_far_point) is now drawn with the end chord, and farther seeded points are
   // dropped.
-  Mat4<Q> h1 = Mat4<Q>::Zero();  // x^2 + y^2 - z^2 = 1
-  h1(0, 0) = 1, h1(1, 1) = 1, h1(2, 2) = -1, h1(3, 3) = -1;
-  Mat4<Q> h2 = Mat4<Q>::Zero();  // x^2 + 4 y^2 - z^2 = 1
-  h2(0, 0) = 1, h2(1, 1) = 4, h2(2, 2) = -1, h2(3, 3) = -1;
-  Mat4<Q> two = Mat4<Q>::Zero();  // 4 x^2 + y^2 - z^2 = -1 (two sheets), its centre at (1, -2, 1/2)
-  two(0, 0) = 4, two(1, 1) = 1, two(2, 2) = -1, two(3, 3) = 1;
-  {
-    Mat4<Q> T = Mat4<Q>::Identity();
-    T.topRightCorner<3, 1>() = Vec3<Q>(-1, 2, Q(-1, 2));
-    two = Mat4<Q>(T.transpose() * two * T);
-  }
+  const Mat4<Q> h1 = test::quadric_of({1, 1, -1}, {0, 0, 0}, -1);  // x^2 + y^2 - z^2 = 1
+  const Mat4<Q> h2 = test::quadric_of({1, 4, -1}, {0, 0, 0}, -1);  // x^2 + 4 y^2 - z^2 = 1
+  // 4 x^2 + y^2 - z^2 = -1 (two sheets), its centre moved to (1, -2, 1/2)
+  Mat4<Q> T = Mat4<Q>::Identity();
+  T.topRightCorner<3, 1>() = Vec3<Q>(-1, 2, Q(-1, 2));
+  const Mat4<Q> two = T.transpose() * test::quadric_of({4, 1, -1}, {0, 0, 0}, 1) * T;
   // the first: the plane x - z = 1/3, the parabola z = 4/3 - 3 y^2 / 2, farthest at its vertex
   // (5/3, 0, 4/3), sqrt(41) / 3 from the centre; its end chord on the waist circle, 1 from it
   const ItemPoints first = check_one_size(h1, Vec4<Q>(3, 0, 3, 1));

@@ -400,13 +400,7 @@ TEST_CASE("certified bound: shadows where the terminator is a real ellipse, refl
 
 namespace {
 
-/// x^T diag(d) x + 2 (v . x) + c, as a matrix.
-Mat4<Q> quadric_of(const Vec3<Q>& d, const Vec3<Q>& v, const Q& c) {
-  Mat4<Q> A = Mat4<Q>::Zero();
-  for (int i = 0; i < 3; ++i) A(i, i) = d(i), A(i, 3) = A(3, i) = v(i);
-  A(3, 3) = c;
-  return A;
-}
+using test::quadric_of;
 
 /// A moved by x -> x + t (so that it is no longer about the origin).
 Mat4<Q> translated(const Mat4<Q>& A, const Vec3<Q>& t) { return in_frame_quadric(A, Vec3<Q>(-t)); }
