@@ -767,7 +767,18 @@ TEST_CASE("ball bound: gradient floors hold at exact points of the quadric in th
     }
     // and a parabolic cylinder, x^2 = 2 z, about (1000, 0, 500000), 500000 from its vertex line (the y
     // axis): |(A x)_xyz| = |(x, 0, -1)| ~ 1000 at its points (1000 + t, y, (1000 + t)^2 / 2) there
+    // (its floor from |A| at the axis point nearest the ball, 10^6: the header)
     const Mat4<Q> trough = quadric_of({1, 0, 0}, {0, 0, -1}, 0);
+    // its vertex line (the y axis) lies on it with the gradient |k_n| = 1: a shell that reaches the
+    // line, about a centre near it or beyond it, is floored at no more than that (a floor from the
+    // distance beyond the line, as for a paraboloid's vertex, gave 2.47 on the shell 6..8 about the
+    // origin: a review of e52689b)
+    for (const Vec3<Q>& c : {Vec3<Q>(0, 0, 0), Vec3<Q>(Q(1, 100), 3, Q(1, 20000)), Vec3<Q>(1, -5, Q(1, 2))}) {
+      const GradientFloor f(trough, Ball{c, Q(8)});
+      for (const auto& [inner, outer] : {std::pair<int, int>{0, 8}, {6, 8}, {4, 6}, {2, 3}})
+        if (Q(c(0) * c(0) + c(2) * c(2)) <= Q(outer * outer))  // (the shell meets the line)
+          CHECK(f(Measure(inner), Measure(outer)) <= 1);
+    }
     const Ball out{Vec3<Q>(1000, 0, 500000), Q(10)};
     const Measure trough_floor = gradient_floor(trough, out);
     CHECK(trough_floor >= 900);

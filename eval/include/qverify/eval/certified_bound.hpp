@@ -216,9 +216,7 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
 ///    K y0 = -(k - k_n), K x + k = K y + k_n, so |K x + k|^2 >= mu |Py|^2 + |k_n|^2; for a
 ///    paraboloid (kernel = span k_n), A = 0 gives |k_n . y| <= (sigma |Py|^2 + |A(y0)|) / 2, so that
 ///    |y| >= inner - |c - y0| bounds |Py| from below; and so does |y| >= max(inner - |c - v|,
-///    |c - v| - outer) about its vertex v (y0 = v, A(v) = 0), on whichever side of v the shell lies,
-///    and for a parabolic cylinder (K = lambda u u^T) the same with y the offset across its vertex
-///    line (A = 0 along it) and |c - v| the centre's distance from that line.
+///    |c - v| - outer) about its vertex v (y0 = v, A(v) = 0), on whichever side of v the shell lies.
 /// `scale` multiplies every floor (P's reference on the terminator is (L^T A L) A's gradient).
 class GradientFloor {
  public:
@@ -231,7 +229,7 @@ class GradientFloor {
   Measure scale_ = 0, d0_ = 0;                   ///< |scale|, |c - y0|
   Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(lambda |r|), sqrt(mu) (K invertible)
   Measure kn_ = 0, a0_ = 0, sigma_ = 0, mu_ = 0; ///< paraboloid: |k_n|, |A(y0)|, sigma, mu
-  Measure dv_ = 0;  ///< c's distance from a paraboloid's vertex, from a parabolic cylinder's vertex line
+  Measure dv_ = 0;                               ///< paraboloid: |c - its vertex|
   bool grows_ = false;                           ///< a paraboloid (the kernel is k_n's line)
   bool flat_ = false;                            ///< a parabolic cylinder (the kernel a plane, k_n in it)
 };
