@@ -351,7 +351,8 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
 
 /// How far along a hyperbola its chords reach (a hyperbolic cylinder's cross-section, a terminator
 /// on a hyperboloid): directions W_0 + s W_1 through its centre (W_0 the real semi-axis, W_1 the
-/// other), |s| <= s_end (ConicAxes::end), s_end = 63/65, where the hyperbola is 65/16 (about 4) times
+/// other, made exactly conjugate with the asymptotes at s = +-1 to 2^-52: conic_axes),
+/// |s| <= s_end (ConicAxes::end), s_end = 63/65, where the hyperbola is 65/16 (about 4) times
 /// as far from the centre as W_0 + s W_1 in its own semi-axes; but at most 16 |W_0| / |W_1|, about
 /// 16 real semi-axes out, where the other is longer: a hyperboloid near a cylinder (x^2 + y^2 -
 /// 10^-24 z^2 = 1, its terminator two near-parallel branches 1e12 semi-axes long out to s = 63/65)
@@ -363,8 +364,8 @@ const Q kHyperbolaEnd(63, 65);
 /// `plane` (two orthogonal vectors; a line b + lambda r, r = plane v, meets it where lambda^2
 /// r^T K r = -c, c = A(b), K = A_xyz,xyz: b is the conic's centre, so r^T (A b) = 0): `across`
 /// holds them (semi_axes of plane^T K plane in the plane's metric), the longest first for an
-/// ellipse, the real one first for a hyperbola. nullopt where c = 0 (lines crossing at b), the
-/// form is singular, or no direction is real.
+/// ellipse; for a hyperbola the real one first, the pair made exact conjugate semi-diameters (below).
+/// nullopt where c = 0 (lines crossing at b), the form is singular, or no direction is real.
 struct ConicAxes {
   Eigen::Matrix<Q, 3, 2> across;
   bool hyperbolic = false;
@@ -379,19 +380,51 @@ std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 
   if (!f) return std::nullopt;
   const auto W = semi_axes(*f);
   if (!W) return std::nullopt;
-  // real directions: those where G's sign is the opposite of c's; a hyperbola exactly where det G < 0
-  // (the quotients' signs, of approximate axes, must agree: beyond a ratio of 1e16 they may not)
-  const bool real0 = (f->rq[0] > 0) != (c > 0), real1 = (f->rq[1] > 0) != (c > 0);
-  if (!real0 && !real1) return std::nullopt;
   ConicAxes out;
   out.hyperbolic = G.determinant() < 0;
-  if (out.hyperbolic != (real0 != real1)) return std::nullopt;
-  // first: the real semi-axis of a hyperbola, the longer of an ellipse (the one of the least |rq|)
-  const int first = out.hyperbolic ? (real0 ? 0 : 1) : (abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1);
+  if (out.hyperbolic) {
+    // Exact conjugate semi-diameters U (real) and V: the rounded axes made conjugate (v minus its
+    // G-projection on u), so that (U + s V)^T G (U + s V) = U^T G U + s^2 V^T G V exactly, and V
+    // scaled by a rational within 2^-52 of sqrt(-U^T G U / V^T G V): the asymptotes at s = +-1 to
+    // 2^-52 whatever the shape. (With the rounded axes themselves, the real axis's rounding along the
+    // other, 2^-52 of a semi-axis 10^15 times the other's, moved the asymptotes in s by as much as the
+    // other itself: a lamp 10^-30 off a hyperboloid's asymptotic cone was sized 4e29 to 7.6e30 by
+    // seed, and a polar plane 2 targets off passed at one seed; audit 35a F1.) Exactly one of a
+    // conjugate pair is real (G's sign the opposite of c's): det G < 0 is their quotients' product.
+    using V2 = Eigen::Matrix<Q, 2, 1>;
+    const auto form = [&](const V2& a, const V2& b) { return Q(a.dot(V2(G * b))); };
+    V2 u = W->col(0), v = W->col(1);
+    // each rounded axis first refined by a step of Rayleigh quotient iteration, exactly:
+    // (G - rho M)^-1 M u, rho = u^T G u / u^T M u (by the adjugate: the same direction), its error
+    // squared (and more), so that the conjugate pair is the axes themselves to far below the ratio of
+    // the semi-axes, and the stretch the same however the scene is turned (the double
+    // decomposition's last bits are the turn's)
+    const Eigen::Matrix<Q, 2, 1> m(plane.col(0).squaredNorm(), plane.col(1).squaredNorm());
+    const auto refined = [&](const V2& x) {
+      const V2 mx = m.cwiseProduct(x);
+      const Q rho = form(x, x) / x.dot(mx);
+      const Eigen::Matrix<Q, 2, 2> S = G - rho * Eigen::Matrix<Q, 2, 2>(m.asDiagonal());
+      const V2 y(S(1, 1) * mx(0) - S(0, 1) * mx(1), -S(1, 0) * mx(0) + S(0, 0) * mx(1));
+      return y.isZero() ? x : y;
+    };
+    u = refined(u), v = refined(v);
+    if (form(u, u) == 0) std::swap(u, v);
+    if (form(u, u) == 0) return std::nullopt;
+    v -= form(u, v) / form(u, u) * u;
+    if ((form(u, u) > 0) == (c > 0)) std::swap(u, v);  // (u the real one)
+    const Q qu = form(u, u), qv = form(v, v);
+    if (qu == 0 || qv == 0 || (qu > 0) == (c > 0) || (qv > 0) != (c > 0)) return std::nullopt;
+    v *= rough_sqrt(Q(-qu / qv));
+    out.across.col(0) = plane * u;
+    out.across.col(1) = plane * v;
+    out.end = std::min(kHyperbolaEnd, Q(16 * rough_sqrt(Q(out.across.col(0).squaredNorm() / out.across.col(1).squaredNorm()))));
+    return out;
+  }
+  // an ellipse: real where G's sign is the opposite of c's; the longer semi-axis (the least |rq|) first
+  if ((f->rq[0] > 0) == (c > 0) || (f->rq[1] > 0) == (c > 0)) return std::nullopt;
+  const int first = abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1;
   out.across.col(0) = plane * Eigen::Matrix<Q, 2, 1>(W->col(first));
   out.across.col(1) = plane * Eigen::Matrix<Q, 2, 1>(W->col(1 - first));
-  if (out.hyperbolic)
-    out.end = std::min(kHyperbolaEnd, Q(16 * rough_sqrt(Q(out.across.col(0).squaredNorm() / out.across.col(1).squaredNorm()))));
   return out;
 }
 

@@ -441,6 +441,20 @@ TEST_CASE("a hyperbola is sampled along its axes - a hyperboloid's terminator ha
     INFO(name);
     check_one_size(A, L);
   }
+  {  // a lamp 10^-30 off the asymptotic cone (a hyperbola almost a parabola, its semi-axes 10^15 apart):
+     // its real axis rounded to 2^-52 moved the asymptotes in s by as much as the other axis, and it
+     // was sized 4e29 to 7.6e30 by seed (a polar plane 2 targets off passed at one seed; audit 35a
+     // F1). Now the axes are made exact conjugates, the asymptotes at s = +-1 to 2^-52.
+    const Vec4<Q> near_cone(3, 4, 5 - Q(1) / test::pow10(30), 1);
+    const ItemPoints pts = check_one_size(h1, near_cone);
+    // every sampled point within the size (its ends the farthest), each exact on A and the polar plane
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+      for (const RootPoint& x : terminator_points(h1, near_cone, 64, item_seed(seed, 1, h1, near_cone)).points) {
+        CHECK(CGAL::is_zero(x.form(h1)));
+        CHECK(CGAL::is_zero(x.linear(Vec4<Q>(h1 * near_cone))));
+      }
+    CHECK(pts.size > Measure("1e29"));
+  }
   {  // a hyperboloid near a cylinder, x^2 + y^2 - 10^-24 z^2 = 1: sampled as the cylinder is, within
      // about 16 half-widths, not 3.7e12 out along its near-parallel branches (audit 34b F6)
     Mat4<Q> near = h1;
