@@ -375,31 +375,32 @@ struct ConicAxes {
 std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 2>& plane, const Q& c) {
   if (c == 0) return std::nullopt;
   const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * Mat3<Q>(A.topLeftCorner<3, 3>()) * plane;
-  if (G.determinant() == 0) return std::nullopt;
-  const auto f = form_axes<2>(G, Eigen::Matrix<Q, 2, 1>(plane.col(0).squaredNorm(), plane.col(1).squaredNorm()));
+  const Q det = G.determinant();
+  if (det == 0) return std::nullopt;
+  const Eigen::Matrix<Q, 2, 1> m(plane.col(0).squaredNorm(), plane.col(1).squaredNorm());  // (the metric)
+  const auto f = form_axes<2>(G, m);
   if (!f) return std::nullopt;
   const auto W = semi_axes(*f);
   if (!W) return std::nullopt;
   ConicAxes out;
-  out.hyperbolic = G.determinant() < 0;
+  out.hyperbolic = det < 0;
   if (out.hyperbolic) {
-    // Exact conjugate semi-diameters U (real) and V: the rounded axes made conjugate (v minus its
-    // G-projection on u), so that (U + s V)^T G (U + s V) = U^T G U + s^2 V^T G V exactly, and V
-    // scaled by a rational within 2^-52 of sqrt(-U^T G U / V^T G V): the asymptotes at s = +-1 to
-    // 2^-52 whatever the shape. (With the rounded axes themselves, the real axis's rounding along the
-    // other, 2^-52 of a semi-axis 10^15 times the other's, moved the asymptotes in s by as much as the
-    // other itself: a lamp 10^-30 off a hyperboloid's asymptotic cone was sized 4e29 to 7.6e30 by
-    // seed, and a polar plane 2 targets off passed at one seed; audit 35a F1.) Exactly one of a
-    // conjugate pair is real (G's sign the opposite of c's): det G < 0 is their quotients' product.
+    // Exact conjugate semi-diameters U (real) and V: U the real axis, refined, and V = perp(G U), so
+    // that (U + s V)^T G (U + s V) = U^T G U + s^2 V^T G V exactly, V scaled by a rational within
+    // 2^-52 of sqrt(-U^T G U / V^T G V): the asymptotes at s = +-1 to 2^-52 whatever the shape. (With
+    // the rounded axes themselves, the real axis's rounding along the other, 2^-52 of a semi-axis
+    // 10^15 times the other's, moved the asymptotes in s by as much as the other itself: a lamp
+    // 10^-30 off a hyperboloid's asymptotic cone was sized 4e29 to 7.6e30 by seed, and a polar plane
+    // 2 targets off passed at one seed; audit 35a F1.) The pair's quotients have opposite signs
+    // (their product is det G |u v|^2 < 0): V is the imaginary one.
     using V2 = Eigen::Matrix<Q, 2, 1>;
     const auto form = [&](const V2& a, const V2& b) { return Q(a.dot(V2(G * b))); };
-    V2 u = W->col(0), v = W->col(1);
-    // each rounded axis first refined by a step of Rayleigh quotient iteration, exactly:
-    // (G - rho M)^-1 M u, rho = u^T G u / u^T M u (by the adjugate: the same direction), its error
-    // squared (and more), so that the conjugate pair is the axes themselves to far below the ratio of
-    // the semi-axes, and the stretch the same however the scene is turned (the double
-    // decomposition's last bits are the turn's)
-    const Eigen::Matrix<Q, 2, 1> m(plane.col(0).squaredNorm(), plane.col(1).squaredNorm());
+    // U: a rounded axis refined by a step of Rayleigh quotient iteration, exactly, (G - rho M)^-1 M u,
+    // rho = u^T G u / u^T M u (by the adjugate: the same direction), its error squared and more, then
+    // rounded in the metric's units to 64 bits plus the axes' ratio's: the pair is the axes
+    // themselves to far below that ratio, so the stretch is the same however the scene is turned (the
+    // double decomposition's last bits are the turn's), and its points' numbers stay short (kept
+    // exact, the refined axes made exact proofs of a sample 7 times slower)
     const auto refined = [&](const V2& x) {
       const V2 mx = m.cwiseProduct(x);
       const Q rho = form(x, x) / x.dot(mx);
@@ -407,13 +408,28 @@ std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 
       const V2 y(S(1, 1) * mx(0) - S(0, 1) * mx(1), -S(1, 0) * mx(0) + S(0, 0) * mx(1));
       return y.isZero() ? x : y;
     };
-    u = refined(u), v = refined(v);
-    if (form(u, u) == 0) std::swap(u, v);
-    if (form(u, u) == 0) return std::nullopt;
-    v -= form(u, v) / form(u, u) * u;
-    if ((form(u, u) > 0) == (c > 0)) std::swap(u, v);  // (u the real one)
-    const Q qu = form(u, u), qv = form(v, v);
-    if (qu == 0 || qv == 0 || (qu > 0) == (c > 0) || (qv > 0) != (c > 0)) return std::nullopt;
+    const long bits = 64 + std::abs(floor_log2(Q(abs(f->rq[0]))) - floor_log2(Q(abs(f->rq[1])))) / 2;
+    // (divided by its larger entry in the metric's units first, which then is 1: the same direction
+    // rounded alike whatever A's scale, which moves with the scene as A is made canonical)
+    const auto rounded = [&](const V2& y) {
+      const long h[2] = {floor_log2(m(0)) / 2, floor_log2(m(1)) / 2};  // (within 2 of sqrt(m); m >= 1)
+      const int j = abs(y(0)) * exact_pow2(h[0]) >= abs(y(1)) * exact_pow2(h[1]) ? 0 : 1, i = 1 - j;
+      const Q ulp = exact_pow2(h[j] - h[i] - bits), t = y(i) / y(j) / ulp;
+      V2 r;
+      r(j) = 1;
+      r(i) = Q(Rational(numerator(t) / denominator(t)) * ulp);
+      return r;
+    };
+    V2 u = refined(W->col(0));
+    if ((form(u, u) > 0) == (c > 0)) u = refined(W->col(1));  // (u real: its form's sign not c's)
+    u = rounded(u);
+    const Q qu = form(u, u);
+    if (qu == 0 || (qu > 0) == (c > 0)) return std::nullopt;
+    const V2 gu = G * u;
+    V2 v(-gu(1), gu(0));  // (divided by an entry: the same whatever A's scale, as u)
+    v /= Q(v(0) != 0 ? v(0) : v(1));
+    const Q qv = form(v, v);
+    if (qv == 0 || (qv > 0) != (c > 0)) return std::nullopt;
     v *= rough_sqrt(Q(-qu / qv));
     out.across.col(0) = plane * u;
     out.across.col(1) = plane * v;
