@@ -447,9 +447,12 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  const std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  // (where A has no centre, the middle of the stretch the sampler draws: a paraboloid's, about which
+  // its ends are the farthest points, not the sample's centroid, which moved with the seed)
+  std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
+  if (!core_centre) core_centre = s.middle;
   std::tie(out.size, centre) = object_size(s.points, core_centre);
-  if (out.size == 0 && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
+  if ((out.size == 0 || n < s.ends) && !s.points.empty() && !s.exhausted && n < kDefaultSamples) {  // (as in terminator_points)
     std::vector<RootPoint> more =
         sample_quadric(A, kDefaultSamples, item_seed(1, 2, A, plane), Q(1), anchor).points;
     more.insert(more.end(), s.points.begin(), s.points.end());

@@ -302,6 +302,51 @@ void keep_near(std::vector<RootPoint>& out, std::size_t from, const Vec4<Q>& b, 
 
 
 
+/// The sample's size made its ends' (sample_section, sample_quadric): the first `ends` points are
+/// the farthest of the stretch drawn from `from` (the point the size is measured from: A's centre,
+/// or the stretch's middle); seeded points farther than they (as far as 80 digits tell) are dropped,
+/// so that the ends size the sample at every seed and count, unless more than n are (the farthest
+/// point is then inside the stretch: from it a single seeded sample would be all there is). Drawn
+/// about another point than the stretch's own middle (a hyperbola on a hyperboloid whose centre is
+/// off the section's), or with axes rounded (the far point is flat there), a seeded point may lie a
+/// little farther than the ends.
+class EndsCap {
+ public:
+  EndsCap(std::optional<Vec3<Q>> from, int ends) : from_(std::move(from)), ends_(ends) {}
+  /// Called once a line's points were added at out[had..].
+  void apply(std::vector<RootPoint>& out, std::size_t had, int n) {
+    if (!from_ || ends_ <= 0) return;
+    if (!reach_) {
+      if (static_cast<int>(out.size()) < ends_) return;
+      Measure far = 0;
+      for (int i = 0; i < ends_; ++i) far = std::max(far, distance2(out[static_cast<std::size_t>(i)]));
+      reach_ = far;
+      return;
+    }
+    if (dropped_ > n) return;
+    const Measure cap = *reach_ * (1 - Measure("1e-60"));
+    const auto beyond = std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(had), out.end(),
+                                       [&](const RootPoint& x) { return distance2(x) > cap; });
+    dropped_ += static_cast<int>(out.end() - beyond);
+    out.erase(beyond, out.end());
+  }
+
+ private:
+  Measure distance2(const RootPoint& x) const {
+    const IntegerPoint ip(x);
+    Measure d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Measure o = ip.offset(i, (*from_)(i));
+      d2 += o * o;
+    }
+    return d2;
+  }
+  std::optional<Vec3<Q>> from_;
+  int ends_;
+  std::optional<Measure> reach_;  // the ends' largest squared distance from `from`
+  int dropped_ = 0;
+};
+
 /// How far along its lines a pair of parallel lines is sampled, in half-widths of the pair.
 constexpr int kPairReach = 16;
 
@@ -581,6 +626,325 @@ std::optional<ConicAxes> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& axis, 
   return conic_axes(A, plane_across(axis), quadric_value(A, centre));
 }
 
+/// An axis w of K (a rounded eigenvector: semi_axes) refined by a step of Rayleigh quotient iteration,
+/// exactly, adj(K - rho I) w with rho = w^T K w / |w|^2 (its error cubed), then divided by its largest
+/// entry and rounded to 2^-64: a stretch cut across it reaches its far points to first order in the
+/// axis's error (D = |x - o|^2 is not stationary along the axis), and with semi_axes's 40 bits a
+/// hyperboloid turned was sized 2e-13 apart (the double decomposition's last bits are the turn's).
+/// w itself where the step gives 0.
+Vec3<Q> refined_axis(const Mat3<Q>& K, const Vec3<Q>& w) {
+  const Q rho = w.dot(K * w) / w.squaredNorm();
+  Vec3<Q> y = adjugate3<Q>(Mat3<Q>(K - rho * Mat3<Q>::Identity())) * w;
+  if (y.isZero()) y = w;
+  int j = 0;
+  for (int i = 1; i < 3; ++i)
+    if (abs(y(i)) > abs(y(j))) j = i;
+  const Q ulp = exact_pow2(-64);
+  Vec3<Q> r;
+  for (int i = 0; i < 3; ++i) {
+    const Q t = y(i) / y(j) / ulp;
+    r(i) = i == j ? Q(1) : Q(Rational(numerator(t) / denominator(t)) * ulp);
+  }
+  return primitive_direction(r);
+}
+
+/// An unbounded quadric with an axis drawn as its sections across it (sample_quadric): a hyperboloid,
+/// a cone, an elliptic or a hyperbolic paraboloid. The planes through o + h w (h rational, |h| <= H;
+/// 0 < h <= H for an elliptic paraboloid) with normal n cut A in conics centred at o + h w: for a
+/// central A (o its centre, K o = -k), n = K w, and A's gradient there is h K w, along n; for a
+/// paraboloid (o its vertex, w its axis, K's kernel), n = w, and the gradient is k_n, along w. So a
+/// line through o + h w across n meets A at o + h w +- lambda r, lambda^2 r^T K r = -A(o + h w): the
+/// section's shape (conic_axes) at one h serves every h where A(o + h w) has the same sign, scaled.
+/// w is a central A's axis of the odd sign (a rounded eigenvector of K: semi_axes), a paraboloid's
+/// kernel. The stretch and its ends, the farthest of its points from `middle` (the point the size is
+/// measured from: o, or the middle o + H/2 w of an elliptic paraboloid's stretch of axis), drawn
+/// first: the sections at h = +-H along their longest semi-axis (an ellipse's), at their hyperbola's
+/// ends s = +-ConicAxes::end (a hyperbolic paraboloid's, whose sections at -H and H are hyperbolas
+/// with their axes swapped); the farthest since a section grows with |h| (from the middle of an
+/// elliptic paraboloid's stretch, r(h)^2 + (h - H/2)^2 |w|^2 is convex in h and largest at H). H:
+/// - a hyperboloid of one sheet: where its section is 4 times its waist (H^2 = 15 A(o) / q_w, q_w =
+///   w^T K w), but at most 16 waist semi-axes out (one near a cylinder is sampled as the cylinder);
+/// - of two sheets: 4 times its vertex's h (H^2 = -16 A(o) / q_w);
+/// - a cone, which has no length of its own: its far points 16 `reach` from its apex;
+/// - a paraboloid: 16 f, f = |k_n| / (2 |K|_F) (a parabolic cylinder's focal length: single_line).
+/// Random lines through its centre (its vertex's inside) met it as far out as they were near its
+/// asymptotic cone (its axis), and a cone's from its apex stepped off at random: sizes were the
+/// seed's, 4.8 to 82 for a hyperbolic paraboloid at 64 samples, and a reflection moved by 2e-9 failed
+/// at two seeds of four (audit 35a F2). nullopt where A is none of these (or its axes are not found).
+struct AxialSections {
+  Vec3<Q> origin, axis, middle;
+  Eigen::Matrix<Q, 3, 2> plane;
+  Q H;
+  bool one_sided = false;
+  Q sign_at_H;                   ///< A(o + H w)'s sign
+  ConicAxes at_H;                ///< the sections' axes where A(o + h w) has that sign
+  std::optional<ConicAxes> other;  ///< and where it has the other (a hyperbolic paraboloid's h < 0)
+  Q value(const Q& h, const Mat4<Q>& A) const { return quadric_value(A, Vec3<Q>(origin + h * axis)); }
+  Vec4<Q> base(const Q& h) const { return finite(Vec3<Q>(origin + h * axis)); }
+};
+std::optional<AxialSections> axial_sections(const Mat4<Q>& A, const QuadricCore& core, const Q& reach,
+                                            const std::optional<Vec3<Q>>& anchor) {
+  if (!core.found) return std::nullopt;
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  AxialSections out;
+  const auto conic = [&](const Q& h) { return conic_axes(A, out.plane, out.value(h, A)); };
+  if (core.kernel.cols() == 0) {  // central: a hyperboloid or a cone
+    const auto f = form_axes<3>(K, Vec3<Q>(1, 1, 1));
+    if (!f) return std::nullopt;
+    int odd = -1;
+    for (int j = 0; j < 3; ++j) {
+      const int same = ((f->rq[0] > 0) == (f->rq[j] > 0)) + ((f->rq[1] > 0) == (f->rq[j] > 0)) + ((f->rq[2] > 0) == (f->rq[j] > 0));
+      if (same == 1) odd = j;
+    }
+    if (odd < 0) return std::nullopt;  // (K definite: an ellipsoid, or a point)
+    const auto W = semi_axes(*f);
+    if (!W) return std::nullopt;
+    out.origin = core.y;
+    out.axis = refined_axis(K, Vec3<Q>(W->col(odd)));
+    out.middle = out.origin;
+    const Q qw = out.axis.dot(K * out.axis), a0 = quadric_value(A, out.origin);
+    if (qw == 0) return std::nullopt;
+    out.plane = plane_across(Vec3<Q>(K * out.axis));
+    const Q w2 = out.axis.squaredNorm();
+    if (a0 == 0) {  // a cone: its section at h = 1, and H so that its far points are 16 reach out
+      const auto one = conic(Q(1));
+      if (!one) return std::nullopt;
+      const Vec3<Q> r = one->across.col(0);
+      const Q a1 = Q(-qw / r.dot(K * r) * r.squaredNorm());  // (its long semi-axis squared, at h = 1)
+      out.H = Q(kReachCap * reach / rough_sqrt(Q(w2 + a1)));
+    } else if ((a0 > 0) == (qw > 0)) {  // one sheet
+      const auto waist = conic(Q(0));
+      if (!waist) return std::nullopt;
+      const Vec3<Q> r = waist->across.col(0);
+      const Q a2 = Q(-a0 / r.dot(K * r) * r.squaredNorm());  // (its long waist semi-axis squared)
+      out.H = std::min(rough_sqrt(Q(15 * a0 / qw)), rough_sqrt(Q(256 * a2 / w2)));
+    } else {  // two sheets
+      out.H = rough_sqrt(Q(-16 * a0 / qw));
+    }
+  } else if (core.kernel.cols() == 1 && !core.kn.isZero()) {  // a paraboloid, elliptic or hyperbolic
+    const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;
+    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    out.axis = primitive_direction(Vec3<Q>(core.kernel.col(0)));
+    out.plane = plane_across(out.axis);
+    const Eigen::Matrix<Q, 2, 2> G = out.plane.transpose() * K * out.plane;
+    const Q tr2 = (K * K).trace();
+    if (G.determinant() == 0 || tr2 == 0) return std::nullopt;
+    out.H = rough_sqrt(Q(64 * core.kn.squaredNorm() / (tr2 * out.axis.squaredNorm())));
+    out.one_sided = G.determinant() > 0;
+    // (an elliptic one opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to G's)
+    if (out.one_sided && (out.axis.dot(core.kn) > 0) == (G(0, 0) > 0)) out.axis = -out.axis;
+    out.middle = out.one_sided ? Vec3<Q>(out.origin + out.H / 2 * out.axis) : out.origin;
+  } else {
+    return std::nullopt;
+  }
+  const auto at_H = conic(out.H);
+  if (!at_H) return std::nullopt;
+  out.at_H = *at_H;
+  out.sign_at_H = out.value(out.H, A) > 0 ? Q(1) : Q(-1);
+  if (!out.one_sided && (out.value(-out.H, A) > 0) != (out.sign_at_H > 0)) {
+    out.other = conic(Q(-out.H));
+    if (!out.other) return std::nullopt;
+  }
+  return out;
+}
+
+/// Up to n points of A drawn as its axial sections (AxialSections): the ends first (rep.ends of
+/// them: 2 per ellipse, 4 per hyperbola, at h = H and, two-sided, at -H), then chords of seeded
+/// sections |h| <= 15/16 H (shaped by their ellipse's axes, or within a hyperbola's ConicAxes::inner),
+/// seeded points farther from the middle than the ends dropped (EndsCap).
+SampleReport sample_axial(const Mat4<Q>& A, const AxialSections& s, int n, Draw& draw) {
+  SampleReport rep;
+  rep.middle = s.middle;
+  Lines lines(A, s.base(s.H));
+  const auto axes_at = [&](const Q& h) -> const ConicAxes& {
+    return s.other && (s.value(h, A) > 0) != (s.sign_at_H > 0) ? *s.other : s.at_H;
+  };
+  const auto line = [&](const Q& h, const Vec3<Q>& d) {
+    ++rep.attempts;
+    lines.set_base(s.base(h));
+    lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
+  };
+  for (const Q& h : {s.H, Q(-s.H)}) {
+    if (h < 0 && s.one_sided) break;
+    const ConicAxes& c = axes_at(h);
+    rep.ends += c.hyperbolic ? 4 : 2;
+    if (c.hyperbolic) {
+      for (const Q& t : {c.end, Q(-c.end)})
+        if (static_cast<int>(rep.points.size()) < n) line(h, Vec3<Q>(c.across.col(0) + t * c.across.col(1)));
+    } else if (static_cast<int>(rep.points.size()) < n) {
+      line(h, c.across.col(0));
+    }
+  }
+  EndsCap cap(s.middle, rep.ends);
+  cap.apply(rep.points, rep.points.size(), n);
+  const long long max_attempts = 50LL * n + 50;
+  while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
+    Q h;
+    do h = Q(s.H * 15 / 16 * (s.one_sided ? Q(abs(draw.unit())) : draw.unit())); while (h == 0);
+    const ConicAxes& c = axes_at(h);
+    Vec3<Q> d;
+    if (c.hyperbolic) {
+      d = c.across.col(0) + c.inner(draw) * c.across.col(1);
+    } else {
+      Vec3<Q> v = draw.vec3();
+      while (v(0) == 0 && v(1) == 0) v = draw.vec3();
+      d = c.across * Eigen::Matrix<Q, 2, 1>(v(0), v(1));
+    }
+    const std::size_t had = rep.points.size();
+    line(h, d);
+    cap.apply(rep.points, had, n);
+  }
+  rep.exhausted = static_cast<int>(rep.points.size()) < n;
+  return rep;
+}
+
+/// A quadric whose sections along an axis are pairs of parallel lines, or which is one or two
+/// parallel planes, drawn along lines in one direction r (across the lines, exactly) through the
+/// bases o + h w + t_1 g_1 + t_2 g_2 (g along the lines, |t_i| <= T_i; |h| <= H, or 0 < h <= H): A
+/// does not change along g, so each line meets A at the section's lines' distance across, and the
+/// stretch's ends, drawn first, are its corners (|h| = H, |t_i| = T_i), the farthest of its points
+/// from `middle`:
+/// - a parabolic cylinder: w its axis (K's kernel along k_n), g its generators (the kernel across
+///   k_n), o its vertex line's point nearest the anchor; 0 < h <= H = 16 f (AxialSections's f), T_1
+///   as long (single_line's 16 f);
+/// - a pair of planes crossing at a line of centres: g that line, w an axis of its cross-section's
+///   line pair (form_axes: the least quotient's), r = K w x g; H and T_1 so that its far points lie 16
+///   `reach` out across and along (it has no length of its own, as a cone);
+/// - two parallel planes (a plane of centres): g_1, g_2 along them, h = 0, T_i kPairReach half-widths
+///   (a parallel pair's stretch: ParallelPair);
+/// - a plane (K = 0): as two, each line meeting it once, T_i 16 `reach`.
+/// Random lines through a point beside them met them as far out as they were near parallel to them:
+/// sized 0.3 to 89 by seed for a reflected parabolic cylinder, 0.8 to 18 for a plane pair (audit
+/// 35a F2). nullopt where A is none of these.
+struct Prism {
+  Vec3<Q> origin, middle, across, axis = Vec3<Q>::Zero();
+  Q H{0};
+  bool one_sided = false;
+  std::array<Vec3<Q>, 2> along{{Vec3<Q>::Zero(), Vec3<Q>::Zero()}};
+  std::array<Q, 2> T{{Q(0), Q(0)}};
+  Vec4<Q> base(const Q& h, const Q& t1, const Q& t2) const {
+    return finite(Vec3<Q>(origin + h * axis + t1 * along[0] + t2 * along[1]));
+  }
+};
+/// (v not 0) Two orthogonal primitive vectors across it (plane_across's).
+std::array<Vec3<Q>, 2> primitive_across(const Vec3<Q>& v) {
+  const Eigen::Matrix<Q, 3, 2> p = plane_across(v);
+  return {{primitive_direction(Vec3<Q>(p.col(0))), primitive_direction(Vec3<Q>(p.col(1)))}};
+}
+std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& reach, const std::optional<Vec3<Q>>& anchor) {
+  if (!core.found) return std::nullopt;
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;
+  Prism out;
+  const auto range = [&]() {  // (K of rank 1: its range, a non-zero row)
+    for (int i = 0; i < 3; ++i)
+      if (!K.row(i).isZero()) return primitive_direction(Vec3<Q>(K.row(i).transpose()));
+    return Vec3<Q>(Vec3<Q>::Zero());
+  };
+  if (core.kernel.cols() == 3) {  // a plane: 2 k . x + A_ww = 0 (none where k = 0: K = 0 too)
+    if (core.kn.isZero()) return std::nullopt;
+    out.across = primitive_direction(core.kn);
+    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    out.along = primitive_across(out.across);
+    for (int i = 0; i < 2; ++i) out.T[static_cast<std::size_t>(i)] = kReachCap * reach / rough_sqrt(out.along[static_cast<std::size_t>(i)].squaredNorm());
+  } else if (core.kernel.cols() == 2 && !core.kn.isZero()) {  // a parabolic cylinder
+    out.across = range();
+    out.axis = primitive_direction(core.kn);
+    out.along[0] = primitive_direction(Vec3<Q>(out.axis.cross(out.across)));
+    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    const Q qr = out.across.dot(K * out.across);
+    // (it opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to r^T K r)
+    if ((out.axis.dot(core.kn) > 0) == (qr > 0)) out.axis = -out.axis;
+    const Q far2 = 64 * core.kn.squaredNorm() / (K * K).trace();  // ((16 f)^2)
+    out.H = rough_sqrt(Q(far2 / out.axis.squaredNorm()));
+    out.T[0] = rough_sqrt(Q(far2 / out.along[0].squaredNorm()));
+    out.one_sided = true;
+  } else if (core.kernel.cols() == 2) {  // two parallel planes (or one double plane: none)
+    out.across = range();
+    out.origin = y;
+    const Q a0 = quadric_value(A, y), qr = out.across.dot(K * out.across);
+    if (a0 == 0 || (a0 > 0) == (qr > 0)) return std::nullopt;
+    out.along = primitive_across(out.across);
+    const Q half2 = -a0 / qr * out.across.squaredNorm();
+    for (int i = 0; i < 2; ++i)
+      out.T[static_cast<std::size_t>(i)] = rough_sqrt(Q(kPairReach * kPairReach * half2 / out.along[static_cast<std::size_t>(i)].squaredNorm()));
+  } else if (core.line_of_centres() && quadric_value(A, y) == 0) {  // a pair of planes crossing, or a line
+    out.along[0] = primitive_direction(Vec3<Q>(core.kernel.col(0)));
+    out.origin = y;
+    const Eigen::Matrix<Q, 3, 2> plane = plane_across(out.along[0]);
+    const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * K * plane;
+    if (!(G.determinant() < 0)) return std::nullopt;  // (complex planes: their one real line)
+    const auto f = form_axes<2>(G, Eigen::Matrix<Q, 2, 1>(plane.col(0).squaredNorm(), plane.col(1).squaredNorm()));
+    if (!f) return std::nullopt;
+    const auto W = semi_axes(*f);
+    if (!W) return std::nullopt;
+    const int j = abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1;
+    out.axis = refined_axis(K, Vec3<Q>(plane * Eigen::Matrix<Q, 2, 1>(W->col(j))));
+    out.across = primitive_direction(Vec3<Q>(Vec3<Q>(K * out.axis).cross(out.along[0])));
+    const Q qw = out.axis.dot(K * out.axis), qr = out.across.dot(K * out.across);
+    if (qw == 0 || qr == 0 || (qw > 0) == (qr > 0)) return std::nullopt;
+    out.H = Q(kReachCap * reach / rough_sqrt(Q(out.axis.squaredNorm() - qw / qr * out.across.squaredNorm())));
+    out.T[0] = Q(kReachCap * reach / rough_sqrt(out.along[0].squaredNorm()));
+  } else {
+    return std::nullopt;
+  }
+  out.middle = out.one_sided ? Vec3<Q>(out.origin + out.H / 2 * out.axis) : out.origin;
+  return out;
+}
+
+/// Up to n points of A drawn as a Prism: its corners' lines first (rep.ends points: 2 per line, 1 for
+/// a plane), then lines through seeded bases |h| <= 15/16 H, |t_i| <= 15/16 T_i, seeded points
+/// farther from the middle than the ends dropped (EndsCap).
+SampleReport sample_prism(const Mat4<Q>& A, const Prism& p, int n, Draw& draw) {
+  SampleReport rep;
+  rep.middle = p.middle;
+  Lines lines(A, p.base(0, 0, 0));
+  const Vec4<Q> r(p.across(0), p.across(1), p.across(2), Q(0));
+  const int per_line = Mat3<Q>(A.topLeftCorner<3, 3>()).isZero() ? 1 : 2;
+  const auto line = [&](const Q& h, const Q& t1, const Q& t2) {
+    ++rep.attempts;
+    lines.set_base(p.base(h, t1, t2));
+    lines.intersect(r, rep.points, n);
+  };
+  const auto ends = [](const Q& x, bool both) { return x == 0 ? std::vector<Q>{Q(0)} : both ? std::vector<Q>{x, Q(-x)} : std::vector<Q>{x}; };
+  for (const Q& h : ends(p.H, !p.one_sided))
+    for (const Q& t1 : ends(p.T[0], true))
+      for (const Q& t2 : ends(p.T[1], true)) {
+        rep.ends += per_line;
+        if (static_cast<int>(rep.points.size()) < n) line(h, t1, t2);
+      }
+  EndsCap cap(p.middle, rep.ends);
+  cap.apply(rep.points, rep.points.size(), n);
+  const long long max_attempts = 50LL * n + 50;
+  const auto inner = [&](const Q& x) { return Q(x * 15 / 16 * draw.unit()); };
+  while (static_cast<int>(rep.points.size()) < n && rep.attempts < max_attempts) {
+    Q h(0);
+    if (p.H != 0)
+      do h = p.one_sided ? Q(abs(inner(p.H))) : inner(p.H); while (h == 0);
+    const Q t1 = inner(p.T[0]), t2 = inner(p.T[1]);
+    const std::size_t had = rep.points.size();
+    line(h, t1, t2);
+    cap.apply(rep.points, had, n);
+  }
+  rep.exhausted = static_cast<int>(rep.points.size()) < n;
+  return rep;
+}
+
+/// An ellipsoid's longest semi-axis, as a direction (semi_axes: rounded, so its points are within
+/// about 2^-80 of the farthest from the centre; the sample's seeded points farther than they are
+/// dropped). nullopt where K is not definite or its axes are not found.
+std::optional<Vec3<Q>> longest_axis(const Mat3<Q>& K) {
+  if (*definiteness<Q, 3>(K) == 0) return std::nullopt;
+  const auto f = form_axes<3>(K, Vec3<Q>(1, 1, 1));
+  if (!f) return std::nullopt;
+  const auto W = semi_axes(*f);
+  if (!W) return std::nullopt;
+  int j = 0;
+  for (int c = 1; c < 3; ++c)
+    if (abs(f->rq[static_cast<std::size_t>(c)]) < abs(f->rq[static_cast<std::size_t>(j)])) j = c;
+  return Vec3<Q>(W->col(j));
+}
+
 }  // namespace
 
 QuadricCore quadric_core(const Mat4<Q>& A) {
@@ -756,28 +1120,16 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
   bool parabola_end = true;
   // Measured from a point other than the stretch's middle (A's centre; a cylinder's axis point), a
   // seeded point may lie farther out than the ends (10% farther for a hyperbola on a hyperboloid
-  // whose centre is off the section's): such points are dropped, as far as 80 digits tell, so that
-  // the ends size the sample at every seed and count; unless more than n are (the farthest point is
-  // then inside the stretch: from it a single seeded sample would be all there is). A parabola on a
+  // whose centre is off the section's): such points are dropped (EndsCap). A parabola on a
   // hyperboloid may be farthest from A's centre inside its stretch (its vertex, or between it and the
   // end chord): that point (parabola_far_point) is one of its ends, drawn first.
-  int dropped = 0;
   const std::optional<Vec3<Q>> size_from = hyperbola || parabola ? centre_of_core(A, anchor) : std::nullopt;
   if (parabola && size_from && rep.points.empty())
     if (const std::optional<Vec4<Q>> far = parabola_far_point(*parabola, *size_from)) {
       rep.points.emplace_back(*far, Vec4<Q>::Zero(), Q(0));
       ++rep.ends;
     }
-  std::optional<Measure> ends_reach;  // the ends' largest squared distance from size_from
-  const auto distance2 = [&](const RootPoint& x) {
-    const IntegerPoint ip(x);
-    Measure d2 = 0;
-    for (int i = 0; i < 3; ++i) {
-      const Measure o = ip.offset(i, (*size_from)(i));
-      d2 += o * o;
-    }
-    return d2;
-  };
+  EndsCap cap(size_from, rep.ends);
   const auto direction = [&]() -> Vec3<Q> {
     if (pair) return Vec3<Q>(pair->across + stretch.next(draw) * pair->along);
     if (parabola && !stepped) {  // (each chord from its own base on the axis)
@@ -806,19 +1158,7 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     const std::size_t had = rep.points.size();
     hits += lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n) ? 1 : 0;
     if (stepped) keep_near(rep.points, had, b, reach);
-    if (size_from && !stepped) {
-      if (!ends_reach && static_cast<int>(rep.points.size()) >= rep.ends) {
-        Measure far = 0;
-        for (int i = 0; i < rep.ends; ++i) far = std::max(far, distance2(rep.points[static_cast<std::size_t>(i)]));
-        ends_reach = far;
-      } else if (ends_reach && dropped <= n) {
-        const Measure cap = *ends_reach * (1 - Measure("1e-60"));
-        const auto beyond = std::remove_if(rep.points.begin() + static_cast<std::ptrdiff_t>(had), rep.points.end(),
-                                           [&](const RootPoint& x) { return distance2(x) > cap; });
-        dropped += static_cast<int>(rep.points.end() - beyond);
-        rep.points.erase(beyond, rep.points.end());
-      }
-    }
+    if (!stepped) cap.apply(rep.points, had, n);
     // no line has met the section yet (the base may be its singular point, a cone's apex, which
     // every line through it only touches): move the base point within the plane
     if (rep.attempts % 8 == 0 && hits == 0) {
@@ -845,16 +1185,32 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
     return rep;
   }
   Draw draw(seed);
+  const QuadricCore core = quadric_core(A);
+  if (const std::optional<AxialSections> axial = axial_sections(A, core, reach, anchor))
+    return sample_axial(A, *axial, n, draw);
+  if (const std::optional<Prism> p = prism(A, core, reach, anchor)) return sample_prism(A, *p, n, draw);
   Vec4<Q> b = quadric_base(A, anchor);
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   bool stepped = false;
-  const auto shape = shaped_directions<3>(Mat3<Q>(A.topLeftCorner<3, 3>()), Vec3<Q>(1, 1, 1));
+  const Mat3<Q> K = A.topLeftCorner<3, 3>();
+  const auto shape = shaped_directions<3>(K, Vec3<Q>(1, 1, 1));
+  // an ellipsoid: its longest semi-axis's ends first, the farthest points from its centre (b), the
+  // sample's size at every seed and count (random directions gave 9.999994 or 10 by seed for semi-axes
+  // 1, 2 and 10)
+  const std::optional<Vec3<Q>> longest =
+      core.kernel.cols() == 0 && quadric_value(A, core.y) != 0 ? longest_axis(K) : std::nullopt;
+  EndsCap cap(longest ? std::optional<Vec3<Q>>(Vec3<Q>(b.head<3>())) : std::nullopt, longest ? 2 : 0);
+  if (longest) {
+    rep.ends = 2;
+    ++rep.attempts;
+    lines.intersect(Vec4<Q>((*longest)(0), (*longest)(1), (*longest)(2), Q(0)), rep.points, n);
+    cap.apply(rep.points, rep.points.size(), n);
+  }
   // A cylinder (an axis of centres, through b): lines r + t a within kPairReach cross-section radii
   // of b along the axis (cylinder_chords); random directions met it as far out as they were near
   // parallel to the axis (10^9 out for an axis 10^-9 from level). Where its cross-section has no
   // shape (cylinder_chords says where), r random across the axis.
-  const QuadricCore core = quadric_core(A);
   const std::optional<Vec3<Q>> axis =
       core.line_of_centres() ? std::optional<Vec3<Q>>(primitive_direction(Vec3<Q>(core.kernel.col(0)))) : std::nullopt;
   const std::optional<ConicAxes> chords = axis ? cylinder_chords(A, *axis, Vec3<Q>(b.head<3>())) : std::nullopt;
@@ -889,6 +1245,7 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
     const std::size_t had = rep.points.size();
     lines.intersect(Vec4<Q>(d(0), d(1), d(2), Q(0)), rep.points, n);
     if (stepped) keep_near(rep.points, had, b, reach);
+    cap.apply(rep.points, had, n);
     if (rep.attempts % 8 == 0 && rep.points.empty()) {  // (e.g. from a cone's apex: every line only touches)
       b.head<3>() += scaled_to(draw.vec3(), reach);
       lines.set_base(b);

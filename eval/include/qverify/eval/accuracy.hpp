@@ -13,7 +13,9 @@
 /// error is the largest distance divided by the object size: the largest
 /// distance of the (unreflected) points from the centre of A (the centre of
 /// its quadratic part, -K^-1 k; where K is singular, the centre on A's axis (plane) of centres nearest
-/// the light or mirror, as sampled (a cylinder), or the points' centroid where A has no centre).
+/// the light or mirror, as sampled (a cylinder); where A has no centre, the middle of the stretch
+/// its points are drawn on (SampleReport::middle: a parabola's, a paraboloid's), else the points'
+/// centroid).
 /// A far-away point therefore cannot make a wrong result look small.
 
 #include <qverify/batch/items.hpp>
@@ -93,8 +95,8 @@ struct ItemPoints {
   /// (sampling.cpp, shaped_directions): a size from the samples alone made every relative error 1400
   /// times too large.)
   Measure size = 0;
-  /// A's centre (object_size's: a cylinder's axis point its sample is drawn about; the points'
-  /// centroid where A has no centre) and a reach of at least `size`: the
+  /// A's centre (object_size's: a cylinder's axis point its sample is drawn about; where A has no
+  /// centre, its stretch's middle, else the points' centroid) and a reach of at least `size`: the
   /// points a ball bound covers where the geometry is not a real ellipse (certified_bound.hpp, Ball;
   /// an ellipse's R is bounded in ShadowGeometry::R_ball, about all of it).
   /// For a reflection, about A's points before the mirror.

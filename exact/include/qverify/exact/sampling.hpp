@@ -28,15 +28,17 @@ struct SampleReport {
   std::vector<RootPoint> points;
   long long attempts = 0;  ///< lines drawn
   bool exhausted = false;  ///< fewer points than asked were found
-  /// The middle of the stretch sample_section draws, from which its ends are the farthest points: a
-  /// pair of parallel lines' midline point its chords pass through, a hyperbola's centre, the middle
-  /// of a parabola's stretch of axis, a single line's point nearest the base. (The object size is
-  /// measured from it where A has no centre of its own: eval/accuracy.hpp.)
+  /// The middle of the stretch sample_section or sample_quadric draws, from which its ends are the
+  /// farthest points: a pair of parallel lines' midline point its chords pass through, a hyperbola's
+  /// centre, the middle of a parabola's stretch of axis, a single line's point nearest the base; a
+  /// quadric's centre, or the middle of a paraboloid's or parabolic cylinder's stretch of axis. (The
+  /// object size is measured from it where A has no centre of its own: eval/accuracy.hpp.)
   std::optional<Vec3<Rational>> middle;
   /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends, a
   /// hyperbola's two end chords' 4, a parabola's end chord's 2, and on a hyperboloid its point
-  /// farthest from A's centre where that lies inside its stretch, a single line's 2 ends): fewer than
-  /// that do not reach its size (0: no such ends).
+  /// farthest from A's centre where that lies inside its stretch, a single line's 2 ends; of a
+  /// quadric, an ellipsoid's 2, its axial sections' or prism's end lines' points): fewer than that do
+  /// not reach its size (0: no such ends).
   int ends = 0;
 };
 
@@ -111,9 +113,17 @@ Rational reach_length(const Vec4<Rational>& b, const Vec4<Rational>& light);
 SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, int n, std::uint64_t seed,
                             const Rational& reach, const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
-/// Up to n finite points of A, on lines through quadric_base(A, anchor); the base point moves by steps of L-infinity length
-/// `reach` (> 0; eval takes 1: reach_length) where no line through it meets A, and the points
-/// kept then lie within 16 such lengths of the moved base.
+/// Up to n finite points of A, on a fixed stretch of it whose farthest points from the point its size
+/// is measured from (A's centre, centre_of_core, or SampleReport::middle) are drawn first
+/// (SampleReport::ends), seeded points farther than they dropped, so that its size is the same at
+/// every seed and count: an ellipsoid all over, its longest axis's ends first; a cylinder within 16
+/// cross-section radii of its axis point nearest `anchor`; a hyperboloid, a cone, a paraboloid as
+/// its sections across an axis out to 4 times its waist or vertex, 16 `reach` (> 0; eval takes 1:
+/// reach_length) or 16 focal lengths; a parabolic cylinder, a plane pair, parallel planes, a plane
+/// by lines across their sections (sampling.cpp says how far). Elsewhere (a point, a line, a
+/// double plane) on lines through quadric_base(A, anchor), the base moving by steps of L-infinity
+/// length `reach` where no line through it meets A, the points kept then within 16 such lengths of
+/// the moved base.
 SampleReport sample_quadric(const Mat4<Rational>& A, int n, std::uint64_t seed, const Rational& reach,
                             const std::optional<Vec3<Rational>>& anchor = std::nullopt);
 
