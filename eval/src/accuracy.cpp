@@ -306,11 +306,16 @@ namespace {
 /// along it). Kind 2 (reflection, `other` the mirror's plane): the core's point on the mirror, moved
 /// there along the directions D in which A does not change (K w = 0, k_n . w = 0); where the plane is
 /// parallel to D, the world origin again (A and the plane are the same about every such point, but
-/// the points are not).
+/// the points are not). A plane (K = 0) moves from its own point (the world origin's foot), not from
+/// the sampler's base |k_n| off it: from there it reached the mirror |k_n| cot(angle) from the line
+/// where they meet, 7e5 units off for a plane of small integers moved by 1e-6, 2.7e17 for one of
+/// 17-digit decimals, where its stretch was drawn (audit 36a F1).
 Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   if (kind == 1) return other(3) != 0 ? Vec3<Q>(other.head<3>() / other(3)) : Vec3<Q>(Vec3<Q>::Zero());
-  const Vec3<Q> b0 = quadric_base(A).head<3>();
   const QuadricCore core = quadric_core(A);
+  const bool plane = Mat3<Q>(A.topLeftCorner<3, 3>()).isZero() && !core.kn.isZero();
+  const Vec3<Q> b0 = plane ? Vec3<Q>(core.y - quadric_value(A, core.y) / (2 * core.kn.squaredNorm()) * core.kn)
+                           : Vec3<Q>(quadric_base(A).head<3>());
   if (core.kernel.cols() == 0) return b0;
   const Eigen::Matrix<Q, 1, Eigen::Dynamic> along = core.kn.transpose() * core.kernel;
   const Eigen::FullPivLU<Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>> lu(along);
@@ -447,8 +452,9 @@ ItemPoints reflected_points(const Mat4<Q>& A_given, const Mat4<Q>& M, int n, std
   ItemPoints out;
   out.exhausted = s.exhausted;
   Vec3<Q> centre;
-  // (where A has no centre, the middle of the stretch the sampler draws: a paraboloid's, about which
-  // its ends are the farthest points, not the sample's centroid, which moved with the seed)
+  // (where A has no centre, the middle of the stretch the sampler draws: a paraboloid's, a parabolic
+  // cylinder's, a plane's, about which its ends are the farthest points, not the sample's centroid,
+  // which moved with the seed)
   std::optional<Vec3<Q>> core_centre = centre_of_core(A, anchor);
   if (!core_centre) core_centre = s.middle;
   std::tie(out.size, centre) = object_size(s.points, core_centre);

@@ -304,6 +304,39 @@ template <class M> Q unit_scale(const M& m) {
   return e >= 0 ? Q(1) / Q(p) : Q(p);
 }
 
+/// The infinitesimal affine motion V (4 x 4, last row 0) whose change of ref, ref V + V^T ref, is
+/// nearest E / lambda (Frobenius, least squares of minimal |V|, in double), in the frame T
+/// (own_frame) and taken back exactly, V = T V_T T^-1 (affine, as T is); nullopt where none is found
+/// (lambda = 0, E = 0, numbers beyond a double's range). Any V serves: ball_quadric_bound takes it
+/// only where it bounds lower.
+std::optional<Mat4<Q>> motion_part(const Mat4<Q>& E, const Mat4<Q>& ref, const Q& lambda, const Mat4<Q>& T) {
+  if (lambda == 0 || E.isZero()) return std::nullopt;
+  const Mat4<Q> ET = T.transpose() * Mat4<Q>(E / lambda) * T, RT = T.transpose() * ref * T;
+  const Q se = unit_scale(ET), sr = unit_scale(RT);  // (powers of two: the entries near 1)
+  Eigen::Matrix<double, 10, 12> M = Eigen::Matrix<double, 10, 12>::Zero();
+  Eigen::Matrix<double, 10, 1> b;
+  Mat4<double> R;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) R(i, j) = Q(RT(i, j) * sr).convert_to<double>();
+  int row = 0;
+  for (int a = 0; a < 4; ++a)
+    for (int c = a; c < 4; ++c, ++row) {
+      b(row) = Q(Mat4<Q>(ET + ET.transpose())(a, c) / 2 * se).convert_to<double>();
+      // (R V + V^T R)_ac for V = e_i e_j^T: R_ai [j == c] + [j == a] R_ic
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) M(row, 4 * i + j) = (j == c ? R(a, i) : 0.0) + (j == a ? R(i, c) : 0.0);
+    }
+  if (!M.allFinite() || !b.allFinite()) return std::nullopt;
+  const Eigen::Matrix<double, 12, 1> v = M.completeOrthogonalDecomposition().solve(b);
+  if (!v.allFinite()) return std::nullopt;
+  Mat4<Q> VT = Mat4<Q>::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) VT(i, j) = Q(v(4 * i + j)) * sr / se;
+  if (VT.isZero()) return std::nullopt;
+  return Mat4<Q>(T * VT * Mat4<Q>(T.inverse()));
+}
+
+
 /// A double at most x (x >= 0, to 80 digits: the margin covers its last digits and the rounding).
 double lower_double(const Measure& x) {
   const double d = Measure(x * Measure(1 - 1e-15)).convert_to<double>();
@@ -1101,6 +1134,20 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     const Vec4<Q> e = plane_pair_part_about(E, w, ball_frame(ball, o));
     Ev = E - (w * e.transpose() + e * w.transpose());
   }
+  // The motion part: E = lambda (ref V + V^T ref) + Em, V an infinitesimal affine motion (last row
+  // 0: (V z)_w = 0). On the geometry (z^T ref z = 0, ref symmetric) z^T hat z = z^T Em z + 2 lambda
+  // (ref z)_xyz . (V z)_xyz, and with G = |lambda (ref z)_xyz| >= F (the floor) and |(E z)_xyz| <= e,
+  // |(hat z)_xyz| >= G - e, so the first-order distance is at most |z^T Em z| / (2 (F - e)) + |(V z)_xyz|
+  // F / (F - e) (both decrease as G grows): a result moved, turned or scaled a little is bounded by
+  // how far it moved the points, where the value over the gradient's floor grew with the shells (a
+  // hyperbolic paraboloid reflected and moved by 2e-9, 3.7e-10 of its size, was bounded at 2.1e-9).
+  const std::optional<Mat4<Q>> V =
+      euclidean_only || ref_o != Mat4<Q>(ref_o.transpose()) ? std::nullopt : motion_part(E, ref_o, lambda, ball_frame(ball, o));
+  const Mat4<Q> Em = V ? Mat4<Q>(E - lambda * Mat4<Q>(ref_o * *V + V->transpose() * ref_o)) : E;
+  const Q am = z0.dot(Em * z0);
+  const Vec3<Q> gm = Vec4<Q>(Mat4<Q>(Em + Em.transpose()) * z0).head<3>();
+  const Mat3<Q> Em3 = Em.topLeftCorner<3, 3>(), V3 = V ? Mat3<Q>(V->topLeftCorner<3, 3>()) : Mat3<Q>(Mat3<Q>::Zero());
+  const Vec3<Q> vz0 = V ? Vec3<Q>(Vec4<Q>(*V * z0).head<3>()) : Vec3<Q>(Vec3<Q>::Zero());
   const Q a = z0.dot(E * z0), av = z0.dot(Ev * z0);
   // z^T Ev z = a + y . ((Ev + Ev^T) z0)_xyz + y^T Ev3 y: a candidate's matrix need not be exactly
   // symmetric (verify accepts an asymmetry within the target), so the linear part is Ev + Ev^T's;
@@ -1132,6 +1179,9 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     IA e3, e3s, h3, gn, gsn, fa, gvn, ev3, fav, constant;
     std::array<std::array<IA, 3>, 3> E3a, E3sa, Ev3a;  // (a ball with a box: the terms also from its reaches)
     std::array<IA, 3> gva, gsa;
+    IA fam, gmn, em3, vz0n, v3;  // the motion part's (Em, V)
+    std::array<std::array<IA, 3>, 3> Em3a, V3a;
+    std::array<IA, 3> gma;
   };
   const Enclosures en = upward([&] {
     const auto frobenius = [](const Mat3<Q>& m) {
@@ -1146,11 +1196,14 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
     x.constant = tighter(x.fa, x.fav);
     x.E3a = abs_entries(E3), x.E3sa = abs_entries(E3s), x.Ev3a = abs_entries(Ev3);
     x.gva = abs_entries(gv), x.gsa = abs_entries(gs);
+    x.fam = CGAL::abs(enc(am)), x.gmn = norm_of(gm), x.em3 = frobenius(Em3), x.vz0n = norm_of(vz0), x.v3 = frobenius(V3);
+    x.Em3a = abs_entries(Em3), x.V3a = abs_entries(V3), x.gma = abs_entries(gm);
     return x;
   });
   const auto run_batch = [&](const std::vector<Q>& radius, const std::vector<double>& floors) {
     return upward([&] {
-      const auto& [e3, e3s, h3, gn, gsn, fa, gvn, ev3, fav, constant, E3a, E3sa, Ev3a, gva, gsa] = en;
+      const auto& [e3, e3s, h3, gn, gsn, fa, gvn, ev3, fav, constant, E3a, E3sa, Ev3a, gva, gsa, fam, gmn, em3, vz0n, v3,
+                   Em3a, V3a, gma] = en;
       Batch out;
       for (std::size_t j = 0; j <= kShells; ++j) {
         const bool inner = j == kShells;
@@ -1165,6 +1218,11 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, 
         if (!euclidean_only) {
           const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
           if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
+          if (V && gradient.inf() > 0) {  // (the motion part, above)
+            const IA moved = fam + tighter(r * gmn, box_linear(gma, rho)) + tighter(CGAL::square(r) * em3, box_quadratic(Em3a, rho));
+            const IA shift = vz0n + tighter(r * v3, box_image(V3a, rho));
+            d = std::min(d, (moved / (IA(2) * gradient) + shift * IA(floors[j]) / gradient).sup());
+          }
           out.gradient = std::min(out.gradient, gradient.inf() <= 0 ? 0.0 : h3.sup() == 0 ? kInf : (gradient / h3).inf());
         } else {
           // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and

@@ -261,6 +261,16 @@ std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k
   return semi_axes(*f);
 }
 
+/// Where A has no centre (k_n != 0: a paraboloid, a parabolic cylinder, a plane): the point of A on
+/// the line y + t k_n through a core point y (its vertex; a plane's foot of y): A(y + t k_n) = A(y) +
+/// 2 t |k_n|^2 (K k_n = 0, k_n . (K y + k) = |k_n|^2), 0 at t = -A(y) / (2 |k_n|^2).
+Vec3<Q> vertex_from(const Mat4<Q>& A, const QuadricCore& core, const Vec3<Q>& y) {
+  return Vec3<Q>(y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn);
+}
+/// (16 f)^2 for A without a centre, f = |k_n| / (2 |K|_F) (a parabolic cylinder's focal length; a
+/// paraboloid's, its principal ones' at most); K != 0.
+Q sixteen_f_squared(const QuadricCore& core, const Mat3<Q>& K) { return 64 * core.kn.squaredNorm() / (K * K).trace(); }
+
 /// A rational point at A's core, to draw lines through: its centre; the point of its axis (plane) of
 /// centres nearest `anchor`, or any where none is given (a cylinder: A does not change along its
 /// axis); for a paraboloid (K y = -k has no solution) a point inside it on its axis, a focal length or
@@ -279,7 +289,7 @@ Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
   // side of the quadric's convexity, where sign(A) = -sign(trace K)) for t of the sign of -trace K,
   // |t k_n| about |k_n| / max|K|; a plane (K = 0): off it by k_n, where lines meet it.
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const Vec3<Q> vertex = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+  const Vec3<Q> vertex = vertex_from(A, core, y);
   Q big = 0;
   for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
   if (big == 0) return Vec3<Q>(vertex + core.kn);
@@ -324,7 +334,7 @@ class EndsCap {
       return;
     }
     if (dropped_ > n) return;
-    const Measure cap = *reach_ * (1 - Measure("1e-60"));
+    const Measure cap = *reach_ * (1 + Measure("1e-60"));  // (points as far as the ends, to 80 digits, kept)
     const auto beyond = std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(had), out.end(),
                                        [&](const RootPoint& x) { return distance2(x) > cap; });
     dropped_ += static_cast<int>(out.end() - beyond);
@@ -651,12 +661,12 @@ Vec3<Q> refined_axis(const Mat3<Q>& K, const Vec3<Q>& w) {
 /// An unbounded quadric with an axis drawn as its sections across it (sample_quadric): a hyperboloid,
 /// a cone, an elliptic or a hyperbolic paraboloid. The planes through o + h w (h rational, |h| <= H;
 /// 0 < h <= H for an elliptic paraboloid) with normal n cut A in conics centred at o + h w: for a
-/// central A (o its centre, K o = -k), n = K w, and A's gradient there is h K w, along n; for a
-/// paraboloid (o its vertex, w its axis, K's kernel), n = w, and the gradient is k_n, along w. So a
-/// line through o + h w across n meets A at o + h w +- lambda r, lambda^2 r^T K r = -A(o + h w): the
-/// section's shape (conic_axes) at one h serves every h where A(o + h w) has the same sign, scaled.
-/// w is a central A's axis of the odd sign (a rounded eigenvector of K: semi_axes), a paraboloid's
-/// kernel. The stretch and its ends, the farthest of its points from `middle` (the point the size is
+/// central A (o its centre, K o = -k), n is its axis of the odd sign (a rounded eigenvector of K,
+/// semi_axes, refined: refined_axis) and w = adj(K) n, its conjugate diameter, so A's gradient there,
+/// h K w = h det(K) n, is along n; for a paraboloid (o its vertex, w its axis, K's kernel), n = w, and
+/// the gradient is k_n, along w. So a line through o + h w across n meets A at o + h w +- lambda r,
+/// lambda^2 r^T K r = -A(o + h w): the section's shape (conic_axes) at one h serves every h where
+/// A(o + h w) has the same sign, scaled. The stretch and its ends, the farthest of its points from `middle` (the point the size is
 /// measured from: o, or the middle o + H/2 w of an elliptic paraboloid's stretch of axis), drawn
 /// first: the sections at h = +-H along their longest semi-axis (an ellipse's), at their hyperbola's
 /// ends s = +-ConicAxes::end (a hyperbolic paraboloid's, whose sections at -H and H are hyperbolas
@@ -700,11 +710,16 @@ std::optional<AxialSections> axial_sections(const Mat4<Q>& A, const QuadricCore&
     const auto W = semi_axes(*f);
     if (!W) return std::nullopt;
     out.origin = core.y;
-    out.axis = refined_axis(K, Vec3<Q>(W->col(odd)));
+    // the planes across the refined axis n itself, their centres along its conjugate diameter u =
+    // adj(K) n (K u = det K n, along the normal): cut across K w instead, w's rounding across the
+    // axis, times K's largest eigenvalue over the odd one, tilted them (x^2 + y^2 - 1e-24 z^2 = 1
+    // turned: a waist 1.5e4 where it is 1; review of bcb247a)
+    const Vec3<Q> n = refined_axis(K, Vec3<Q>(W->col(odd)));
+    out.axis = primitive_direction(Vec3<Q>(adjugate3<Q>(K) * n));
     out.middle = out.origin;
     const Q qw = out.axis.dot(K * out.axis), a0 = quadric_value(A, out.origin);
     if (qw == 0) return std::nullopt;
-    out.plane = plane_across(Vec3<Q>(K * out.axis));
+    out.plane = plane_across(n);
     const Q w2 = out.axis.squaredNorm();
     if (a0 == 0) {  // a cone: its section at h = 1, and H so that its far points are 16 reach out
       const auto one = conic(Q(1));
@@ -723,13 +738,13 @@ std::optional<AxialSections> axial_sections(const Mat4<Q>& A, const QuadricCore&
     }
   } else if (core.kernel.cols() == 1 && !core.kn.isZero()) {  // a paraboloid, elliptic or hyperbolic
     const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;
-    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    out.origin = vertex_from(A, core, y);
     out.axis = primitive_direction(Vec3<Q>(core.kernel.col(0)));
     out.plane = plane_across(out.axis);
     const Eigen::Matrix<Q, 2, 2> G = out.plane.transpose() * K * out.plane;
     const Q tr2 = (K * K).trace();
     if (G.determinant() == 0 || tr2 == 0) return std::nullopt;
-    out.H = rough_sqrt(Q(64 * core.kn.squaredNorm() / (tr2 * out.axis.squaredNorm())));
+    out.H = rough_sqrt(Q(sixteen_f_squared(core, K) / out.axis.squaredNorm()));
     out.one_sided = G.determinant() > 0;
     // (an elliptic one opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to G's)
     if (out.one_sided && (out.axis.dot(core.kn) > 0) == (G(0, 0) > 0)) out.axis = -out.axis;
@@ -807,17 +822,21 @@ SampleReport sample_axial(const Mat4<Q>& A, const AxialSections& s, int n, Draw&
 /// - a parabolic cylinder: w its axis (K's kernel along k_n), g its generators (the kernel across
 ///   k_n), o its vertex line's point nearest the anchor; 0 < h <= H = 16 f (AxialSections's f), T_1
 ///   as long (single_line's 16 f);
-/// - a pair of planes crossing at a line of centres: g that line, w an axis of its cross-section's
-///   line pair (form_axes: the least quotient's), r = K w x g; H and T_1 so that its far points lie 16
+/// - a pair of planes crossing at a line of centres: g that line, r an axis of its cross-section's
+///   line pair (form_axes: the larger quotient's, refined_axis), w = g x K r; H and T_1 so that its far points lie 16
 ///   `reach` out across and along (it has no length of its own, as a cone);
 /// - two parallel planes (a plane of centres): g_1, g_2 along them, h = 0, T_i kPairReach half-widths
 ///   (a parallel pair's stretch: ParallelPair);
-/// - a plane (K = 0): as two, each line meeting it once, T_i 16 `reach`.
+/// - a plane (K = 0): as two, each line meeting it once, T_i 16 `reach`;
+/// - a double plane, a real line (x^2 + y^2 = 0): the bases themselves, A's kernel's rational points
+///   (on_kernel), T_i 16 `reach` (lines through them only touch A: none was found, the sample was
+///   empty, and a B with no real point passed as a matrix; audit 36a F2).
 /// Random lines through a point beside them met them as far out as they were near parallel to them:
 /// sized 0.3 to 89 by seed for a reflected parabolic cylinder, 0.8 to 18 for a plane pair (audit
 /// 35a F2). nullopt where A is none of these.
 struct Prism {
-  Vec3<Q> origin, middle, across, axis = Vec3<Q>::Zero();
+  Vec3<Q> origin, middle, across = Vec3<Q>::Zero(), axis = Vec3<Q>::Zero();
+  bool on_kernel = false;  ///< the bases are A's points themselves (a double plane, a real line)
   Q H{0};
   bool one_sided = false;
   std::array<Vec3<Q>, 2> along{{Vec3<Q>::Zero(), Vec3<Q>::Zero()}};
@@ -844,26 +863,34 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
   if (core.kernel.cols() == 3) {  // a plane: 2 k . x + A_ww = 0 (none where k = 0: K = 0 too)
     if (core.kn.isZero()) return std::nullopt;
     out.across = primitive_direction(core.kn);
-    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    out.origin = vertex_from(A, core, y);
     out.along = primitive_across(out.across);
     for (int i = 0; i < 2; ++i) out.T[static_cast<std::size_t>(i)] = kReachCap * reach / rough_sqrt(out.along[static_cast<std::size_t>(i)].squaredNorm());
   } else if (core.kernel.cols() == 2 && !core.kn.isZero()) {  // a parabolic cylinder
     out.across = range();
     out.axis = primitive_direction(core.kn);
     out.along[0] = primitive_direction(Vec3<Q>(out.axis.cross(out.across)));
-    out.origin = y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn;
+    out.origin = vertex_from(A, core, y);
     const Q qr = out.across.dot(K * out.across);
     // (it opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to r^T K r)
     if ((out.axis.dot(core.kn) > 0) == (qr > 0)) out.axis = -out.axis;
-    const Q far2 = 64 * core.kn.squaredNorm() / (K * K).trace();  // ((16 f)^2)
+    const Q far2 = sixteen_f_squared(core, K);
     out.H = rough_sqrt(Q(far2 / out.axis.squaredNorm()));
     out.T[0] = rough_sqrt(Q(far2 / out.along[0].squaredNorm()));
     out.one_sided = true;
-  } else if (core.kernel.cols() == 2) {  // two parallel planes (or one double plane: none)
+  } else if (core.kernel.cols() == 2) {  // two parallel planes, or one double plane
     out.across = range();
     out.origin = y;
     const Q a0 = quadric_value(A, y), qr = out.across.dot(K * out.across);
-    if (a0 == 0 || (a0 > 0) == (qr > 0)) return std::nullopt;
+    if (a0 == 0) {  // a double plane: its points are A's kernel's, rational, 16 `reach` out each way
+      out.on_kernel = true;
+      out.along = primitive_across(out.across);
+      for (int i = 0; i < 2; ++i) out.T[static_cast<std::size_t>(i)] = kReachCap * reach / rough_sqrt(out.along[static_cast<std::size_t>(i)].squaredNorm());
+      out.across.setZero();
+      out.middle = out.origin;
+      return out;
+    }
+    if ((a0 > 0) == (qr > 0)) return std::nullopt;
     out.along = primitive_across(out.across);
     const Q half2 = -a0 / qr * out.across.squaredNorm();
     for (int i = 0; i < 2; ++i)
@@ -873,14 +900,23 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
     out.origin = y;
     const Eigen::Matrix<Q, 3, 2> plane = plane_across(out.along[0]);
     const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * K * plane;
-    if (!(G.determinant() < 0)) return std::nullopt;  // (complex planes: their one real line)
+    if (G.determinant() > 0) {  // complex planes: their one real line, A's kernel, 16 `reach` each way
+      out.on_kernel = true;
+      out.T[0] = kReachCap * reach / rough_sqrt(out.along[0].squaredNorm());
+      out.middle = out.origin;
+      return out;
+    }
+    if (!(G.determinant() < 0)) return std::nullopt;
     const auto f = form_axes<2>(G, Eigen::Matrix<Q, 2, 1>(plane.col(0).squaredNorm(), plane.col(1).squaredNorm()));
     if (!f) return std::nullopt;
     const auto W = semi_axes(*f);
     if (!W) return std::nullopt;
-    const int j = abs(f->rq[0]) <= abs(f->rq[1]) ? 0 : 1;
-    out.axis = refined_axis(K, Vec3<Q>(plane * Eigen::Matrix<Q, 2, 1>(W->col(j))));
-    out.across = primitive_direction(Vec3<Q>(Vec3<Q>(K * out.axis).cross(out.along[0])));
+    // r the refined axis of the larger |quotient|, w across the line and K-conjugate to r (w . K r =
+    // 0: each line's two points symmetric about its base): w's error is r's times the smaller
+    // eigenvalue over the larger (the other way round, nearly parallel planes' w tilted by the ratio)
+    const int j = abs(f->rq[0]) >= abs(f->rq[1]) ? 0 : 1;
+    out.across = refined_axis(K, Vec3<Q>(plane * Eigen::Matrix<Q, 2, 1>(W->col(j))));
+    out.axis = primitive_direction(Vec3<Q>(out.along[0].cross(Vec3<Q>(K * out.across))));
     const Q qw = out.axis.dot(K * out.axis), qr = out.across.dot(K * out.across);
     if (qw == 0 || qr == 0 || (qw > 0) == (qr > 0)) return std::nullopt;
     out.H = Q(kReachCap * reach / rough_sqrt(Q(out.axis.squaredNorm() - qw / qr * out.across.squaredNorm())));
@@ -900,9 +936,13 @@ SampleReport sample_prism(const Mat4<Q>& A, const Prism& p, int n, Draw& draw) {
   rep.middle = p.middle;
   Lines lines(A, p.base(0, 0, 0));
   const Vec4<Q> r(p.across(0), p.across(1), p.across(2), Q(0));
-  const int per_line = Mat3<Q>(A.topLeftCorner<3, 3>()).isZero() ? 1 : 2;
+  const int per_line = p.on_kernel || Mat3<Q>(A.topLeftCorner<3, 3>()).isZero() ? 1 : 2;
   const auto line = [&](const Q& h, const Q& t1, const Q& t2) {
     ++rep.attempts;
+    if (p.on_kernel) {  // (the base is a point of A: A x = 0)
+      rep.points.emplace_back(p.base(h, t1, t2), Vec4<Q>::Zero(), Q(0));
+      return;
+    }
     lines.set_base(p.base(h, t1, t2));
     lines.intersect(r, rep.points, n);
   };
@@ -930,9 +970,10 @@ SampleReport sample_prism(const Mat4<Q>& A, const Prism& p, int n, Draw& draw) {
   return rep;
 }
 
-/// An ellipsoid's longest semi-axis, as a direction (semi_axes: rounded, so its points are within
-/// about 2^-80 of the farthest from the centre; the sample's seeded points farther than they are
-/// dropped). nullopt where K is not definite or its axes are not found.
+/// An ellipsoid's longest semi-axis, as a direction (semi_axes, refined: refined_axis). The far point
+/// is flat along the ellipsoid, but its deficit is the direction's error squared times the axes'
+/// squared ratio: with semi_axes's 40 bits, an ellipsoid 10^9 times longer than wide was sized 4e-9
+/// short, by the turn (audit 36a F3). nullopt where K is not definite or its axes are not found.
 std::optional<Vec3<Q>> longest_axis(const Mat3<Q>& K) {
   if (*definiteness<Q, 3>(K) == 0) return std::nullopt;
   const auto f = form_axes<3>(K, Vec3<Q>(1, 1, 1));
@@ -942,7 +983,7 @@ std::optional<Vec3<Q>> longest_axis(const Mat3<Q>& K) {
   int j = 0;
   for (int c = 1; c < 3; ++c)
     if (abs(f->rq[static_cast<std::size_t>(c)]) < abs(f->rq[static_cast<std::size_t>(j)])) j = c;
-  return Vec3<Q>(W->col(j));
+  return refined_axis(K, Vec3<Q>(W->col(j)));
 }
 
 }  // namespace

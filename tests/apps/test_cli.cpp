@@ -728,11 +728,19 @@ TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors,
     for (const auto& m : doc["reflections"])
       if (expected.count(m["quadric"])) CHECK(m["status"] == "degenerate-quadric");
   }
-  for (const std::string mode : {"--precision exact", ""}) {
-    INFO("verify " << mode);
-    const Run v = run("verify " + zero + " --json --samples 8 " + mode);
+  {  // exact results pass
+    const Run v = run("verify " + zero + " --json --samples 8 --precision exact");
     CHECK(v.code == 0);
     CHECK(nlohmann::json::parse(v.out)["failed"] == 0);
+  }
+  // Double ones of a line or a double plane are rounded to a thin cylinder or plane pair, or to one
+  // without real points: sampled on the line or plane (they were not sampled at all, and passed as
+  // matrices: audit 36a F2), they are as far off as that, and eval says so (flagged) where they fail.
+  const Run v = run("verify " + zero + " --json --samples 8");
+  CHECK((v.code == 0 || v.code == 1));
+  for (const auto& c : nlohmann::json::parse(v.out)["checks"]) {
+    INFO(c.dump());
+    if (c["status"] == "fail") CHECK(c["flags"].dump().find("inaccurate") != std::string::npos);
   }
 }
 

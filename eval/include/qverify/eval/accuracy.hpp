@@ -14,7 +14,7 @@
 /// distance of the (unreflected) points from the centre of A (the centre of
 /// its quadratic part, -K^-1 k; where K is singular, the centre on A's axis (plane) of centres nearest
 /// the light or mirror, as sampled (a cylinder); where A has no centre, the middle of the stretch
-/// its points are drawn on (SampleReport::middle: a parabola's, a paraboloid's), else the points'
+/// its points are drawn on (SampleReport::middle: a parabola's, a paraboloid's, a plane's), else the points'
 /// centroid).
 /// A far-away point therefore cannot make a wrong result look small.
 

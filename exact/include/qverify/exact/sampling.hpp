@@ -30,9 +30,11 @@ struct SampleReport {
   bool exhausted = false;  ///< fewer points than asked were found
   /// The middle of the stretch sample_section or sample_quadric draws, from which its ends are the
   /// farthest points: a pair of parallel lines' midline point its chords pass through, a hyperbola's
-  /// centre, the middle of a parabola's stretch of axis, a single line's point nearest the base; a
-  /// quadric's centre, or the middle of a paraboloid's or parabolic cylinder's stretch of axis. (The
-  /// object size is measured from it where A has no centre of its own: eval/accuracy.hpp.)
+  /// centre, the middle of a parabola's stretch of axis, a single line's point nearest the base; of
+  /// sample_quadric's axial sections and prisms, a hyperboloid's or cone's centre, the middle of a
+  /// paraboloid's or parabolic cylinder's stretch of axis, a plane pair's or a plane's base point
+  /// (unset for an ellipsoid and a cylinder, whose centre is known). (The object size is measured
+  /// from it where A has no centre of its own: eval/accuracy.hpp.)
   std::optional<Vec3<Rational>> middle;
   /// How many points the sample's farthest ones are, drawn first (a parallel pair's 4 chord ends, a
   /// hyperbola's two end chords' 4, a parabola's end chord's 2, and on a hyperboloid its point
@@ -118,9 +120,10 @@ SampleReport sample_section(const Mat4<Rational>& A, const Vec4<Rational>& pi, i
 /// (SampleReport::ends), seeded points farther than they dropped, so that its size is the same at
 /// every seed and count: an ellipsoid all over, its longest axis's ends first; a cylinder within 16
 /// cross-section radii of its axis point nearest `anchor`; a hyperboloid, a cone, a paraboloid as
-/// its sections across an axis out to 4 times its waist or vertex, 16 `reach` (> 0; eval takes 1:
-/// reach_length) or 16 focal lengths; a parabolic cylinder, a plane pair, parallel planes, a plane
-/// by lines across their sections (sampling.cpp says how far). Elsewhere (a point, a line, a
+/// its sections across an axis out to 4 times its waist or vertex, 16 `reach` (> 0; eval takes 1, in
+/// the scene's units: a cone has no length of its own) or 16 focal lengths; a parabolic cylinder, a
+/// plane pair, parallel planes, a plane by lines across their sections (sampling.cpp says how far).
+/// Elsewhere (a point, a line, a
 /// double plane) on lines through quadric_base(A, anchor), the base moving by steps of L-infinity
 /// length `reach` where no line through it meets A, the points kept then within 16 such lengths of
 /// the moved base.
