@@ -286,6 +286,11 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// `within`: a plane (world frame) that holds every point of the geometry (the terminator's polar
 /// plane): the value is bounded from E less its part w e^T + e w^T (plane_pair_part), which
 /// vanishes on the plane; the gradient from E whole.
+/// The motion part (not `euclidean_only`, ref symmetric): E = lambda (ref V + V^T ref) + E_m, V an
+/// infinitesimal affine motion (last row 0; least squares in the ball's frame); on the geometry
+/// z^T hat z = z^T E_m z + 2 lambda (ref z)_xyz . (V z)_xyz, so with F the floor and e >= |(E z)_xyz|
+/// the first-order distance is also at most |z^T E_m z| / (2 (F - e)) + |(V z)_xyz| F / (F - e): a
+/// result moved or turned a little is bounded by how far its points moved. The smaller counts.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
                                   const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size,
                                   bool euclidean_only = false, const Vec4<Rational>* within = nullptr);
