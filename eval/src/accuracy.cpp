@@ -314,8 +314,12 @@ Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   if (kind == 1) return other(3) != 0 ? Vec3<Q>(other.head<3>() / other(3)) : Vec3<Q>(Vec3<Q>::Zero());
   const QuadricCore core = quadric_core(A);
   const bool plane = Mat3<Q>(A.topLeftCorner<3, 3>()).isZero() && !core.kn.isZero();
-  const Vec3<Q> b0 = plane ? Vec3<Q>(core.y - quadric_value(A, core.y) / (2 * core.kn.squaredNorm()) * core.kn)
-                           : Vec3<Q>(quadric_base(A).head<3>());
+  // (a plane of centres, a double plane's or parallel planes', from the world origin's foot too: a
+  // factorisation's particular solution lay anywhere along it, and so did the point on the mirror)
+  const Vec3<Q> zero = Vec3<Q>::Zero();
+  const Vec3<Q> b0 = plane ? Vec3<Q>(-quadric_value(A, zero) / (2 * core.kn.squaredNorm()) * core.kn)
+                     : core.kernel.cols() >= 2 && core.kn.isZero() ? core.nearest(zero)
+                                                                   : Vec3<Q>(quadric_base(A).head<3>());
   if (core.kernel.cols() == 0) return b0;
   const Eigen::Matrix<Q, 1, Eigen::Dynamic> along = core.kn.transpose() * core.kernel;
   const Eigen::FullPivLU<Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic>> lu(along);
@@ -323,7 +327,12 @@ Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   const Vec3<Q> n = other.head<3>();
   const Eigen::Matrix<Q, Eigen::Dynamic, 1> w = D.transpose() * n;
   if (w.isZero()) return Vec3<Q>::Zero();  // (parallel: as for a parallel light, the world origin)
-  return Vec3<Q>(b0 - (n.dot(b0) + other(3)) / w.squaredNorm() * (D * w));
+  // along n's orthogonal projection on D's span, D (D^T D)^-1 D^T n: along D w, D's basis not
+  // orthonormal, the point slid along the line where a plane meets the mirror by an amount that grew
+  // with the scene's move towards the mirror, and a plane's verdict changed when moved (audit 36b F2)
+  const Eigen::Matrix<Q, Eigen::Dynamic, Eigen::Dynamic> DtD = D.transpose() * D;
+  const Vec3<Q> u = D * Eigen::Matrix<Q, Eigen::Dynamic, 1>(DtD.inverse() * w);
+  return Vec3<Q>(b0 - (n.dot(b0) + other(3)) / n.dot(u) * u);
 }
 
 }  // namespace
@@ -779,7 +788,11 @@ Metric second_order(const Metric& m, const std::vector<RootPoint>& pts, const Ma
 
 }  // namespace
 
-Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Qm) {
+Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Q_given) {
+  // The surface x^T Q x = 0 and its gradient are the symmetric part's: measured with Q x as given, an
+  // antisymmetric part (which verify accepts within the target) added S x to the "gradient", and a
+  // line's B with no real point passed with its off-diagonal entries moved by 3e-10 (audit 36b F1).
+  const Mat4<Q> Qm = Q_given == Mat4<Q>(Q_given.transpose()) ? Q_given : Mat4<Q>((Q_given + Q_given.transpose()) / 2);
   Metric m;
   const Measure qnorm = frobenius(Qm);
   const bool with_residual = qnorm > 0;

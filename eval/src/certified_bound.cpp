@@ -356,9 +356,13 @@ std::array<std::array<IA, 3>, 3> times_R(const Eigen::Matrix<Q, 3, Eigen::Dynami
 }
 
 /// `floor`: a lower bound of |(ref (p, 1))_xyz| over the geometry (0: none known).
-BoundedResult quadric_result(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Geometry& geo,
+/// A candidate's symmetric part: its surface, and its gradient (measure_quadric measures that).
+Mat4<Q> symmetric_part(const Mat4<Q>& X) { return X == Mat4<Q>(X.transpose()) ? X : Mat4<Q>((X + X.transpose()) / 2); }
+
+BoundedResult quadric_result(const Mat4<Q>& hat_given, const Mat4<Q>& ref_in, const Geometry& geo,
                              const std::optional<Vec3<Q>>& o, const Measure& floor = 0) {
   const Mat4<Q> T = translation_of(o);
+  const Mat4<Q> hat_in = symmetric_part(hat_given);
   const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
   const Q ref_scale = unit_scale(ref_in);
   const Mat4<Q> ref = ref_scale * ref_in;
@@ -1112,9 +1116,10 @@ Vec4<Q> plane_pair_part(const Mat4<Q>& E, const Vec4<Q>& w) {
   return (E * w - w * Q(w.dot(E * w) / (2 * ww))) / ww;
 }
 
-CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_in, const Mat4<Q>& ref_in, const Ball& ball,
+CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_in, const Ball& ball,
                                   const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size,
                                   bool euclidean_only, const Vec4<Q>* within) {
+  const Mat4<Q> hat_in = symmetric_part(hat_given);  // (its gradient is the surface's: measure_quadric)
   if (hat_in.isZero() && !ref_in.isZero()) return {kInf, 0, 1};  // vanishes everywhere, and is no quadric
   // as quadric_result: both scaled exactly to entries near 1, the reference moved into the frame
   const Mat4<Q> T = translation_of(o);

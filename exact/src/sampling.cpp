@@ -1099,6 +1099,10 @@ SampleReport sample_section(const Mat4<Q>& A, const Vec4<Q>& pi, int n, std::uin
     return rep;
   }
   Vec4<Q> b = section_base(A, pi, anchor);
+  // a central section's middle is its centre (the pole of its line at infinity: section_base), from
+  // which an ellipse on a paraboloid is sized, not its points' centroid, which moved with the seed
+  // (audit 36b F4); the stretches below set their own
+  if (K.determinant() != 0) rep.middle = Vec3<Q>(b.head<3>() / b(3));
   // (from the primitive normal below: the same chords for every positive multiple of A and L)
   const std::optional<ParallelPair> pair = parallel_pair(A, E, K, primitive_normal(normal), b);
   if (pair) {

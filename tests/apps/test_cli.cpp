@@ -738,7 +738,8 @@ TEST_CASE("shapes of radius 0 are degenerate quadrics with a status, not errors,
   // matrices: audit 36a F2), they are as far off as that, and eval says so (flagged) where they fail.
   const Run v = run("verify " + zero + " --json --samples 8");
   CHECK((v.code == 0 || v.code == 1));
-  for (const auto& c : nlohmann::json::parse(v.out)["checks"]) {
+  const auto doc = nlohmann::json::parse(v.out);  // (kept: a range over a temporary's member dangles)
+  for (const auto& c : doc["checks"]) {
     INFO(c.dump());
     if (c["status"] == "fail") CHECK(c["flags"].dump().find("inaccurate") != std::string::npos);
   }

@@ -384,6 +384,21 @@ FilterCounts check_filtered(const FilterPoints& pts, const Candidate& c, std::ve
 }  // namespace
 
 FilterCounts check_quadric_filtered(const FilterPoints& pts, const Mat4<double>& Q, std::vector<char>* passed) {
+  if (Q != Mat4<double>(Q.transpose())) {
+    // (stages 1 and 2 take Q x for the gradient; the surface's is its symmetric part's, which
+    // measure_quadric takes: every point of an asymmetric candidate is decided there)
+    FilterCounts n;
+    if (passed) passed->assign(pts.exact.size(), 1);
+    const Mat4<Rational> R = Q.unaryExpr([](double x) { return Rational(x); });
+    for (std::size_t k = 0; k < pts.exact.size(); ++k) {
+      ++n.checked, ++n.fallbacks, ++n.measured;
+      if (!exact_quadric_passes(pts.exact[k], R, pts.target)) {
+        ++n.failed;
+        if (passed) (*passed)[k] = 0;
+      }
+    }
+    return n;
+  }
   return check_filtered<Mat4<double>, IntegerQuadric>(pts, Q, passed, filter_quadric, &ClearedPoints::decide_quadric,
                                                       exact_quadric_passes);
 }

@@ -14,6 +14,9 @@
 /// Where the object has no size (a terminator that is a single point) the
 /// rule is the relative residual |x^T Q x| / (|Q|_F |x|^2) <= T instead.
 ///
+/// The surface and its gradient are the candidate's symmetric part's: a candidate that is not exactly
+/// symmetric (verify accepts an asymmetry within the target) goes to stage 3 at every point, which
+/// measures that part (measure_quadric).
 /// Three stages decide it, each certified, each only where the one before
 /// could not:
 ///  1. the filter: the same inequality squared (no square root) in interval
