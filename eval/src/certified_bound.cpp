@@ -1242,6 +1242,23 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
             euclidean = true;
           }
         }
+        if (V && curvature > 0) {
+          // Second order from the moved point z' = z - V z (w = 0: |z - z'| = |(V z)_xyz|): on the
+          // geometry hat(z') = z^T Em z - 2 (E z)_xyz . (V z)_xyz + (V z)_xyz^T hat_xyz (V z)_xyz, the
+          // motion's share gone, so a point of hat lies within |V z| + sqrt(|hat(z')| / curvature) of z.
+          // Where the gradient vanishes (a plane pair's crossing line, a cone's apex) the first order
+          // says nothing, and the second order from z itself, sqrt of a value that grows with the
+          // move, bounded a plane pair moved by 1e-9 at 9.5e-6 (audit 35a F3).
+          const IA moved = fam + tighter(r * gmn, box_linear(gma, rho)) + tighter(CGAL::square(r) * em3, box_quadratic(Em3a, rho));
+          const IA shift = vz0n + tighter(r * v3, box_image(V3a, rho));
+          const IA e = gn + tighter(r * e3, box_image(E3a, rho));
+          const IA at = moved + IA(2) * e * shift + CGAL::square(shift) * h3;
+          const double second = (shift + CGAL::sqrt(at / IA(curvature))).sup();
+          if (second < d) {
+            d = second;
+            euclidean = true;
+          }
+        }
         if (!(d < kInf)) {
           out.finite = false;
           return out;

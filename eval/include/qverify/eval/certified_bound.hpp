@@ -290,7 +290,10 @@ using ShellFloor = std::function<Measure(const Measure& inner, const Measure& ou
 /// infinitesimal affine motion (last row 0; least squares in the ball's frame); on the geometry
 /// z^T hat z = z^T E_m z + 2 lambda (ref z)_xyz . (V z)_xyz, so with F the floor and e >= |(E z)_xyz|
 /// the first-order distance is also at most |z^T E_m z| / (2 (F - e)) + |(V z)_xyz| F / (F - e): a
-/// result moved or turned a little is bounded by how far its points moved. The smaller counts.
+/// result moved or turned a little is bounded by how far its points moved; and, second order where
+/// the reference is indefinite, at most |(V z)_xyz| + sqrt(|hat(z - V z)| / saddle_curvature(hat)),
+/// hat(z - V z) = z^T E_m z - 2 (E z)_xyz . (V z)_xyz + (V z)_xyz^T hat_xyz (V z)_xyz (a plane pair
+/// or a cone moved, where its gradient vanishes). The smallest counts.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
                                   const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size,
                                   bool euclidean_only = false, const Vec4<Rational>* within = nullptr);
