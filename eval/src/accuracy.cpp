@@ -792,7 +792,7 @@ Metric measure_quadric(const std::vector<RootPoint>& pts, const Mat4<Q>& Q_given
   // The surface x^T Q x = 0 and its gradient are the symmetric part's: measured with Q x as given, an
   // antisymmetric part (which verify accepts within the target) added S x to the "gradient", and a
   // line's B with no real point passed with its off-diagonal entries moved by 3e-10 (audit 36b F1).
-  const Mat4<Q> Qm = Q_given == Mat4<Q>(Q_given.transpose()) ? Q_given : Mat4<Q>((Q_given + Q_given.transpose()) / 2);
+  const Mat4<Q> Qm = symmetric_part(Q_given);
   Metric m;
   const Measure qnorm = frobenius(Qm);
   const bool with_residual = qnorm > 0;

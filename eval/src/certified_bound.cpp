@@ -356,9 +356,6 @@ std::array<std::array<IA, 3>, 3> times_R(const Eigen::Matrix<Q, 3, Eigen::Dynami
 }
 
 /// `floor`: a lower bound of |(ref (p, 1))_xyz| over the geometry (0: none known).
-/// A candidate's symmetric part: its surface, and its gradient (measure_quadric measures that).
-Mat4<Q> symmetric_part(const Mat4<Q>& X) { return X == Mat4<Q>(X.transpose()) ? X : Mat4<Q>((X + X.transpose()) / 2); }
-
 BoundedResult quadric_result(const Mat4<Q>& hat_given, const Mat4<Q>& ref_in, const Geometry& geo,
                              const std::optional<Vec3<Q>>& o, const Measure& floor = 0) {
   const Mat4<Q> T = translation_of(o);
@@ -1018,6 +1015,8 @@ Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) co
 
 Measure gradient_floor(const Mat4<Q>& A, const Ball& ball) { return GradientFloor(A, ball)(0, to_measure(ball.reach)); }
 
+Mat4<Q> symmetric_part(const Mat4<Q>& X) { return X == Mat4<Q>(X.transpose()) ? X : Mat4<Q>((X + X.transpose()) / 2); }
+
 Mat3<Q> spatial_part(const Mat4<Q>& Qm) {
   return Mat3<Q>(Qm.topLeftCorner<3, 3>() + Qm.topLeftCorner<3, 3>().transpose()) / 2;
 }
@@ -1218,16 +1217,16 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
         const IA value = tighter(fa + tighter(r * gsn, box_linear(gsa, rho)) + tighter(CGAL::square(r) * e3, box_quadratic(E3a, rho)),
                                  fav + tighter(r * gvn, box_linear(gva, rho)) + tighter(CGAL::square(r) * ev3, box_quadratic(Ev3a, rho)));
         if (value.sup() == 0) continue;
+        // the motion part's (above) |z^T Em z| and |(V z)_xyz| on the shell
+        const IA moved = V ? fam + tighter(r * gmn, box_linear(gma, rho)) + tighter(CGAL::square(r) * em3, box_quadratic(Em3a, rho)) : IA(0);
+        const IA shift = V ? vz0n + tighter(r * v3, box_image(V3a, rho)) : IA(0);
         double d = kInf;
         bool euclidean = euclidean_only;
         if (!euclidean_only) {
           const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
           if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
-          if (V && gradient.inf() > 0) {  // (the motion part, above)
-            const IA moved = fam + tighter(r * gmn, box_linear(gma, rho)) + tighter(CGAL::square(r) * em3, box_quadratic(Em3a, rho));
-            const IA shift = vz0n + tighter(r * v3, box_image(V3a, rho));
+          if (V && gradient.inf() > 0)  // (the motion part, above)
             d = std::min(d, (moved / (IA(2) * gradient) + shift * IA(floors[j]) / gradient).sup());
-          }
           out.gradient = std::min(out.gradient, gradient.inf() <= 0 ? 0.0 : h3.sup() == 0 ? kInf : (gradient / h3).inf());
         } else {
           // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
@@ -1249,8 +1248,6 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
           // Where the gradient vanishes (a plane pair's crossing line, a cone's apex) the first order
           // says nothing, and the second order from z itself, sqrt of a value that grows with the
           // move, bounded a plane pair moved by 1e-9 at 9.5e-6 (audit 35a F3).
-          const IA moved = fam + tighter(r * gmn, box_linear(gma, rho)) + tighter(CGAL::square(r) * em3, box_quadratic(Em3a, rho));
-          const IA shift = vz0n + tighter(r * v3, box_image(V3a, rho));
           const IA e = gn + tighter(r * e3, box_image(E3a, rho));
           const IA at = moved + IA(2) * e * shift + CGAL::square(shift) * h3;
           const double second = (shift + CGAL::sqrt(at / IA(curvature))).sup();

@@ -246,18 +246,21 @@ std::optional<Eigen::Matrix<Q, k, k>> semi_axes(const FormAxes<k>& f) {
 /// axes are within a factor 16 of each other (random directions sample such a shape well, and a
 /// sample stays as it was).
 template <int k>
+bool elongated(const FormAxes<k>& f) {
+  Q hi = 0;
+  for (const Q& r : f.rq) {
+    if ((r > 0) != (f.rq[0] > 0)) return false;  // (not for a definite G)
+    hi = std::max(hi, Q(abs(r)));
+  }
+  return hi > 256 * least_quotient(f);  // (not: axes within a factor 16)
+}
+template <int k>
 std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k, k>& G, const Eigen::Matrix<Q, k, 1>& m) {
   // (exactly: a parabola's in-plane form is singular, and the Rayleigh quotient of its null vector as
   // a double decomposition gives it is some tiny number of either sign)
   if (*definiteness<Q, k>(G) == 0) return std::nullopt;
   const auto f = form_axes<k>(G, m);
-  if (!f) return std::nullopt;
-  Q hi = 0;
-  for (const Q& r : f->rq) {
-    if ((r > 0) != (f->rq[0] > 0)) return std::nullopt;  // (not for a definite G)
-    hi = std::max(hi, Q(abs(r)));
-  }
-  if (hi <= 256 * least_quotient(*f)) return std::nullopt;  // axes within a factor 16
+  if (!f || !elongated(*f)) return std::nullopt;
   return semi_axes(*f);
 }
 
@@ -279,8 +282,7 @@ Q sixteen_f_squared(const QuadricCore& core, const Mat3<Q>& K) { return 64 * cor
 /// size of 10^6). Nor the particular solution of K y = -k a factorisation gives: it slides along the
 /// axis when the scene moves, and with it the lamp's distance the sampler steps by (a cylinder's
 /// sampled object size was 42.9 at the origin, 12.1 moved by 10^6: audit 31a F4).
-Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
-  const QuadricCore core = quadric_core(A);
+Vec3<Q> core_point(const Mat4<Q>& A, const QuadricCore& core, const std::optional<Vec3<Q>>& anchor) {
   if (!core.found) return Vec3<Q>::Zero();  // (not expected)
   const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;  // (K y + k - k_n = 0 along the kernel)
   if (core.kn.isZero()) return y;
@@ -296,6 +298,7 @@ Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) {
   const Q side = K.trace() < 0 ? Q(1) : Q(-1);
   return Vec3<Q>(vertex + side / big * core.kn);
 }
+Vec3<Q> core_point(const Mat4<Q>& A, const std::optional<Vec3<Q>>& anchor) { return core_point(A, quadric_core(A), anchor); }
 
 /// Once the base has stepped off a cone's apex, lines through it meet the cone (or its section, a
 /// line pair) as far out as they are close to parallel to a generator: of 64 chords of a cone's
@@ -742,8 +745,7 @@ std::optional<AxialSections> axial_sections(const Mat4<Q>& A, const QuadricCore&
     out.axis = primitive_direction(Vec3<Q>(core.kernel.col(0)));
     out.plane = plane_across(out.axis);
     const Eigen::Matrix<Q, 2, 2> G = out.plane.transpose() * K * out.plane;
-    const Q tr2 = (K * K).trace();
-    if (G.determinant() == 0 || tr2 == 0) return std::nullopt;
+    if (G.determinant() == 0) return std::nullopt;  // (K of rank 2 here: |K|_F > 0)
     out.H = rough_sqrt(Q(sixteen_f_squared(core, K) / out.axis.squaredNorm()));
     out.one_sided = G.determinant() > 0;
     // (an elliptic one opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to G's)
@@ -845,6 +847,9 @@ struct Prism {
     return finite(Vec3<Q>(origin + h * axis + t1 * along[0] + t2 * along[1]));
   }
 };
+/// The multiple t of v (not 0) with |t v| = kReachCap `reach`, to 2^-52: how far an object without a
+/// length of its own (a plane, a double plane, a line, a plane pair) is sampled along v.
+Q reach_along(const Q& reach, const Vec3<Q>& v) { return Q(kReachCap * reach / rough_sqrt(v.squaredNorm())); }
 /// (v not 0) Two orthogonal primitive vectors across it (plane_across's).
 std::array<Vec3<Q>, 2> primitive_across(const Vec3<Q>& v) {
   const Eigen::Matrix<Q, 3, 2> p = plane_across(v);
@@ -865,7 +870,7 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
     out.across = primitive_direction(core.kn);
     out.origin = vertex_from(A, core, y);
     out.along = primitive_across(out.across);
-    for (int i = 0; i < 2; ++i) out.T[static_cast<std::size_t>(i)] = kReachCap * reach / rough_sqrt(out.along[static_cast<std::size_t>(i)].squaredNorm());
+    out.T = {reach_along(reach, out.along[0]), reach_along(reach, out.along[1])};
   } else if (core.kernel.cols() == 2 && !core.kn.isZero()) {  // a parabolic cylinder
     out.across = range();
     out.axis = primitive_direction(core.kn);
@@ -881,17 +886,16 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
   } else if (core.kernel.cols() == 2) {  // two parallel planes, or one double plane
     out.across = range();
     out.origin = y;
+    out.along = primitive_across(out.across);
     const Q a0 = quadric_value(A, y), qr = out.across.dot(K * out.across);
     if (a0 == 0) {  // a double plane: its points are A's kernel's, rational, 16 `reach` out each way
       out.on_kernel = true;
-      out.along = primitive_across(out.across);
-      for (int i = 0; i < 2; ++i) out.T[static_cast<std::size_t>(i)] = kReachCap * reach / rough_sqrt(out.along[static_cast<std::size_t>(i)].squaredNorm());
+      out.T = {reach_along(reach, out.along[0]), reach_along(reach, out.along[1])};
       out.across.setZero();
       out.middle = out.origin;
       return out;
     }
     if ((a0 > 0) == (qr > 0)) return std::nullopt;
-    out.along = primitive_across(out.across);
     const Q half2 = -a0 / qr * out.across.squaredNorm();
     for (int i = 0; i < 2; ++i)
       out.T[static_cast<std::size_t>(i)] = rough_sqrt(Q(kPairReach * kPairReach * half2 / out.along[static_cast<std::size_t>(i)].squaredNorm()));
@@ -902,7 +906,7 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
     const Eigen::Matrix<Q, 2, 2> G = plane.transpose() * K * plane;
     if (G.determinant() > 0) {  // complex planes: their one real line, A's kernel, 16 `reach` each way
       out.on_kernel = true;
-      out.T[0] = kReachCap * reach / rough_sqrt(out.along[0].squaredNorm());
+      out.T[0] = reach_along(reach, out.along[0]);
       out.middle = out.origin;
       return out;
     }
@@ -920,7 +924,7 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
     const Q qw = out.axis.dot(K * out.axis), qr = out.across.dot(K * out.across);
     if (qw == 0 || qr == 0 || (qw > 0) == (qr > 0)) return std::nullopt;
     out.H = Q(kReachCap * reach / rough_sqrt(Q(out.axis.squaredNorm() - qw / qr * out.across.squaredNorm())));
-    out.T[0] = Q(kReachCap * reach / rough_sqrt(out.along[0].squaredNorm()));
+    out.T[0] = reach_along(reach, out.along[0]);
   } else {
     return std::nullopt;
   }
@@ -973,17 +977,12 @@ SampleReport sample_prism(const Mat4<Q>& A, const Prism& p, int n, Draw& draw) {
 /// An ellipsoid's longest semi-axis, as a direction (semi_axes, refined: refined_axis). The far point
 /// is flat along the ellipsoid, but its deficit is the direction's error squared times the axes'
 /// squared ratio: with semi_axes's 40 bits, an ellipsoid 10^9 times longer than wide was sized 4e-9
-/// short, by the turn (audit 36a F3). nullopt where K is not definite or its axes are not found.
-std::optional<Vec3<Q>> longest_axis(const Mat3<Q>& K) {
-  if (*definiteness<Q, 3>(K) == 0) return std::nullopt;
-  const auto f = form_axes<3>(K, Vec3<Q>(1, 1, 1));
-  if (!f) return std::nullopt;
-  const auto W = semi_axes(*f);
-  if (!W) return std::nullopt;
+/// short, by the turn (audit 36a F3). From K's axes f and their semi_axes W (K definite).
+Vec3<Q> longest_axis(const Mat3<Q>& K, const FormAxes<3>& f, const Mat3<Q>& W) {
   int j = 0;
   for (int c = 1; c < 3; ++c)
-    if (abs(f->rq[static_cast<std::size_t>(c)]) < abs(f->rq[static_cast<std::size_t>(j)])) j = c;
-  return refined_axis(K, Vec3<Q>(W->col(j)));
+    if (abs(f.rq[static_cast<std::size_t>(c)]) < abs(f.rq[static_cast<std::size_t>(j)])) j = c;
+  return refined_axis(K, Vec3<Q>(W.col(j)));
 }
 
 }  // namespace
@@ -1234,17 +1233,20 @@ SampleReport sample_quadric(const Mat4<Q>& A, int n, std::uint64_t seed, const Q
   if (const std::optional<AxialSections> axial = axial_sections(A, core, reach, anchor))
     return sample_axial(A, *axial, n, draw);
   if (const std::optional<Prism> p = prism(A, core, reach, anchor)) return sample_prism(A, *p, n, draw);
-  Vec4<Q> b = quadric_base(A, anchor);
+  Vec4<Q> b = finite(core_point(A, core, anchor));  // (quadric_base, with the core at hand)
   const long long max_attempts = 50LL * n + 50;  // (in 64 bits: n may be large)
   Lines lines(A, b);
   bool stepped = false;
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const auto shape = shaped_directions<3>(K, Vec3<Q>(1, 1, 1));
-  // an ellipsoid: its longest semi-axis's ends first, the farthest points from its centre (b), the
-  // sample's size at every seed and count (random directions gave 9.999994 or 10 by seed for semi-axes
-  // 1, 2 and 10)
+  // an ellipsoid (K definite): its axes found once, for the shaped directions (shaped_directions)
+  // and for its longest semi-axis, whose ends come first, the farthest points from its centre (b),
+  // the sample's size at every seed and count (random directions gave 9.999994 or 10 by seed for
+  // semi-axes 1, 2 and 10)
+  const std::optional<FormAxes<3>> axes = *definiteness<Q, 3>(K) != 0 ? form_axes<3>(K, Vec3<Q>(1, 1, 1)) : std::nullopt;
+  const std::optional<Mat3<Q>> W = axes ? semi_axes(*axes) : std::nullopt;
+  const std::optional<Mat3<Q>> shape = W && elongated(*axes) ? W : std::nullopt;
   const std::optional<Vec3<Q>> longest =
-      core.kernel.cols() == 0 && quadric_value(A, core.y) != 0 ? longest_axis(K) : std::nullopt;
+      W && quadric_value(A, core.y) != 0 ? std::optional<Vec3<Q>>(longest_axis(K, *axes, *W)) : std::nullopt;
   EndsCap cap(longest ? std::optional<Vec3<Q>>(Vec3<Q>(b.head<3>())) : std::nullopt, longest ? 2 : 0);
   if (longest) {
     rep.ends = 2;

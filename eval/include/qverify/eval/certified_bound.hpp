@@ -244,6 +244,9 @@ Measure gradient_floor(const Mat4<Rational>& A, const Ball& ball);
 struct SaddleDirections {
   Vec3<Rational> up, down;
 };
+/// A candidate's symmetric part (Q + Q^T) / 2 (Q itself where symmetric): its surface x^T Q x = 0, and
+/// the gradient of that (measure_quadric, the certified bounds measure it).
+Mat4<Rational> symmetric_part(const Mat4<Rational>& Q);
 /// The symmetrised spatial part (Q_xyz,xyz + its transpose) / 2 of a quadric: x^T Q x's quadratic part.
 Mat3<Rational> spatial_part(const Mat4<Rational>& Q);
 /// Eigenvectors of a floating symmetric matrix (a spatial part, scaled by the caller into double's
