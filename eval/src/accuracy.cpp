@@ -317,7 +317,7 @@ Vec3<Q> item_anchor(int kind, const Mat4<Q>& A, const Vec4<Q>& other) {
   // (a plane of centres, a double plane's or parallel planes', from the world origin's foot too: a
   // factorisation's particular solution lay anywhere along it, and so did the point on the mirror)
   const Vec3<Q> zero = Vec3<Q>::Zero();
-  const Vec3<Q> b0 = plane ? Vec3<Q>(-quadric_value(A, zero) / (2 * core.kn.squaredNorm()) * core.kn)
+  const Vec3<Q> b0 = plane ? core.vertex(A, zero)
                      : core.kernel.cols() >= 2 && core.kn.isZero() ? core.nearest(zero)
                                                                    : Vec3<Q>(quadric_base(A).head<3>());
   if (core.kernel.cols() == 0) return b0;

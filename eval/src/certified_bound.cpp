@@ -963,9 +963,8 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
   a0_ = abs(to_measure(a0));
   grows_ = core.kernel.cols() == 1 && mu > 0;
   flat_ = core.kernel.cols() == 2;
-  // a paraboloid's vertex, the point of its axis on it: A(y + t k_n) = A(y) + 2 t |k_n|^2 (K k_n = 0,
-  // k_n . (K y + k) = |k_n|^2), exactly 0 at t = -A(y) / (2 |k_n|^2)
-  if (grows_) dv_ = msqrt((ball.centre - Vec3<Q>(y - a0 / (2 * core.kn.squaredNorm()) * core.kn)).squaredNorm());
+  // a paraboloid's vertex, the point of its axis on it (QuadricCore::vertex)
+  if (grows_) dv_ = msqrt((ball.centre - core.vertex(A, y)).squaredNorm());
 }
 
 Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) const {

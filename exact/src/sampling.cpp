@@ -264,12 +264,6 @@ std::optional<Eigen::Matrix<Q, k, k>> shaped_directions(const Eigen::Matrix<Q, k
   return semi_axes(*f);
 }
 
-/// Where A has no centre (k_n != 0: a paraboloid, a parabolic cylinder, a plane): the point of A on
-/// the line y + t k_n through a core point y (its vertex; a plane's foot of y): A(y + t k_n) = A(y) +
-/// 2 t |k_n|^2 (K k_n = 0, k_n . (K y + k) = |k_n|^2), 0 at t = -A(y) / (2 |k_n|^2).
-Vec3<Q> vertex_from(const Mat4<Q>& A, const QuadricCore& core, const Vec3<Q>& y) {
-  return Vec3<Q>(y - quadric_value(A, y) / (2 * core.kn.squaredNorm()) * core.kn);
-}
 /// (16 f)^2 for A without a centre, f = |k_n| / (2 |K|_F) (a parabolic cylinder's focal length; a
 /// paraboloid's, its principal ones' at most); K != 0.
 Q sixteen_f_squared(const QuadricCore& core, const Mat3<Q>& K) { return 64 * core.kn.squaredNorm() / (K * K).trace(); }
@@ -291,7 +285,7 @@ Vec3<Q> core_point(const Mat4<Q>& A, const QuadricCore& core, const std::optiona
   // side of the quadric's convexity, where sign(A) = -sign(trace K)) for t of the sign of -trace K,
   // |t k_n| about |k_n| / max|K|; a plane (K = 0): off it by k_n, where lines meet it.
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  const Vec3<Q> vertex = vertex_from(A, core, y);
+  const Vec3<Q> vertex = core.vertex(A, y);
   Q big = 0;
   for (Eigen::Index i = 0; i < 9; ++i) big = std::max(big, Q(abs(K(i))));
   if (big == 0) return Vec3<Q>(vertex + core.kn);
@@ -418,6 +412,48 @@ std::optional<ParallelPair> parallel_pair(const Mat4<Q>& A, const Eigen::Matrix<
 /// |s| <= s_end 15/16, short of the ends.
 const Q kHyperbolaEnd(63, 65);
 
+/// A rounded axis x of the form G in the metric diag(m) (an eigenvector of G relative to it: semi_axes)
+/// refined by one step of Rayleigh quotient iteration, exactly: (G - rho M)^-1 M x with rho = x^T G x /
+/// x^T M x, by the adjugate (the same direction), its error cubed (squared and more in a metric); x
+/// itself where the step gives 0. (k = 2: a conic's axes in its plane, conic_axes; k = 3: a quadric's,
+/// refined_axis.)
+template <int k>
+Eigen::Matrix<Q, k, 1> rayleigh_step(const Eigen::Matrix<Q, k, k>& G, const Eigen::Matrix<Q, k, 1>& m,
+                                     const Eigen::Matrix<Q, k, 1>& x) {
+  static_assert(k == 2 || k == 3, "a conic's or a quadric's axes");
+  using V = Eigen::Matrix<Q, k, 1>;
+  using M = Eigen::Matrix<Q, k, k>;
+  const V mx = m.cwiseProduct(x);
+  const Q rho = x.dot(V(G * x)) / x.dot(mx);
+  const M S = G - rho * M(m.asDiagonal());
+  V y;
+  if constexpr (k == 2) y = V(S(1, 1) * mx(0) - S(0, 1) * mx(1), -S(1, 0) * mx(0) + S(0, 0) * mx(1));
+  else y = adjugate3<Q>(S) * mx;
+  return y.isZero() ? x : y;
+}
+
+/// A direction y divided by its largest entry in the metric diag(m)'s units (m >= 1, each entry's unit
+/// 2^h, h = floor(log2 m) / 2, within 2 of sqrt(m); m = 1: plain entries), which becomes 1, and
+/// the others rounded towards 0 to 2^-bits of it: the same direction rounded alike whatever its scale
+/// (A's, which moves with the scene as A is made canonical), and its numbers short.
+template <int k> Eigen::Matrix<Q, k, 1> rounded_direction(const Eigen::Matrix<Q, k, 1>& y, const Eigen::Matrix<Q, k, 1>& m, long bits) {
+  long h[k];
+  for (int i = 0; i < k; ++i) h[i] = floor_log2(m(i)) / 2;
+  int j = 0;
+  for (int i = 1; i < k; ++i)
+    if (abs(y(i)) * exact_pow2(h[i]) > abs(y(j)) * exact_pow2(h[j])) j = i;
+  Eigen::Matrix<Q, k, 1> r;
+  for (int i = 0; i < k; ++i) {
+    if (i == j) {
+      r(i) = 1;
+      continue;
+    }
+    const Q ulp = exact_pow2(h[j] - h[i] - bits), t = y(i) / y(j) / ulp;
+    r(i) = Q(Rational(numerator(t) / denominator(t)) * ulp);
+  }
+  return r;
+}
+
 /// The semi-axes of a central conic through whose centre b lines are drawn in a plane spanned by
 /// `plane` (two orthogonal vectors; a line b + lambda r, r = plane v, meets it where lambda^2
 /// r^T K r = -c, c = A(b), K = A_xyz,xyz: b is the conic's centre, so r^T (A b) = 0): `across`
@@ -453,34 +489,15 @@ std::optional<ConicAxes> conic_axes(const Mat4<Q>& A, const Eigen::Matrix<Q, 3, 
     // (their product is det G |u v|^2 < 0): V is the imaginary one.
     using V2 = Eigen::Matrix<Q, 2, 1>;
     const auto form = [&](const V2& a, const V2& b) { return Q(a.dot(V2(G * b))); };
-    // U: a rounded axis refined by a step of Rayleigh quotient iteration, exactly, (G - rho M)^-1 M u,
-    // rho = u^T G u / u^T M u (by the adjugate: the same direction), its error squared and more, then
-    // rounded in the metric's units to 64 bits plus the axes' ratio's: the pair is the axes
-    // themselves to far below that ratio, so the stretch is the same however the scene is turned (the
-    // double decomposition's last bits are the turn's), and its points' numbers stay short (kept
+    // U: a rounded axis refined by a step of Rayleigh quotient iteration (rayleigh_step), then rounded
+    // in the metric's units to 64 bits plus the axes' ratio's (rounded_direction): the pair is the
+    // axes themselves to far below that ratio, so the stretch is the same however the scene is turned
+    // (the double decomposition's last bits are the turn's), and its points' numbers stay short (kept
     // exact, the refined axes made exact proofs of a sample 7 times slower)
-    const auto refined = [&](const V2& x) {
-      const V2 mx = m.cwiseProduct(x);
-      const Q rho = form(x, x) / x.dot(mx);
-      const Eigen::Matrix<Q, 2, 2> S = G - rho * Eigen::Matrix<Q, 2, 2>(m.asDiagonal());
-      const V2 y(S(1, 1) * mx(0) - S(0, 1) * mx(1), -S(1, 0) * mx(0) + S(0, 0) * mx(1));
-      return y.isZero() ? x : y;
-    };
     const long bits = 64 + std::abs(floor_log2(Q(abs(f->rq[0]))) - floor_log2(Q(abs(f->rq[1])))) / 2;
-    // (divided by its larger entry in the metric's units first, which then is 1: the same direction
-    // rounded alike whatever A's scale, which moves with the scene as A is made canonical)
-    const auto rounded = [&](const V2& y) {
-      const long h[2] = {floor_log2(m(0)) / 2, floor_log2(m(1)) / 2};  // (within 2 of sqrt(m); m >= 1)
-      const int j = abs(y(0)) * exact_pow2(h[0]) >= abs(y(1)) * exact_pow2(h[1]) ? 0 : 1, i = 1 - j;
-      const Q ulp = exact_pow2(h[j] - h[i] - bits), t = y(i) / y(j) / ulp;
-      V2 r;
-      r(j) = 1;
-      r(i) = Q(Rational(numerator(t) / denominator(t)) * ulp);
-      return r;
-    };
-    V2 u = refined(W->col(0));
-    if ((form(u, u) > 0) == (c > 0)) u = refined(W->col(1));  // (u real: its form's sign not c's)
-    u = rounded(u);
+    V2 u = rayleigh_step<2>(G, m, V2(W->col(0)));
+    if ((form(u, u) > 0) == (c > 0)) u = rayleigh_step<2>(G, m, V2(W->col(1)));  // (u real: its form's sign not c's)
+    u = rounded_direction<2>(u, m, bits);
     const Q qu = form(u, u);
     if (qu == 0 || (qu > 0) == (c > 0)) return std::nullopt;
     const V2 gu = G * u;
@@ -639,26 +656,15 @@ std::optional<ConicAxes> cylinder_chords(const Mat4<Q>& A, const Vec3<Q>& axis, 
   return conic_axes(A, plane_across(axis), quadric_value(A, centre));
 }
 
-/// An axis w of K (a rounded eigenvector: semi_axes) refined by a step of Rayleigh quotient iteration,
-/// exactly, adj(K - rho I) w with rho = w^T K w / |w|^2 (its error cubed), then divided by its largest
-/// entry and rounded to 2^-64: a stretch cut across it reaches its far points to first order in the
-/// axis's error (D = |x - o|^2 is not stationary along the axis), and with semi_axes's 40 bits a
-/// hyperboloid turned was sized 2e-13 apart (the double decomposition's last bits are the turn's).
-/// w itself where the step gives 0.
+/// An axis w of K (a rounded eigenvector: semi_axes) refined by a step of Rayleigh quotient iteration
+/// (rayleigh_step: adj(K - rho I) w, rho = w^T K w / |w|^2, its error cubed; w itself where the step
+/// gives 0), then divided by its largest entry and rounded to 2^-64 (rounded_direction): a stretch
+/// cut across it reaches its far points to first order in the axis's error (D = |x - o|^2 is not
+/// stationary along the axis), and with semi_axes's 40 bits a hyperboloid turned was sized 2e-13
+/// apart (the double decomposition's last bits are the turn's).
 Vec3<Q> refined_axis(const Mat3<Q>& K, const Vec3<Q>& w) {
-  const Q rho = w.dot(K * w) / w.squaredNorm();
-  Vec3<Q> y = adjugate3<Q>(Mat3<Q>(K - rho * Mat3<Q>::Identity())) * w;
-  if (y.isZero()) y = w;
-  int j = 0;
-  for (int i = 1; i < 3; ++i)
-    if (abs(y(i)) > abs(y(j))) j = i;
-  const Q ulp = exact_pow2(-64);
-  Vec3<Q> r;
-  for (int i = 0; i < 3; ++i) {
-    const Q t = y(i) / y(j) / ulp;
-    r(i) = i == j ? Q(1) : Q(Rational(numerator(t) / denominator(t)) * ulp);
-  }
-  return primitive_direction(r);
+  const Vec3<Q> one = Vec3<Q>::Ones();  // (the Euclidean metric)
+  return primitive_direction(rounded_direction<3>(rayleigh_step<3>(K, one, w), one, 64));
 }
 
 /// An unbounded quadric with an axis drawn as its sections across it (sample_quadric): a hyperboloid,
@@ -741,7 +747,7 @@ std::optional<AxialSections> axial_sections(const Mat4<Q>& A, const QuadricCore&
     }
   } else if (core.kernel.cols() == 1 && !core.kn.isZero()) {  // a paraboloid, elliptic or hyperbolic
     const Vec3<Q> y = anchor ? core.nearest(*anchor) : core.y;
-    out.origin = vertex_from(A, core, y);
+    out.origin = core.vertex(A, y);
     out.axis = primitive_direction(Vec3<Q>(core.kernel.col(0)));
     out.plane = plane_across(out.axis);
     const Eigen::Matrix<Q, 2, 2> G = out.plane.transpose() * K * out.plane;
@@ -868,14 +874,14 @@ std::optional<Prism> prism(const Mat4<Q>& A, const QuadricCore& core, const Q& r
   if (core.kernel.cols() == 3) {  // a plane: 2 k . x + A_ww = 0 (none where k = 0: K = 0 too)
     if (core.kn.isZero()) return std::nullopt;
     out.across = primitive_direction(core.kn);
-    out.origin = vertex_from(A, core, y);
+    out.origin = core.vertex(A, y);
     out.along = primitive_across(out.across);
     out.T = {reach_along(reach, out.along[0]), reach_along(reach, out.along[1])};
   } else if (core.kernel.cols() == 2 && !core.kn.isZero()) {  // a parabolic cylinder
     out.across = range();
     out.axis = primitive_direction(core.kn);
     out.along[0] = primitive_direction(Vec3<Q>(out.axis.cross(out.across)));
-    out.origin = vertex_from(A, core, y);
+    out.origin = core.vertex(A, y);
     const Q qr = out.across.dot(K * out.across);
     // (it opens towards h > 0: A(o + h w) = 2 h w . k_n of the sign opposite to r^T K r)
     if ((out.axis.dot(core.kn) > 0) == (qr > 0)) out.axis = -out.axis;
@@ -1013,6 +1019,10 @@ std::optional<Vec3<Q>> centre_of_core(const Mat4<Q>& A, const std::optional<Vec3
   const QuadricCore core = quadric_core(A);
   if (!core.found || !core.kn.isZero()) return std::nullopt;
   return anchor ? core.nearest(*anchor) : core.y;  // (K invertible: y, its centre, whatever the anchor)
+}
+
+Vec3<Q> QuadricCore::vertex(const Mat4<Q>& A, const Vec3<Q>& p) const {
+  return Vec3<Q>(p - quadric_value(A, p) / (2 * kn.squaredNorm()) * kn);
 }
 
 Vec3<Q> QuadricCore::nearest(const Vec3<Q>& p) const {

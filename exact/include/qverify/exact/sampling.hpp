@@ -57,6 +57,11 @@ struct QuadricCore {
   bool found = false;
   /// y moved along the kernel to the point of its line (plane) nearest p.
   Vec3<Rational> nearest(const Vec3<Rational>& p) const;
+  /// Where A has no centre (k_n != 0: a paraboloid, a parabolic cylinder, a plane), A's point on the
+  /// line p + t k_n (its vertex where p is a core point; a plane's foot of p): A(p + t k_n) = A(p) +
+  /// 2 t |k_n|^2 (K k_n = 0 and k_n . (K p + k) = |k_n|^2 for p in the core; for a plane, K = 0 and
+  /// k = k_n, for any p), 0 at t = -A(p) / (2 |k_n|^2).
+  Vec3<Rational> vertex(const Mat4<Rational>& A, const Vec3<Rational>& p) const;
   /// A line of centres (an elliptic or hyperbolic cylinder, a pair of crossing planes): K's kernel a
   /// line, k in K's range.
   bool line_of_centres() const { return found && kernel.cols() == 1 && kn.isZero(); }
