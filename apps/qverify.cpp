@@ -72,6 +72,12 @@ const CLI::Validator kPositiveFinite(
 
 /// A value of --seed: an integer from 0 to 2^64 - 1, the whole text read (a conversion to unsigned alone
 /// takes -1 and 2^64 both as 2^64 - 1).
+/// A file or directory path given on the command line: an empty one is an error, never "not given"
+/// (`verify --candidate "$DOC"` with DOC unset checked qverify's own results and passed; render
+/// --ids '' wrote nothing, silently: audit 37b F3, F4).
+const CLI::Validator kPath(
+    [](std::string& text) -> std::string { return text.empty() ? "expected a path, found \"\"" : ""; }, "PATH");
+
 const CLI::Validator kSeedText(
     [](std::string& text) -> std::string {
       const std::string problem = "expected an integer from 0 to 18446744073709551615, found \"" + text + "\"";
@@ -256,7 +262,7 @@ struct Commands {
 Commands declare_commands(CLI::App& app, Options& o) {
   Commands c{};
   auto add_common = [&](CLI::App* sub) {
-    sub->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required();
+    sub->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required()->check(kPath);
     sub->add_option("--precision", o.precision_text,
                     "float | double | long-double | float128 | mpfr:BITS | interval | exact")
         ->capture_default_str();
@@ -312,13 +318,14 @@ Commands declare_commands(CLI::App& app, Options& o) {
       ->capture_default_str()
       ->check(kSeedText);
   add_accuracy(c.verify);
-  c.verify->add_option("--candidate", o.candidate, "Check this qverify-eval/1 document (made by any program) instead of computing");
+  c.verify->add_option("--candidate", o.candidate, "Check this qverify-eval/1 document (made by any program) instead of computing")
+      ->check(kPath);
 
   c.audit = app.add_subcommand("audit", "Precision audit of one scene: error against run time over the whole "
                                         "precision ladder, both methods; writes report.json, report.html, "
                                         "error-vs-time.svg");
-  c.audit->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required();
-  c.audit->add_option("--out", o.out_dir, "Output directory")->required();
+  c.audit->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1)")->required()->check(kPath);
+  c.audit->add_option("--out", o.out_dir, "Output directory")->required()->check(kPath);
   c.audit->add_option("--batch-ms", o.batch_ms, "Minimum duration of one timed batch (7 batches, median)")
       ->capture_default_str()
       ->check(number_in(1.0, 10000.0));
@@ -329,7 +336,7 @@ Commands declare_commands(CLI::App& app, Options& o) {
                                           "writes report.json, report.html and one SVG per family");
   c.stress->add_option("--family", o.families, "A family to sweep (repeatable; default: all)");
   c.stress->add_flag("--list", o.list_families, "List the families and exit");
-  c.stress->add_option("--out", o.out_dir, "Output directory");
+  c.stress->add_option("--out", o.out_dir, "Output directory")->check(kPath);
   c.stress->add_option("--samples", o.stress_samples, "Exact points per item for the geometric error")
       ->capture_default_str()
       ->check(integer_in(1, 1000));
@@ -355,13 +362,13 @@ Commands declare_commands(CLI::App& app, Options& o) {
   RenderArgs& r = o.render;
   c.render = app.add_subcommand("render", "Ray-cast the scene's camera view: shadows and mirror content from the "
                                           "transforms (P, polar plane, B) or by classic shadow/reflection rays");
-  c.render->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1) with a camera")->required();
-  c.render->add_option("--out", r.out, "PNG image to write (with --compare: the transforms image)");
+  c.render->add_option("SCENE", o.scene_file, "Scene file (qverify-scene/1) with a camera")->required()->check(kPath);
+  c.render->add_option("--out", r.out, "PNG image to write (with --compare: the transforms image)")->check(kPath);
   c.render->add_option("--method", r.method, "transforms | raytrace")->capture_default_str()->check(
       CLI::IsMember({"transforms", "raytrace"}));
-  c.render->add_option("--ids", r.ids, "PNG of the ID buffer (one colour per surface, mirror and shadow set)");
+  c.render->add_option("--ids", r.ids, "PNG of the ID buffer (one colour per surface, mirror and shadow set)")->check(kPath);
   c.render->add_flag("--compare", r.compare, "Render by both methods, compare the ID buffers, certify disagreeing pixels");
-  c.render->add_option("--diff", r.diff, "With --compare: PNG with the disagreeing pixels in red");
+  c.render->add_option("--diff", r.diff, "With --compare: PNG with the disagreeing pixels in red")->check(kPath);
   c.render->add_option("--box", r.box, "Half side of the clipping cube around look_at (default: |eye - look_at|_inf / 2)");
   c.render->add_option("--frame", r.frame, "camera (origin at look_at, moved exactly before rounding) | world")
       ->capture_default_str()->check(CLI::IsMember({"camera", "world"}));
@@ -404,9 +411,6 @@ std::optional<int> refuse_unknown_command(const CLI::App& app, int argc, char** 
 
 /// Checks of values that span options (CLI11 checks each option alone), before any work.
 void check_options(const Options& o, const Commands& c) {
-  if (c.audit->parsed() && o.out_dir.empty()) throw UsageError("audit: --out: expected a directory path, found \"\"");
-  if (c.render->parsed() && c.render->count("--out") > 0 && o.render.out.empty())
-    throw UsageError("render: --out: expected a file path, found \"\"");
   // --candidate-cmd of audit and stress
   if ((c.audit->parsed() && c.audit_candidate->count() > 0) ||
       (c.stress->parsed() && c.stress_candidate->count() > 0 && !o.list_families)) {

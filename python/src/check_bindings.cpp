@@ -96,10 +96,18 @@ CheckOptions options(const py::object& samples, const py::object& seed, const py
   return opt;
 }
 
+/// A reported status word; "" is not one (the library's "none reported" is None here: an empty word
+/// passed as unreported, audit 37b F8).
+std::string status_word(const py::object& w, const std::string& path) {
+  if (!py::isinstance<py::str>(w)) bad_argument(path, "expected a status word (str) or None, found " + type_name(w));
+  std::string s = w.cast<std::string>();
+  if (s.empty()) bad_argument(path, "expected a status word, found \"\" (None: no status reported)");
+  return s;
+}
+
 std::string status_arg(const py::object& status) {
   if (status.is_none()) return "";
-  if (!py::isinstance<py::str>(status)) bad_argument("status", "expected a status word (str) or None");
-  return status.cast<std::string>();
+  return status_word(status, "status");
 }
 
 /// One check as read from Python (with the GIL): the exact inputs, the candidate, and the mode
@@ -299,7 +307,7 @@ std::vector<std::string> batch_status(const py::object& status, long n) {
   std::vector<std::string> out(static_cast<std::size_t>(n));
   if (status.is_none()) return out;
   if (py::isinstance<py::str>(status)) {
-    std::fill(out.begin(), out.end(), status.cast<std::string>());
+    std::fill(out.begin(), out.end(), status_word(status, "status"));
     return out;
   }
   if (!py::isinstance<py::sequence>(status) && !py::isinstance(status, numpy().attr("ndarray")))
@@ -312,8 +320,7 @@ std::vector<std::string> batch_status(const py::object& status, long n) {
   for (long k = 0; k < n; ++k) {
     const py::object w = seq[static_cast<std::size_t>(k)];
     if (w.is_none()) continue;
-    if (!py::isinstance<py::str>(w)) bad_argument("status[" + std::to_string(k) + "]", "expected a status word (str) or None, found " + type_name(w));
-    out[static_cast<std::size_t>(k)] = w.cast<std::string>();
+    out[static_cast<std::size_t>(k)] = status_word(w, "status[" + std::to_string(k) + "]");
   }
   return out;
 }

@@ -168,7 +168,9 @@ def test_status_words_are_checked_item_by_item(shadows):
     assert [k for k, r in enumerate(reps) if not r] == [3]
     alone = qverify.check_shadow(As[3], Ls[3], P=Ps[3], status="light-on-surface", samples=8)
     assert same_report(reps[3], alone)
-    for bad, path in ((["ok"] * 3, "status"), (words[:-1] + [7], "status[11]"), (5, "status")):
+    # (an empty word is no word: it passed as "none reported", audit 37b F8; None is that)
+    for bad, path in ((["ok"] * 3, "status"), (words[:-1] + [7], "status[11]"), (5, "status"), ("", "status"),
+                      (words[:-1] + [""], "status[11]")):
         with pytest.raises(qverify.InputError) as e:
             qverify.check_shadows(As, Ls, P=Ps, status=bad)
         assert e.value.path == path

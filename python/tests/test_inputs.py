@@ -176,6 +176,19 @@ def test_bad_check_arguments():
     assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, method="other")) == "method"
     assert path_of(lambda: qverify.check_reflection(UNIT, [0, 0, 1, 0])) == "B"
     assert path_of(lambda: qverify.check_reflection(UNIT, [0, 0, 1, 0], M=[[1]])) == "M"
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, status="")) == "status"  # (None: none reported)
+    assert path_of(lambda: qverify.check_shadow(UNIT, LIGHT, P=P, status=3)) == "status"
+
+
+def test_memoryviews_are_read_as_the_arrays_they_view():
+    # (a 2-d memoryview, indexed as a sequence, raised NotImplementedError: audit 37b F7)
+    A = np.diag([1.0, 1.0, 1.0, -1.0])
+    s = qverify.shadow(memoryview(A), memoryview(np.array(LIGHT, dtype=float)))
+    assert s.status == "ok"
+    assert np.array_equal(s.P, qverify.shadow(A, LIGHT).P)
+    assert path_of(lambda: qverify.shadow(memoryview(np.eye(3)), LIGHT)) == "A"
+    assert path_of(lambda: qverify.shadow(A, memoryview(np.zeros(3)))) == "L"
+    assert path_of(lambda: qverify.shadow(memoryview(b"abcd"), LIGHT)) == "A"
 
 
 def scene(**extra):

@@ -57,15 +57,42 @@ Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::pa
   return d;
 }
 
+/// The file `path` names, its symbolic links followed (a link is written through, never replaced by
+/// the rename: it may be someone's), checked to be a regular file or none: a device, a FIFO or a
+/// socket is refused before any work, as the scene reader refuses them (the rename replaced
+/// /dev/full with a PNG, audit 37b F2), and a directory too (rename(2) would say so after the work;
+/// a link to a directory it replaced, the link itself).
+std::filesystem::path regular_target(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  std::error_code ec;
+  for (int hops = 0;; ++hops) {
+    const auto st = std::filesystem::symlink_status(p, ec);
+    if (st.type() != std::filesystem::file_type::symlink) {
+      switch (st.type()) {
+        case std::filesystem::file_type::not_found:
+        case std::filesystem::file_type::regular:
+        case std::filesystem::file_type::none: return p;  // (none: status unknown; the open will say)
+        case std::filesystem::file_type::directory: fail(path, EISDIR);
+        default: fail(path, EINVAL, "not a regular file");
+      }
+    }
+    if (hops == 40) fail(path, ELOOP);
+    const std::filesystem::path t = std::filesystem::read_symlink(p, ec);
+    if (ec) fail(path, ec.value());
+    p = t.is_absolute() ? t : p.parent_path() / t;
+  }
+}
+
 }  // namespace
 
-void write_file(const std::filesystem::path& path, std::string_view contents) {
+void write_file(const std::filesystem::path& path_given, std::string_view contents) {
+  const std::filesystem::path path = regular_target(path_given);
   std::filesystem::path tmp;
   Descriptor d = open_temporary(path, tmp);
   auto give_up = [&](int err) {
     if (d.fd >= 0) d.release_and_close();
     ::unlink(tmp.c_str());
-    fail(path, err);
+    fail(path_given, err);
   };
 
   const char* p = contents.data();
@@ -86,11 +113,8 @@ void write_file(const std::filesystem::path& path, std::string_view contents) {
 }
 
 void check_writable(const std::filesystem::path& path) {
-  // rename(2) would say so, after the work; a symbolic link to a directory it replaces (the link itself)
-  std::error_code ec;
-  if (std::filesystem::symlink_status(path, ec).type() == std::filesystem::file_type::directory) fail(path, EISDIR);
   std::filesystem::path tmp;
-  Descriptor d = open_temporary(path, tmp);
+  Descriptor d = open_temporary(regular_target(path), tmp);
   d.release_and_close();
   ::unlink(tmp.c_str());
 }

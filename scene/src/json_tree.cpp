@@ -214,6 +214,11 @@ class TreeBuilder : public nlohmann::json_sax<json> {
 JsonNode parse_json_tree(const std::string& text, const std::string& file, const JsonLimits& limits) {
   if (text.size() > limits.max_bytes)
     throw InputError(file, "", "file is larger than " + std::to_string(limits.max_bytes) + " bytes");
+  // nlohmann's lexer reads a NUL byte as the end of its input, so a document followed by a NUL and
+  // anything at all was accepted (audit 37b F5); JSON text has no NUL outside strings, and inside
+  // them it must be escaped
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(file, "", "a NUL byte at byte offset " + std::to_string(nul) + " (JSON text has none)");
   std::string masked = text;
   std::vector<std::string> numbers = take_out_numbers(masked);
   TreeBuilder b(file, limits, std::move(numbers));

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
+#include <sys/stat.h>
 #include <cstdio>
 #include <sys/wait.h>
 
@@ -310,6 +311,10 @@ TEST_CASE("verify with a candidate catches wrong matrices and passes right ones"
     const Run r = verdict(c, "status-number");
     CHECK(r.code == 2);
     CHECK(r.out.empty());
+    c["shadows"][0]["status"] = "";  // no word either (null: none reported)
+    const Run e = verdict(c, "status-empty");
+    CHECK(e.code == 2);
+    CHECK(e.out.empty());
   }
   {  // malformed: exit 2, nothing on stdout
     auto c = doc;
@@ -534,6 +539,70 @@ TEST_CASE("a PNG that cannot be written is exit 2 naming it", "[cli][files]") {
   const RunBoth nodir = run_both("render " + scene("ball-lamp-floor.json") + " --out " + (dir / "none" / "x.png").string());
   CHECK(nodir.code == 2);
   CHECK(nodir.err.find("cannot write " + (dir / "none" / "x.png").string() + ": No such file or directory") != std::string::npos);
+}
+
+TEST_CASE("write_file writes through a symbolic link and refuses what is not a regular file", "[cli][files]") {
+  // (the rename replaced a link, and /dev/full, with the new file: audit 37b F2)
+  const auto dir = fresh_dir("write-file-links");
+  const auto target = dir / "target.txt", link = dir / "link.txt", chain = dir / "chain.txt";
+  std::filesystem::create_symlink("target.txt", link);  // relative, to a file not yet there
+  std::filesystem::create_symlink(link, chain);
+  qverify::write_file(chain, "through two links\n");
+  CHECK(std::filesystem::is_symlink(link));
+  CHECK(std::filesystem::is_symlink(chain));
+  std::ifstream in(target);
+  CHECK(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()) == "through two links\n");
+  CHECK_NOTHROW(qverify::check_writable(link));
+  const auto fifo = dir / "fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0666) == 0);
+  const auto fifo_link = dir / "fifo-link";
+  std::filesystem::create_symlink(fifo, fifo_link);
+  for (const auto& p : {fifo, fifo_link}) {
+    INFO(p);
+    try {
+      qverify::check_writable(p);
+      FAIL("no error");
+    } catch (const qverify::FileWriteError& e) {
+      CHECK(e.reason == "not a regular file");
+      CHECK(e.path == p);
+    }
+    CHECK_THROWS_AS(qverify::write_file(p, "x"), qverify::FileWriteError);
+    CHECK(std::filesystem::is_fifo(fifo));
+  }
+  const auto dir_link = dir / "dir-link";
+  std::filesystem::create_directory(dir / "sub");
+  std::filesystem::create_symlink(dir / "sub", dir_link);
+  try {
+    qverify::write_file(dir_link, "x");
+    FAIL("no error");
+  } catch (const qverify::FileWriteError& e) {
+    CHECK(e.reason == "Is a directory");
+  }
+  CHECK(std::filesystem::is_symlink(dir_link));
+  const auto loop = dir / "loop";
+  std::filesystem::create_symlink("loop", loop);
+  CHECK_THROWS_AS(qverify::write_file(loop, "x"), qverify::FileWriteError);
+}
+
+TEST_CASE("an empty path is a usage error at every option that takes one", "[cli]") {
+  // (verify --candidate '' checked qverify's own results and passed; render --ids '' wrote nothing:
+  // audit 37b F3, F4)
+  const std::string scene = std::string(QVERIFY_SCENES) + "/ball-lamp-floor.json";
+  const auto dir = fresh_dir("empty-paths");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"verify", scene, "--candidate", ""}, {"eval", ""}, {"verify", ""},
+        {"render", scene, "--out", (dir / "x.png").string(), "--ids", ""},
+        {"render", scene, "--compare", "--diff", ""}, {"render", scene, "--out", ""},
+        {"audit", scene, "--out", ""}, {"stress", "--out", ""}}) {
+    std::string line;
+    for (const std::string& a : args) line += "'" + a + "' ";
+    const RunBoth r = run_both(line);
+    INFO(line << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("expected a path, found \"\"") != std::string::npos);
+  }
+  CHECK(std::filesystem::is_empty(dir));
 }
 
 TEST_CASE("write_file replaces its target whole and leaves no temporary", "[cli][files]") {

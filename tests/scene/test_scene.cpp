@@ -190,6 +190,9 @@ TEST_CASE("every rule of the scene format is enforced - with the JSON path", "[s
       {wrap(sphere, R"(, "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fov_y_deg": 200})"), "camera.fov_y_deg"},
       {wrap(sphere, R"(, "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "width": 1.5})"), "camera.width"},
       {R"({"format": "qverify-scene/1", "quadrics": [], "quadrics": []})", "quadrics"},
+      // a NUL byte ended nlohmann's input: what followed it was never read (audit 37b F5)
+      {std::string(R"({"format": "qverify-scene/1", "quadrics": []})") + std::string(1, '\0') + "garbage{{{", ""},
+      {std::string(R"({"format": "qverify-scene/1", "quadrics": [])") + std::string(1, '\0') + "]}", ""},
   };
   for (const Case& c : cases) {
     INFO(c.text);

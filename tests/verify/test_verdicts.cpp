@@ -332,6 +332,28 @@ TEST_CASE("eval --tolerance: every item has an error_bound, and its flag agrees 
   CHECK(flagged == 3);
 }
 
+TEST_CASE("eval --tolerance: statuses and their flags are the exact predicates, as in every mode", "[verdicts][accuracy]") {
+  // A light exactly on an ellipsoid at a point of non-dyadic coordinates, and one 1e-30 inside it: the
+  // floating filter cannot decide either, the exact stage does. The adaptive mode took the status
+  // word from it but the flags from double's undecided ones: [] (audit 37b F1).
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "egg", "matrix":
+      [["1/4", 0, 0, 0], [0, "1/9", 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]}], "lights": [{"id": "on", "position":
+      ["4/3", 2, "1/3"]}, {"id": "in", "position": ["4/3", 2, "0.333333333333333333333333333333323333"]}],
+      "mirrors": [{"id": "m", "plane": [0, 0, 1, 0]}]})", "scene.json");
+  const auto plain = eval_json(eval_report(sc, *parse_precision("double"), Method::direct, std::nullopt, AccuracyOptions{}));
+  const auto adaptive = eval_json(adaptive_eval_report(sc, Method::direct, 1e-6));
+  REQUIRE(plain["shadows"].size() == 2);
+  CHECK(plain["shadows"][0]["status"] == "light-on-surface");
+  CHECK(plain["shadows"][1]["status"] == "no-real-silhouette");
+  for (const char* kind : {"shadows", "reflections"})
+    for (std::size_t k = 0; k < plain[kind].size(); ++k) {
+      INFO(kind << " " << k);
+      CHECK(adaptive[kind][k]["status"] == plain[kind][k]["status"]);
+      CHECK(adaptive[kind][k]["flags"] == plain[kind][k]["flags"]);
+    }
+  CHECK(adaptive["shadows"][0]["flags"] == nlohmann::ordered_json::array({"light-on-surface"}));
+}
+
 TEST_CASE("qverify's own eval document, read back as a candidate, passes: far origins survive the JSON text",
           "[verdicts][verify]") {
   // A unit sphere reflected 1e12 away: eval writes the image in a local frame whose origin (a double of

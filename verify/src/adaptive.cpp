@@ -1,6 +1,7 @@
 #include <qverify/verify/adaptive.hpp>
 #include <qverify/verify/verifier.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <functional>
@@ -168,12 +169,20 @@ bool finite_values(const std::vector<Eigen::MatrixXd>& v) {
   return true;
 }
 
+/// The item's `non-finite` flag, of the values it gives (a later stage's, not double's).
+void non_finite_of(EvalItem& item, const std::vector<Eigen::MatrixXd>& v) {
+  item.flags.erase(std::remove(item.flags.begin(), item.flags.end(), "non-finite"), item.flags.end());
+  if (!finite_values(v)) item.flags.emplace_back("non-finite");
+}
+
 }  // namespace
 
 EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, const AccuracyOptions& accuracy) {
   if (!(tol >= std::ldexp(1.0, -53))) throw std::invalid_argument("adaptive tolerance below 2^-53 cannot be certified in double");
   // Every stage in world coordinates and without rescaling, so that the stages are comparable.
-  const Evaluation<double> d = evaluate<double>(sc, method, Frame::world);
+  Evaluation<double> d = evaluate<double>(sc, method, Frame::world);
+  const TypedScene<Q> exs = typed_scene<Q>(sc);
+  decide_statuses(exs, method, d);  // statuses and their flags: predicates of the exact inputs, as eval's
   const Evaluation<Interval> iv = evaluate<Interval>(sc, method, Frame::world);
   std::optional<Evaluation<Q>> ex;  // only when some item needs it
   auto exact = [&]() -> const Evaluation<Q>& {
@@ -195,12 +204,10 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
   rep.frame = Frame::world;
   rep.adaptive = AdaptiveFacts{tol, {}};
   rep.accuracy = accuracy;
-  const TypedScene<Q> exs = typed_scene<Q>(sc);
   for (std::size_t k = 0; k < sc.shadows.size(); ++k) {
     const ShadowItem<double>& dd = d.shadows[k];
     const ShadowResult<Interval>& ii = iv.shadows[k].result;
     EvalItem item = shadow_item(sc, dd);
-    item.status = exact().shadows[k].result.status();  // statuses: exact
     std::vector<Eigen::MatrixXd> v;
     certify(item,
             {{"P", dd.result.P, ii.P, [&] { return MpfiMatrix(mpfi().shadows[k].result.P); },
@@ -212,6 +219,7 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
               [&] { return ExactMatrix(exact().shadows[k].result.R); }}},
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
+    non_finite_of(item, v);
     ShadowMeter meter(exs.A[dd.pair.quadric], exs.L[dd.pair.other], accuracy);
     accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[0]), exact_matrix(Vec4<double>(v[1])), exact4(v[2]))
                                        : non_finite_accuracy());
@@ -221,7 +229,6 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
     const ReflectionItem<double>& dd = d.reflections[k];
     const ReflectionItem<Interval>& ii = iv.reflections[k];
     EvalItem item = reflection_item(sc, dd);
-    item.status = exact().reflections[k].result.status();
     std::vector<Eigen::MatrixXd> v;
     certify(item,
             {{"M", dd.M, ii.M, [&] { return MpfiMatrix(mpfi().reflections[k].M); },
@@ -230,6 +237,7 @@ EvalReport adaptive_eval_report(const Scene& sc, Method method, double tol, cons
               [&] { return ExactMatrix(exact().reflections[k].result.B); }}},
             tol, v);
     ++rep.adaptive->items_by_stage[item.certified->by];
+    non_finite_of(item, v);
     ReflectionMeter meter(exs.A[dd.pair.quadric], exs.planes[dd.pair.other], accuracy);
     const Mat4<Rational> M = finite_values(v) ? exact4(v[0]) : Mat4<Rational>(Mat4<Rational>::Zero());
     accuracy_of(item, finite_values(v) ? meter(std::nullopt, exact4(v[1]), &M) : non_finite_accuracy());

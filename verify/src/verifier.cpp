@@ -297,6 +297,8 @@ ResultSet candidate_results_text(const Scene& sc, const std::string& text, const
       const JsonNode* st = it.find("status");  // (null: not given)
       if (st && st->kind != JsonNode::Kind::string && st->kind != JsonNode::Kind::null)
         r.fail(path + ".status", "expected a status word (a string)");
+      if (st && st->kind == JsonNode::Kind::string && st->text.empty())  // ("" is no word; null: none given)
+        r.fail(path + ".status", "expected a status word, found \"\"");
       const std::string status = st && st->kind == JsonNode::Kind::string ? st->text : "";
       if (shadow) {
         ShadowMatrices& m = rs.shadows[static_cast<std::size_t>(slot)];

@@ -6,7 +6,9 @@
 /// write and the close are checked, and only then is the temporary renamed
 /// over the target. A reader never sees a half-written file, and a file that
 /// could not be written is an error naming the path and the reason, never a
-/// silent success.
+/// silent success. A symbolic link is written through (its target replaced,
+/// not the link); a target that exists and is not a regular file (a
+/// directory, a device such as /dev/full, a FIFO, a socket) is an error.
 
 #include <filesystem>
 #include <stdexcept>
@@ -37,8 +39,8 @@ void write_file(const std::filesystem::path& path, std::string_view contents);
 void create_output_directory(const std::filesystem::path& dir);
 
 /// Checks, before any work, that `write_file(path, ...)` can succeed as far as
-/// the file system can tell now: `path` is not a directory, and its directory
-/// takes a new file (one is created and removed). Throws FileWriteError with
+/// the file system can tell now: `path` (its links followed) is a regular file
+/// or none, and its directory takes a new file (one is created and removed). Throws FileWriteError with
 /// the reason `write_file` would give. A full disk still surfaces at the write.
 void check_writable(const std::filesystem::path& path);
 
