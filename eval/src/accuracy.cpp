@@ -1300,44 +1300,52 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   Q step = to_rational(size.convert_to<double>());
   if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own
   const Measure inf = std::numeric_limits<Measure>::infinity();
+  if (L(3) == 0) {
+    // A parallel light: h is the plane at infinity, where R is its spatial block R3 (symmetric part: an
+    // antisymmetric one is no quadric's). A plane pair pi h'^T + h' pi^T with h' = (e, 1) has R3 = n e^T
+    // + e n^T (pi = (n, d)) and, at a point c of the object on pi, a gradient (R (c, 1))_xyz = n: h'
+    // lies about 1 / |e| away, an angle of size |e| seen from an object of that size, as the point
+    // light's measure with its points at infinity. So |R3|_F size / (2 |(R (c, 1))_xyz|), c = `inside`:
+    // the same in any units, placement and turn (the relative residual |d^T R d| / (|R|_F |d|^2) it
+    // replaced went as 1 / scale^2: an R 0.8 targets off passed at one scale and failed scaled by 1e-4,
+    // and one with h' 1e3 away failed, and passed scaled by 1e4; audit 37a F1).
+    const Mat3<Q> R3 = Mat3<Q>(R.topLeftCorner<3, 3>() + R.topLeftCorner<3, 3>().transpose()) / 2;
+    if (R3.isZero()) return 0;
+    all_zero = false;
+    const Vec4<Q> c(at_inside(0), at_inside(1), at_inside(2), Q(1));
+    const Q g = Vec4<Q>(R * c).head<3>().squaredNorm();
+    if (g == 0) return inf;
+    return sqrt(to_measure(Q((R3 * R3).trace()))) * to_measure(step) / (2 * sqrt(to_measure(g)));
+  }
   Measure worst = 0;
   std::vector<Vec4<Q>> ys;
-  if (L(3) == 0) {
-    for (const Vec4<Q>& d : {Vec4<Q>(1, 0, 0, 0), Vec4<Q>(0, 1, 0, 0), Vec4<Q>(0, 0, 1, 0), Vec4<Q>(1, 2, 3, 0)}) ys.push_back(d);
+  const Vec4<Q> base(at_inside(0), at_inside(1), L(2) / L(3), 1);
+  // Each distance is divided by the point's distance from `inside` (an angle), so the step, which
+  // keeps the points off the line where R's planes cross and spreads them over h, must grow with
+  // it: never below the height of h over `inside`, nor below the distance of `base` from that line
+  // (|pi . base| / |n|_max). With the object size alone, a light 4e29 away put the points 5 units
+  // from the line, 1e-29 of their distance: a correctly rounded double R measured 0.77 there.
+  step = std::max(step, abs_of<Q>(Q(base(2) - at_inside(2))));
+  const Q nx = pi(0), ny = pi(1), nn = nx * nx + ny * ny;
+  if (nn == 0) {
+    ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
   } else {
-    const Vec4<Q> base(at_inside(0), at_inside(1), L(2) / L(3), 1);
-    // Each distance is divided by the point's distance from `inside` (an angle), so the step, which
-    // keeps the points off the line where R's planes cross and spreads them over h, must grow with
-    // it: never below the height of h over `inside`, nor below the distance of `base` from that line
-    // (|pi . base| / |n|_max). With the object size alone, a light 4e29 away put the points 5 units
-    // from the line, 1e-29 of their distance: a correctly rounded double R measured 0.77 there.
-    step = std::max(step, abs_of<Q>(Q(base(2) - at_inside(2))));
-    const Q nx = pi(0), ny = pi(1), nn = nx * nx + ny * ny;
-    if (nn == 0) {
-      ys = {base, Vec4<Q>(base + Vec4<Q>(step, 0, 0, 0)), Vec4<Q>(base + Vec4<Q>(0, step, 0, 0))};
-    } else {
-      // With step >= |pi . base| / nmax the points lie at least step / sqrt(2) from the line and at most
-      // about 4.5 steps from `inside`: a fixed fraction of their distance, whatever the light's.
-      const Q nmax = std::max(abs_of<Q>(nx), abs_of<Q>(ny)), at = pi.dot(base);
-      step = std::max(step, Q(abs_of<Q>(at) / nmax));
-      for (const Q& target : {Q(step * nmax), Q(-step * nmax)}) {
-        const Q t = (target - at) / nn;  // pi . (base + t (n, 0)) = target
-        ys.push_back(Vec4<Q>(base + t * Vec4<Q>(nx, ny, 0, 0)));
-      }
-      ys.push_back(Vec4<Q>(ys[0] + (step / nmax) * Vec4<Q>(-ny, nx, 0, 0)));  // along the line: pi . y unchanged
+    // With step >= |pi . base| / nmax the points lie at least step / sqrt(2) from the line and at most
+    // about 4.5 steps from `inside`: a fixed fraction of their distance, whatever the light's.
+    const Q nmax = std::max(abs_of<Q>(nx), abs_of<Q>(ny)), at = pi.dot(base);
+    step = std::max(step, Q(abs_of<Q>(at) / nmax));
+    for (const Q& target : {Q(step * nmax), Q(-step * nmax)}) {
+      const Q t = (target - at) / nn;  // pi . (base + t (n, 0)) = target
+      ys.push_back(Vec4<Q>(base + t * Vec4<Q>(nx, ny, 0, 0)));
     }
+    ys.push_back(Vec4<Q>(ys[0] + (step / nmax) * Vec4<Q>(-ny, nx, 0, 0)));  // along the line: pi . y unchanged
   }
-  const Measure rn = frobenius(R);
-  const Curvatures k = L(3) == 0 ? Curvatures{} : curvatures_of(R);
+  const Curvatures k = curvatures_of(R);
   for (const Vec4<Q>& y : ys) {
     const Q f = form(R, y);
     if (f == 0) continue;
     all_zero = false;
     const Measure fm = abs(to_measure(f));
-    if (L(3) == 0) {
-      worst = mmax(worst, rn > 0 ? Measure(fm / (rn * to_measure(Q(y.squaredNorm())))) : inf);
-      continue;
-    }
     // the distance as the geometric error takes it: first-order, or second-order sqrt(|f| / kappa)
     // where smaller (near where R's gradient vanishes a first-order quotient is no distance: a light
     // on a sphere's surface 1e12 away measured 2.39; audit 31b F5)

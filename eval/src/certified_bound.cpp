@@ -1392,37 +1392,66 @@ ShellFloor plane_pair_floor(const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball
   };
 }
 
-CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_in, const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball,
+CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_given, const Vec4<Q>& p, const Vec4<Q>& q, const Ball& ball,
                                      const std::optional<Vec3<Q>>& o, double size) {
+  // (the symmetric part: an antisymmetric one, which verify accepts and which is no quadric's, was
+  // taken into p' and tilted it: an R with one of 1e-16 of its entries was bounded at 2e-8 where h
+  // crosses the terminator; audit 37a F2)
+  const Mat4<Q> hat_in = symmetric_part(hat_given);
   if (hat_in.isZero()) return {kInf, 0, 1};
   const Mat4<Q> T = translation_of(o);
+  const Mat4<Q> Ti = translation_of(o ? std::optional<Vec3<Q>>(Vec3<Q>(-*o)) : std::nullopt);
   const Mat4<Q> hat = unit_scale(hat_in) * hat_in;
   const Vec4<Q> p_o = T.transpose() * p, q_o = T.transpose() * q;
   const Mat4<Q> ref_o = p_o * q_o.transpose() + q_o * p_o.transpose();
   const Q lambda = scale_about(hat, ref_o, ball_frame(ball, o));
-  // p' = lambda p + e, e the part of E = hat - lambda ref_o of the form e q^T + q e^T (exact when E is)
   const Mat4<Q> E = hat - lambda * ref_o;
+  // Step 2 of either split: the points of the plane `on` (a plane of R', world frame) reached in the
+  // ball `b`, from hat, R' = on' q'^T + q' on'^T (frame) as the reference: its gradient on `on` is
+  // (q' . y) on_xyz.
+  const auto from_pair = [&](const Vec4<Q>& on_o, const Vec4<Q>& other_o, const Ball& b) {
+    const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(on_o * other_o.transpose() + other_o * on_o.transpose()) * Ti;
+    const Vec4<Q> on_world = Ti.transpose() * on_o, other_world = Ti.transpose() * other_o;
+    return ball_quadric_bound(hat_in, R1, b, o, plane_pair_floor(on_world, other_world, b), 1.0, true, &on_world);
+  };
+  // Split 1, p' = lambda p + e, e the part of E of the form e q^T + q e^T (exact when E is): a rounded
+  // p. Step 1: the geometry's points (on p) from the plane p', absolute (size 1); step 2 from p' in the
+  // ball grown by step 1.
+  std::optional<CertifiedBound> best;
   const Vec4<Q> e = plane_pair_part_about(E, q_o, ball_frame(ball, o));
   const Vec4<Q> p1 = lambda * p_o + e;
-  if (p1.head<3>().isZero()) return {kInf, 0, 1};
-  // step 1: the geometry's points (on p) from the plane p', absolute (size 1)
-  const CertifiedBound d1 = ball_plane_bound(p1, p, ball, o, 1.0);
-  if (!(d1.upper < kInf)) return {kInf, 0, 1};
-  // step 2: the points of p' so reached, from hat: R' = p' q^T + q p'^T (world frame) as the reference,
-  // in the ball grown by step 1; its gradient on p' is (q . y) p'_xyz
-  const Mat4<Q> Ti = translation_of(o ? std::optional<Vec3<Q>>(Vec3<Q>(-*o)) : std::nullopt);
-  const Mat4<Q> R1 = Ti.transpose() * Mat4<Q>(p1 * q_o.transpose() + q_o * p1.transpose()) * Ti;
-  Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper)), std::nullopt};
-  if (ball.half) grown.half = Vec3<Q>(ball.half->array() + to_rational(d1.upper));
-  const Vec4<Q> p1_world = Ti.transpose() * p1;  // (the points step 2 bounds lie on p')
-  const CertifiedBound d2 = ball_quadric_bound(hat_in, R1, grown, o, plane_pair_floor(p1, q, grown), 1.0, true, &p1_world);
-  if (!(d2.upper < kInf)) return {kInf, 0, 1};
-  return upward([&] {
-    CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);
-    out.boxes = d1.boxes + d2.boxes;
-    out.euclidean = true;
-    return out;
-  });
+  if (!p1.head<3>().isZero()) {
+    const CertifiedBound d1 = ball_plane_bound(p1, p, ball, o, 1.0);
+    if (d1.upper < kInf) {
+      Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper)), std::nullopt};
+      if (ball.half) grown.half = Vec3<Q>(ball.half->array() + to_rational(d1.upper));
+      const CertifiedBound d2 = from_pair(p1, q_o, grown);
+      if (d2.upper < kInf)
+        best = upward([&] {
+          CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);
+          out.boxes = d1.boxes + d2.boxes;
+          return out;
+        });
+    }
+  }
+  // Split 2, q' = lambda q + f, f the part of E of the form f p^T + p f^T: a tilted second plane, p
+  // itself kept, so no step 1 (the geometry lies on p). A candidate R made with a second plane off h
+  // contains the terminator exactly; split 1 tilted p' to match it, and bounded one with h tilted by
+  // 1e-16 at 1.4e-8 where h crosses the terminator (audit 37a F2).
+  const Vec4<Q> f = plane_pair_part_about(E, p_o, ball_frame(ball, o));
+  const Vec4<Q> q1 = lambda * q_o + f;
+  if (!q1.isZero()) {
+    const CertifiedBound d = from_pair(p_o, q1, ball);
+    if (d.upper < kInf) {
+      CertifiedBound two = upward([&] { return relative_bound(IA(d.upper), size); });
+      two.boxes = d.boxes + (best ? best->boxes : 0);
+      if (!best || two.upper < best->upper) best = two;
+      else best->boxes = two.boxes;
+    }
+  }
+  if (!best) return {kInf, 0, 1};
+  best->euclidean = true;
+  return *best;
 }
 
 }  // namespace qverify

@@ -1044,6 +1044,75 @@ TEST_CASE("a cone's polar plane moved by a small part of its size fails - at any
   }
 }
 
+TEST_CASE("under a parallel light R's second plane is judged as an angle - the same in any units",
+          "[verdicts][accuracy]") {
+  // h is the plane at infinity; R made with a second plane h' = (e, 1) instead lies 1 / |e| away, an
+  // angle of about |e| times the object's size. The measure was a relative residual on directions,
+  // which went as 1 / scale^2: the same candidate passed at one scale and failed at another (audit 37a F1).
+  for (const Q& tilt : {Q(1, 1000), Q(1, 100000000000LL)}) {
+    std::optional<double> first;
+    std::optional<bool> passed;
+    for (const Q& s : {Q(1, 10000), Q(1), Q(10000), Q(1, 1024)}) {
+      INFO("tilt " << tilt << ", scale " << s);
+      const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(Q(1, 3) * s, Q(-2, 7) * s, Q(5, 11) * s), Vec3<Q>(s, Q(3, 2) * s, Q(2, 3) * s),
+                                               Mat3<Q>::Identity());
+      const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "egg", "matrix": )" + matrix_text(A) +
+                                       R"(}], "lights": [{"id": "sun", "direction": [3, -2, 7]}]})",
+                                   "egg.json");
+      ResultSet rs = computed_results(sc, *parse_precision("exact"), Method::direct);
+      rs.precision = *parse_precision("double");
+      REQUIRE(rs.shadows.size() == 1);
+      const Vec4<Q> pi = rs.shadows[0].polar;
+      const Vec4<Q> h(tilt / s, Q(-2) * tilt / s, Q(2) * tilt / s, Q(1));  // 1 / (3 tilt) scene units away, times s
+      rs.shadows[0].R = Mat4<Q>(pi * h.transpose() + h * pi.transpose());
+      const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+      REQUIRE(v.checks.size() == 1);
+      REQUIRE(v.checks[0].report);
+      REQUIRE(v.checks[0].report->second_plane_error);
+      const double m = *v.checks[0].report->second_plane_error;
+      if (!first) first = m, passed = v.checks[0].passed();
+      CHECK(m == Approx(*first).epsilon(1e-9));
+      CHECK(v.checks[0].passed() == *passed);
+    }
+    // about 3 tilt (|e|) times the size (1.5), over sqrt 2 or so: the far plane passes, the near fails
+    CHECK(*first > tilt.convert_to<double>());
+    CHECK(*first < 10 * tilt.convert_to<double>());
+    CHECK(*passed == (tilt < Q(1, 1000000)));
+  }
+}
+
+TEST_CASE("where h crosses the terminator, an R with the terminator on it exactly is bounded at 0", "[verdicts][accuracy]") {
+  // A lamp beside an ellipsoid (h, z = l_z, crosses it): R's gradient vanishes where its planes cross on
+  // the terminator, and R is bounded as a plane pair. An antisymmetric part of 1e-16 (no quadric's) was
+  // taken into its first plane, and a second plane tilted by 1e-16 made it tilt the first to match:
+  // bounded at 2e-8 and 1.4e-8, though the terminator lies on R exactly (audit 37a F2).
+  const Mat4<Q> A = ellipsoid_quadric<Q>(Vec3<Q>(0, 0, 0), Vec3<Q>(1, Q(3, 2), Q(2, 3)), Mat3<Q>::Identity());
+  const Scene sc = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "egg", "matrix": )" + matrix_text(A) +
+                                   R"(}], "lights": [{"id": "lamp", "position": [3, 1, "1/5"]}]})",
+                               "egg.json");
+  const ResultSet exact = computed_results(sc, *parse_precision("exact"), Method::direct);
+  REQUIRE(exact.shadows.size() == 1);
+  const Vec4<Q> pi = exact.shadows[0].polar, h(0, 0, 1, Q(-1, 5));
+  const Mat4<Q> R = exact.shadows[0].R;
+  const Q tiny = max_abs(R) / pow10(16);
+  Mat4<Q> skew = Mat4<Q>::Zero();
+  skew(0, 1) = tiny, skew(1, 0) = -tiny, skew(2, 3) = -tiny, skew(3, 2) = tiny;
+  const Vec4<Q> tilted = h + Vec4<Q>(Q(1, 3), Q(-2, 7), 0, 0) / pow10(16);
+  for (const Mat4<Q>& candidate : {Mat4<Q>(R + skew), Mat4<Q>(pi * tilted.transpose() + tilted * pi.transpose())}) {
+    ResultSet rs = exact;
+    rs.precision = *parse_precision("double");
+    rs.shadows[0].R = candidate;
+    const VerifyReport v = verify_results(sc, rs, VerifyOptions{});
+    REQUIRE(v.checks.size() == 1);
+    REQUIRE(v.checks[0].report);
+    const CheckReport& r = *v.checks[0].report;
+    INFO(r.summary());
+    CHECK(v.checks[0].passed());
+    REQUIRE(r.certified);
+    CHECK(r.certified->upper < 1e-14);
+  }
+}
+
 TEST_CASE("a cone with no length of its own is sampled by unit steps - its placement and the mirror's excuse no error",
           "[verdicts][accuracy]") {
   // Under a parallel light, or in a mirror, a cone has no length: its steps were its apex's distance

@@ -402,9 +402,11 @@ Vec3<Rational> reflected_item_base(const Mat4<Rational>& A, const Vec4<Rational>
 /// first-order distance of each point of h divided by the larger of the object size and the point's distance from `inside` (h may pass far
 /// from the object: an angle, not a length). The points keep away from the line where h crosses the
 /// polar plane pi, where R's gradient (pi . y) h vanishes and a first-order distance means nothing,
-/// by a step that grows with their distance from `inside` (see accuracy.cpp). Parallel light: points
-/// at infinity (d, 0), the relative residual |y^T R y| / (|R|_F |y|^2). `all_zero`: R vanishes
-/// exactly at every point (0 is returned, also where no point of `local` is finite).
+/// by a step that grows with their distance from `inside` (see accuracy.cpp). Parallel light: h is
+/// the plane at infinity, and the measure its angle as the point light's, |R3|_F size / (2 |(R (c,
+/// 1))_xyz|), R3 the symmetric part of R's spatial block, c = `inside` (for R = pi h'^T + h' pi^T, h' =
+/// (e, 1), about size |e|: h' 1 / |e| away). `all_zero`: R vanishes exactly at every point (R3 = 0
+/// for a parallel light; 0 is returned, also where no point of `local` is finite).
 Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& size, const Mat4<Rational>& A,
                            const Vec4<Rational>& L, const Mat4<Rational>& R, bool& all_zero);
 

@@ -335,6 +335,9 @@ ShellFloor plane_pair_floor(const Vec4<Rational>& p, const Vec4<Rational>& q, co
 /// d1 = |p' . x| / |p'_xyz| of p', on R' (ball_plane_bound), and that point of p' within d2 of hat
 /// (ball_quadric_bound against R' in the ball grown by d1: first order where (q . y) p'_xyz has a
 /// floor, second order, sqrt(|F| ...), near the line); the bound is (d1 + d2) / size, `euclidean`.
+/// Also the other split, hat = p q'^T + q' p^T + F', q' = lambda q + f (a second plane tilted: R
+/// made with a second plane off h), in one step (the points lie on p, a plane of it); the smaller
+/// bound counts. hat's symmetric part is bounded (an antisymmetric one is no quadric's).
 CertifiedBound ball_plane_pair_bound(const Mat4<Rational>& hat, const Vec4<Rational>& p, const Vec4<Rational>& q,
                                      const Ball& ball, const std::optional<Vec3<Rational>>& origin, double size);
 
