@@ -70,14 +70,14 @@ const CLI::Validator kPositiveFinite(
     },
     "POSITIVE");
 
-/// A value of --seed: an integer from 0 to 2^64 - 1, the whole text read (a conversion to unsigned alone
-/// takes -1 and 2^64 both as 2^64 - 1).
 /// A file or directory path given on the command line: an empty one is an error, never "not given"
 /// (`verify --candidate "$DOC"` with DOC unset checked qverify's own results and passed; render
 /// --ids '' wrote nothing, silently: audit 37b F3, F4).
 const CLI::Validator kPath(
     [](std::string& text) -> std::string { return text.empty() ? "expected a path, found \"\"" : ""; }, "PATH");
 
+/// A value of --seed: an integer from 0 to 2^64 - 1, the whole text read (a conversion to unsigned alone
+/// takes -1 and 2^64 both as 2^64 - 1).
 const CLI::Validator kSeedText(
     [](std::string& text) -> std::string {
       const std::string problem = "expected an integer from 0 to 18446744073709551615, found \"" + text + "\"";

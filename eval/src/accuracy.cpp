@@ -1301,21 +1301,35 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own
   const Measure inf = std::numeric_limits<Measure>::infinity();
   if (L(3) == 0) {
-    // A parallel light: h is the plane at infinity, where R is its spatial block R3 (symmetric part: an
-    // antisymmetric one is no quadric's). A plane pair pi h'^T + h' pi^T with h' = (e, 1) has R3 = n e^T
-    // + e n^T (pi = (n, d)) and, at a point c of the object on pi, a gradient (R (c, 1))_xyz = n: h'
-    // lies about 1 / |e| away, an angle of size |e| seen from an object of that size, as the point
-    // light's measure with its points at infinity. So |R3|_F size / (2 |(R (c, 1))_xyz|), c = `inside`:
-    // the same in any units, placement and turn (the relative residual |d^T R d| / (|R|_F |d|^2) it
-    // replaced went as 1 / scale^2: an R 0.8 targets off passed at one scale and failed scaled by 1e-4,
-    // and one with h' 1e3 away failed, and passed scaled by 1e4; audit 37a F1).
-    const Mat3<Q> R3 = Mat3<Q>(R.topLeftCorner<3, 3>() + R.topLeftCorner<3, 3>().transpose()) / 2;
+    // A parallel light: h is the plane at infinity, where R is its spatial block R3 (of its symmetric
+    // part Rs: an antisymmetric one is no quadric's). A plane pair pi h'^T + h' pi^T with h' = (e, 1)
+    // has R3 = n e^T + e n^T (pi = (n, d)) and, at a point x of the terminator (on pi), a gradient
+    // (Rs x)_xyz = (h' . x) n: h' lies about 1 / |e| away, an angle of size |e| seen from an object of
+    // that size, as the point light's measure with its points at infinity. So |R3|_F size / (2
+    // min_x |(Rs x)_xyz|) over the sampled terminator points x: the same in any units, placement and
+    // turn (the relative residual |d^T R d| / (|R|_F |d|^2) it replaced went as 1 / scale^2: an R 0.8
+    // targets off failed scaled by 1e-4, one with h' 1e3 away passed scaled by 1e4; audit 37a F1). (Not
+    // at `inside`: under a parallel light that point is the core's nearest the frame's origin, which a
+    // candidate chooses: a cylinder's R with h' through the terminator passed with its origin 1e12 up
+    // the axis; review of 29fa6a5.) A terminator of one point has no length: `step`, unit steps, as
+    // for a point light.
+    const Mat4<Q> Rs = symmetric_part(R);
+    const Mat3<Q> R3 = Rs.topLeftCorner<3, 3>();
     if (R3.isZero()) return 0;
     all_zero = false;
-    const Vec4<Q> c(at_inside(0), at_inside(1), at_inside(2), Q(1));
-    const Q g = Vec4<Q>(R * c).head<3>().squaredNorm();
-    if (g == 0) return inf;
-    return sqrt(to_measure(Q((R3 * R3).trace()))) * to_measure(step) / (2 * sqrt(to_measure(g)));
+    Mat4<Measure> Rm;
+    for (Eigen::Index i = 0; i < 16; ++i) Rm(i) = to_measure(Rs(i));
+    std::optional<Measure> least;
+    for (const RootPoint& x : local) {
+      if (IntegerPoint(x).coordinate(3) == 0) continue;  // (at infinity)
+      const Vec3<Measure> c = cartesian(x);
+      Vec3<Measure> g;
+      for (int i = 0; i < 3; ++i) g(i) = Rm(i, 0) * c(0) + Rm(i, 1) * c(1) + Rm(i, 2) * c(2) + Rm(i, 3);
+      const Measure gn = sqrt(g.squaredNorm());
+      if (!least || gn < *least) least = gn;
+    }
+    if (!least || *least == 0) return inf;
+    return sqrt(to_measure(Q((R3 * R3).trace()))) * to_measure(step) / (2 * *least);
   }
   Measure worst = 0;
   std::vector<Vec4<Q>> ys;

@@ -1418,20 +1418,18 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_given, const Vec4<Q>& p,
   // p. Step 1: the geometry's points (on p) from the plane p', absolute (size 1); step 2 from p' in the
   // ball grown by step 1.
   std::optional<CertifiedBound> best;
+  int boxes = 0;  // (of both splits, whichever counts)
   const Vec4<Q> e = plane_pair_part_about(E, q_o, ball_frame(ball, o));
   const Vec4<Q> p1 = lambda * p_o + e;
   if (!p1.head<3>().isZero()) {
     const CertifiedBound d1 = ball_plane_bound(p1, p, ball, o, 1.0);
+    boxes += d1.boxes;
     if (d1.upper < kInf) {
       Ball grown{ball.centre, Q(ball.reach + to_rational(d1.upper)), std::nullopt};
       if (ball.half) grown.half = Vec3<Q>(ball.half->array() + to_rational(d1.upper));
       const CertifiedBound d2 = from_pair(p1, q_o, grown);
-      if (d2.upper < kInf)
-        best = upward([&] {
-          CertifiedBound out = relative_bound(IA(d1.upper) + IA(d2.upper), size);
-          out.boxes = d1.boxes + d2.boxes;
-          return out;
-        });
+      boxes += d2.boxes;
+      if (d2.upper < kInf) best = upward([&] { return relative_bound(IA(d1.upper) + IA(d2.upper), size); });
     }
   }
   // Split 2, q' = lambda q + f, f the part of E of the form f p^T + p f^T: a tilted second plane, p
@@ -1442,14 +1440,14 @@ CertifiedBound ball_plane_pair_bound(const Mat4<Q>& hat_given, const Vec4<Q>& p,
   const Vec4<Q> q1 = lambda * q_o + f;
   if (!q1.isZero()) {
     const CertifiedBound d = from_pair(p_o, q1, ball);
+    boxes += d.boxes;
     if (d.upper < kInf) {
-      CertifiedBound two = upward([&] { return relative_bound(IA(d.upper), size); });
-      two.boxes = d.boxes + (best ? best->boxes : 0);
+      const CertifiedBound two = upward([&] { return relative_bound(IA(d.upper), size); });
       if (!best || two.upper < best->upper) best = two;
-      else best->boxes = two.boxes;
     }
   }
-  if (!best) return {kInf, 0, 1};
+  if (!best) return {kInf, 0, std::max(boxes, 1)};
+  best->boxes = boxes;
   best->euclidean = true;
   return *best;
 }

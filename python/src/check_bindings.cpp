@@ -242,7 +242,7 @@ struct BatchArg {
   bool per_item = false;
   long items = 0;                 ///< the leading axis (per_item only)
 
-  BatchArg(const std::string& n, const py::object& v, int item_ndim) : name(n), value(v) {
+  BatchArg(const std::string& n, const py::object& v, int item_ndim) : name(n), value(buffers_as_arrays(v, n)) {
     if (value.is_none()) return;
     const std::string expected = item_ndim == 2 ? "(n, 4, 4) or (4, 4)" : "(n, 4) or (4,)";
     if (py::isinstance(value, numpy().attr("ndarray"))) {

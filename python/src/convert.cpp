@@ -53,19 +53,22 @@ bool is_sequence(py::handle h) {
   return !py::isinstance<py::str>(h) && !py::isinstance<py::bytes>(h) && py::isinstance<py::sequence>(h);
 }
 
+}  // namespace
+
 /// A memoryview read as the numpy array over the same buffer (numpy reads its format exactly), so that
 /// its shape is checked as an array's: indexed as a sequence, a multi-dimensional view raised
 /// NotImplementedError, not InputError (audit 37b F7). Anything else as it is.
 py::object buffers_as_arrays(py::handle h, const std::string& name) {
   if (!py::isinstance<py::memoryview>(h)) return py::reinterpret_borrow<py::object>(h);
+  const py::object obj = h.attr("obj");  // (a view of text is text, as bytes are: no numbers)
+  if (py::isinstance<py::bytes>(obj) || py::isinstance<py::bytearray>(obj))
+    bad_argument(name, "expected numbers, found a memoryview of " + type_name(obj));
   try {
     return numpy().attr("asarray")(h);
   } catch (py::error_already_set& e) {
     bad_argument(name, std::string("a memoryview numpy cannot read: ") + e.what());
   }
 }
-
-}  // namespace
 
 std::string short_repr(py::handle h) {
   std::string r;

@@ -68,6 +68,10 @@ std::string int_text(py::handle h);
 /// Throws InputError("", path, problem): an argument of a Python call.
 [[noreturn]] void bad_argument(const std::string& path, const std::string& problem);
 
+/// A memoryview as the numpy array over its buffer (a view of bytes or a bytearray is refused, as
+/// they are), anything else as it is: arguments are then read as arrays or sequences.
+pybind11::object buffers_as_arrays(pybind11::handle h, const std::string& name);
+
 /// One number, exactly. `path` names it in errors.
 Rational to_rational(py::handle h, const std::string& path, Kinds& kinds);
 

@@ -178,3 +178,15 @@ def test_status_words_are_checked_item_by_item(shadows):
     Bs = np.array([qverify.reflection(A, p).B for A, p in zip(As, planes)])
     reps = qverify.check_reflections(As, planes, B=Bs, status=["ok"] * 5 + ["degenerate-quadric"] + ["ok"] * 6, samples=8)
     assert [k for k, r in enumerate(reps) if not r] == [5]
+
+
+def test_memoryviews_are_read_as_the_arrays_they_view(shadows):
+    # (the batch doors indexed a 3-d memoryview as a sequence: NotImplementedError; review of 1da4b1b)
+    As, Ls, Ps, polars, Rs = shadows
+    As = np.ascontiguousarray(As, dtype=float)
+    viewed = qverify.check_shadows(memoryview(As), memoryview(np.ascontiguousarray(Ls)), P=memoryview(np.ascontiguousarray(Ps)), samples=8)
+    plain = qverify.check_shadows(As, Ls, P=Ps, samples=8)
+    assert [same_report(a, b) for a, b in zip(viewed, plain)] == [True] * len(plain)
+    with pytest.raises(qverify.InputError) as e:
+        qverify.check_shadows(memoryview(np.zeros((3, 4, 3))), Ls[:3], P=Ps[:3])
+    assert e.value.path == "A[0]"  # (its first item is not 4 x 4)

@@ -293,3 +293,24 @@ def test_an_overflowed_result_keeps_the_exact_status(kwargs):
     assert r.status == "ok"
     assert "non-finite" in r.flags and "inaccurate" in r.flags
     assert r.error_bound is None and r.reason
+
+
+def test_a_parallel_lights_second_plane_is_judged_where_the_terminator_is():
+    # Under a parallel light R's second plane (the plane at infinity) was judged at the core point
+    # nearest the candidate's origin: a cylinder's R whose second plane z = 1 crosses the terminator
+    # passed with its origin put 1e12 up the axis (review of 29fa6a5). It fails at every origin.
+    F = Fraction
+    A = [[F(1), 0, 0, 0], [0, F(1), 0, 0], [0, 0, 0, 0], [0, 0, 0, F(-1)]]
+    L = [F(1), F(0), F(0), F(0)]
+    pi = [F(1), F(0), F(0), F(0)]       # A L: the plane x = 0
+    h = [F(0), F(0), F(1), F(-1)]       # z = 1, through the terminator (the lines x = 0, y = +-1)
+    R = [[pi[i] * h[j] + h[i] * pi[j] for j in range(4)] for i in range(4)]
+    for o in ([0, 0, 0], [0, 0, 10**12], [0, 0, -(10**12)], [5, 7, 10**6]):
+        T = [[F(int(i == j)) for j in range(4)] for i in range(4)]
+        for i in range(3):
+            T[i][3] = F(o[i])
+        RT = [[sum(R[i][k] * T[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+        local = [[float(sum(T[k][i] * RT[k][j] for k in range(4))) for j in range(4)] for i in range(4)]
+        rep = qverify.check_shadow(A, L, R=local, origin=o)
+        assert not rep.passed, o
+        assert any("plane h" in p for p in rep.problems), (o, rep.problems)

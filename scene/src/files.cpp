@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace qverify {
@@ -42,17 +43,19 @@ struct Descriptor {
   Descriptor& operator=(Descriptor&&) = delete;
 };
 
-/// A fresh temporary next to `path` (same file system, so a rename is atomic), open for writing.
-Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::path& tmp) {
+/// A fresh temporary next to `path` (same file system, so a rename is atomic), open for writing;
+/// errors name `shown` (the path the user gave).
+Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::path& tmp,
+                          const std::filesystem::path& shown) {
   const std::string base = path.filename().string();
-  if (base.empty() || base == "." || base == "..") fail(path, EINVAL, "not a file name");
+  if (base.empty() || base == "." || base == "..") fail(shown, EINVAL, "not a file name");
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   static std::atomic<unsigned long> counter{0};
   Descriptor d;
   for (int attempt = 0; d.fd < 0; ++attempt) {
     tmp = dir / ("." + base + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     d.fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (d.fd < 0 && (errno != EEXIST || attempt > 100)) fail(path, errno);
+    if (d.fd < 0 && (errno != EEXIST || attempt > 100)) fail(shown, errno);
   }
   return d;
 }
@@ -61,7 +64,11 @@ Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::pa
 /// the rename: it may be someone's), checked to be a regular file or none: a device, a FIFO or a
 /// socket is refused before any work, as the scene reader refuses them (the rename replaced
 /// /dev/full with a PNG, audit 37b F2), and a directory too (rename(2) would say so after the work;
-/// a link to a directory it replaced, the link itself).
+/// a link to a directory it replaced, the link itself). Links are followed here, not by the kernel,
+/// so the kernel's rule for them (fs.protected_symlinks) is kept here: a link in a sticky
+/// world-writable directory (/tmp) is followed only when its owner is this user or the directory's
+/// owner (another user's /tmp/out.png -> ~/.bashrc would have had the rename replace .bashrc; review
+/// of 1da4b1b). Errors name `path` as given.
 std::filesystem::path regular_target(const std::filesystem::path& path) {
   std::filesystem::path p = path;
   std::error_code ec;
@@ -77,9 +84,14 @@ std::filesystem::path regular_target(const std::filesystem::path& path) {
       }
     }
     if (hops == 40) fail(path, ELOOP);
+    struct stat link {}, dir {};
+    const std::filesystem::path parent = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    if (::lstat(p.c_str(), &link) != 0 || ::stat(parent.c_str(), &dir) != 0) fail(path, errno);
+    if ((dir.st_mode & S_ISVTX) && (dir.st_mode & S_IWOTH) && link.st_uid != ::geteuid() && link.st_uid != dir.st_uid)
+      fail(path, EACCES, "a symbolic link of another user in a sticky world-writable directory (not followed)");
     const std::filesystem::path t = std::filesystem::read_symlink(p, ec);
     if (ec) fail(path, ec.value());
-    p = t.is_absolute() ? t : p.parent_path() / t;
+    p = t.is_absolute() ? t : parent / t;
   }
 }
 
@@ -88,7 +100,7 @@ std::filesystem::path regular_target(const std::filesystem::path& path) {
 void write_file(const std::filesystem::path& path_given, std::string_view contents) {
   const std::filesystem::path path = regular_target(path_given);
   std::filesystem::path tmp;
-  Descriptor d = open_temporary(path, tmp);
+  Descriptor d = open_temporary(path, tmp, path_given);
   auto give_up = [&](int err) {
     if (d.fd >= 0) d.release_and_close();
     ::unlink(tmp.c_str());
@@ -114,7 +126,7 @@ void write_file(const std::filesystem::path& path_given, std::string_view conten
 
 void check_writable(const std::filesystem::path& path) {
   std::filesystem::path tmp;
-  Descriptor d = open_temporary(regular_target(path), tmp);
+  Descriptor d = open_temporary(regular_target(path), tmp, path);
   d.release_and_close();
   ::unlink(tmp.c_str());
 }
@@ -124,7 +136,11 @@ void check_output_directory(const std::filesystem::path& dir) {
   const auto type = std::filesystem::status(dir, ec).type();
   if (type == std::filesystem::file_type::not_found) return check_writable(dir);  // the parent takes a new entry
   if (type != std::filesystem::file_type::directory) fail_directory(dir, ec);
-  check_writable(dir / "x");  // a temporary next to a file named x in it
+  // a temporary in it (whatever an entry named x there is: no file is written to it)
+  std::filesystem::path tmp;
+  Descriptor d = open_temporary(dir / "x", tmp, dir);
+  d.release_and_close();
+  ::unlink(tmp.c_str());
 }
 
 void create_output_directory(const std::filesystem::path& dir) {

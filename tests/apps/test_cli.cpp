@@ -582,6 +582,28 @@ TEST_CASE("write_file writes through a symbolic link and refuses what is not a r
   const auto loop = dir / "loop";
   std::filesystem::create_symlink("loop", loop);
   CHECK_THROWS_AS(qverify::write_file(loop, "x"), qverify::FileWriteError);
+  // the kernel's fs.protected_symlinks, kept where the links are followed here: another user's link in
+  // a sticky world-writable directory is not followed (/tmp/out.png -> ~/.bashrc; review of 1da4b1b)
+  const auto sticky = dir / "sticky";
+  std::filesystem::create_directory(sticky);
+  REQUIRE(::chmod(sticky.c_str(), 01777) == 0);
+  const auto theirs = sticky / "theirs.txt";
+  std::filesystem::create_symlink(target, theirs);
+  if (::lchown(theirs.c_str(), 65534, 65534) == 0 && ::geteuid() != 65534) {  // (as root: CI)
+    try {
+      qverify::write_file(theirs, "x");
+      FAIL("followed");
+    } catch (const qverify::FileWriteError& e) {
+      CHECK(e.reason.find("another user") != std::string::npos);
+      CHECK(e.path == theirs);
+    }
+    std::ifstream again(target);
+    CHECK(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()) == "through two links\n");
+  }
+  const auto mine = sticky / "mine.txt";
+  std::filesystem::create_symlink(target, mine);
+  CHECK_NOTHROW(qverify::write_file(mine, "mine\n"));
+  CHECK(std::filesystem::is_symlink(mine));
 }
 
 TEST_CASE("an empty path is a usage error at every option that takes one", "[cli]") {

@@ -403,10 +403,12 @@ Vec3<Rational> reflected_item_base(const Mat4<Rational>& A, const Vec4<Rational>
 /// from the object: an angle, not a length). The points keep away from the line where h crosses the
 /// polar plane pi, where R's gradient (pi . y) h vanishes and a first-order distance means nothing,
 /// by a step that grows with their distance from `inside` (see accuracy.cpp). Parallel light: h is
-/// the plane at infinity, and the measure its angle as the point light's, |R3|_F size / (2 |(R (c,
-/// 1))_xyz|), R3 the symmetric part of R's spatial block, c = `inside` (for R = pi h'^T + h' pi^T, h' =
-/// (e, 1), about size |e|: h' 1 / |e| away). `all_zero`: R vanishes exactly at every point (R3 = 0
-/// for a parallel light; 0 is returned, also where no point of `local` is finite).
+/// the plane at infinity, and the measure its angle as the point light's, |R3|_F size / (2 min_x
+/// |(R_s x)_xyz|), R_s R's symmetric part, R3 its spatial block, x over `local`'s finite points (for
+/// R = pi h'^T + h' pi^T, h' = (e, 1), about size |e|: h' 1 / |e| away); a terminator of one point
+/// (size 0) has no length, and unit steps stand for it, as for a point light. `all_zero`: R vanishes
+/// exactly at every point (R3 = 0 for a parallel light; 0 is returned, also where no point of
+/// `local` is finite).
 Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& size, const Mat4<Rational>& A,
                            const Vec4<Rational>& L, const Mat4<Rational>& R, bool& all_zero);
 
