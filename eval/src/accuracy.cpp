@@ -1290,13 +1290,6 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
   if (pi.head<3>().isZero() ||
       std::none_of(local.begin(), local.end(), [](const RootPoint& x) { return x.p()(3) != 0; }))
     return 0;
-  // A rational point at the object, of A and L alone, not of the samples: the section's centre, where
-  // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core (a
-  // parallel pair's chords cross at its middle, on the same midline for a cylinder). (The
-  // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
-  // does where the terminator is not a real ellipse.)
-  const Vec4<Q> inside = section_base(A, pi, item_anchor(1, A, L));
-  const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Q step = to_rational(size.convert_to<double>());
   if (step == 0) step = 1;  // a terminator of one point (size 0): unit steps, each distance over the point's own
   const Measure inf = std::numeric_limits<Measure>::infinity();
@@ -1311,8 +1304,8 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
     // targets off failed scaled by 1e-4, one with h' 1e3 away passed scaled by 1e4; audit 37a F1). (Not
     // at `inside`: under a parallel light that point is the core's nearest the frame's origin, which a
     // candidate chooses: a cylinder's R with h' through the terminator passed with its origin 1e12 up
-    // the axis; review of 29fa6a5.) A terminator of one point has no length: `step`, unit steps, as
-    // for a point light.
+    // the axis; review of 29fa6a5: nor computed here.) A terminator of one point has no length:
+    // `step`, unit steps, as for a point light.
     const Mat4<Q> Rs = symmetric_part(R);
     const Mat3<Q> R3 = Rs.topLeftCorner<3, 3>();
     if (R3.isZero()) return 0;
@@ -1323,14 +1316,19 @@ Measure second_plane_error(const std::vector<RootPoint>& local, const Measure& s
     for (const RootPoint& x : local) {
       if (IntegerPoint(x).coordinate(3) == 0) continue;  // (at infinity)
       const Vec3<Measure> c = cartesian(x);
-      Vec3<Measure> g;
-      for (int i = 0; i < 3; ++i) g(i) = Rm(i, 0) * c(0) + Rm(i, 1) * c(1) + Rm(i, 2) * c(2) + Rm(i, 3);
-      const Measure gn = sqrt(g.squaredNorm());
+      const Measure gn = sqrt(Vec4<Measure>(Rm * Vec4<Measure>(c(0), c(1), c(2), Measure(1))).head<3>().squaredNorm());
       if (!least || gn < *least) least = gn;
     }
     if (!least || *least == 0) return inf;
     return sqrt(to_measure(Q((R3 * R3).trace()))) * to_measure(step) / (2 * *least);
   }
+  // A rational point at the object, of A and L alone, not of the samples: the section's centre, where
+  // the sampler's chords all cross (sampling.hpp), else a point of the polar plane at A's core (a
+  // parallel pair's chords cross at its middle, on the same midline for a cylinder). (The
+  // first chord's midpoint, taken before, moved with the seed for a parabola's terminator; `size` still
+  // does where the terminator is not a real ellipse.)
+  const Vec4<Q> inside = section_base(A, pi, item_anchor(1, A, L));
+  const Vec3<Q> at_inside = Vec3<Q>(inside.head<3>()) / inside(3);
   Measure worst = 0;
   std::vector<Vec4<Q>> ys;
   const Vec4<Q> base(at_inside(0), at_inside(1), L(2) / L(3), 1);

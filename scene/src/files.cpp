@@ -60,6 +60,15 @@ Descriptor open_temporary(const std::filesystem::path& path, std::filesystem::pa
   return d;
 }
 
+/// A temporary made at `at` and removed at once: whether its directory takes a new file (errors name
+/// `shown`).
+void try_temporary(const std::filesystem::path& at, const std::filesystem::path& shown) {
+  std::filesystem::path tmp;
+  Descriptor d = open_temporary(at, tmp, shown);
+  d.release_and_close();
+  ::unlink(tmp.c_str());
+}
+
 /// The file `path` names, its symbolic links followed (a link is written through, never replaced by
 /// the rename: it may be someone's), checked to be a regular file or none: a device, a FIFO or a
 /// socket is refused before any work, as the scene reader refuses them (the rename replaced
@@ -124,23 +133,14 @@ void write_file(const std::filesystem::path& path_given, std::string_view conten
   if (::rename(tmp.c_str(), path.c_str()) != 0) give_up(errno);
 }
 
-void check_writable(const std::filesystem::path& path) {
-  std::filesystem::path tmp;
-  Descriptor d = open_temporary(regular_target(path), tmp, path);
-  d.release_and_close();
-  ::unlink(tmp.c_str());
-}
+void check_writable(const std::filesystem::path& path) { try_temporary(regular_target(path), path); }
 
 void check_output_directory(const std::filesystem::path& dir) {
   std::error_code ec;
   const auto type = std::filesystem::status(dir, ec).type();
   if (type == std::filesystem::file_type::not_found) return check_writable(dir);  // the parent takes a new entry
   if (type != std::filesystem::file_type::directory) fail_directory(dir, ec);
-  // a temporary in it (whatever an entry named x there is: no file is written to it)
-  std::filesystem::path tmp;
-  Descriptor d = open_temporary(dir / "x", tmp, dir);
-  d.release_and_close();
-  ::unlink(tmp.c_str());
+  try_temporary(dir / "x", dir);  // (a temporary in it, whatever an entry named x there is)
 }
 
 void create_output_directory(const std::filesystem::path& dir) {
