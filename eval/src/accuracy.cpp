@@ -1456,6 +1456,11 @@ std::string reflection_zero_problem(const Mat4<Q>& A, const Mat4<Q>& B) {
   return B.isZero() != A.isZero() ? "B is zero where it should not be (or the converse)" : "";
 }
 
+std::string reflection_real_points_problem(const Mat4<Q>& A, const Mat4<Q>& B) {
+  if (!without_real_points(A) || without_real_points(symmetric_part(B))) return "";
+  return "B has real points, where M^T A M has none (the quadric has no real point)";
+}
+
 namespace {
 /// A result of the wrong sign or wrongly zero: wrong whatever its geometric error (which sees neither).
 ItemAccuracy wrong_result(const std::string& problem) {
@@ -1559,6 +1564,7 @@ ItemAccuracy ReflectionMeter::B_accuracy(const std::optional<Vec3<Q>>& origin, c
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(M_.transpose() * A_ * M_), origin ? *origin : Vec3<Q>::Zero());
   if (const std::string sign = reflection_sign_problem(B, B_ref); !sign.empty()) return wrong_result(sign);
   if (const std::string zero = reflection_zero_problem(A_, B); !zero.empty()) return wrong_result(zero);
+  if (const std::string real = reflection_real_points_problem(A_, B); !real.empty()) return wrong_result(real);
   // real points at infinity only (an imaginary cylinder): B against the exact one as a matrix, as a
   // shadow's terminator at infinity (ShadowMeter)
   if (pts_.points.empty() && !without_real_points(A_))

@@ -106,3 +106,23 @@ def test_an_overflowed_reflection_keeps_the_exact_status():
         assert r.status == "ok", kwargs
         assert "non-finite" in r.flags and "inaccurate" in r.flags, kwargs
         assert r.error_bound is None and r.reason, kwargs
+
+
+def test_an_imaginary_quadric_reflected_must_stay_imaginary():
+    # (x - c)^2 + y^2 + z^2 + 1/100 = 0 has no real point; float's paper route made its image a real
+    # sphere of radius 5000, which was neither flagged nor failed (audit 38a F1)
+    c = Fraction(10**8, 3) + Fraction(1, 7)
+    A = np.array([[1, 0, 0, -c], [0, 1, 0, 0], [0, 0, 1, 0], [-c, 0, 0, c * c + Fraction(1, 100)]], dtype=object)
+    plane = [0, 0, 1, -1]
+    r = qverify.reflection(A, plane, precision="float", method="paper")
+    eig = np.linalg.eigvalsh(np.array(r.B, dtype=float))
+    real = eig.min() < 0 < eig.max()  # (by far: a sphere of radius 5000, or none)
+    assert ("inaccurate" in r.flags) == real
+    exact = qverify.reflection(A, plane, precision="exact")
+    rep = qverify.check_reflection(A, plane, B=exact.B)
+    assert rep.skipped and not rep.passed  # nothing to sample, nothing wrong
+    B = np.array(exact.B, dtype=object)
+    B[3, 3] -= 1  # |x - c'|^2 = 99/100: a real sphere
+    rep = qverify.check_reflection(A, plane, B=B)
+    assert not rep.passed and not rep.skipped
+    assert any("B has real points" in p for p in rep.problems)

@@ -894,5 +894,19 @@ TEST_CASE("a terminator whose real points are all at infinity: the results measu
   CHECK(reflect(std::nullopt, B_off, nullptr).inaccurate);
   Mat4<Q> none = Mat4<Q>::Identity();  // x^2 + y^2 + z^2 = -1
   REQUIRE(without_real_points(none));
-  CHECK_FALSE(ReflectionMeter(none, mirror, AccuracyOptions{})(std::nullopt, Mat4<Q>(M.transpose() * none * M), nullptr).bound);
+  ReflectionMeter reflect_none(none, mirror, AccuracyOptions{});
+  const Mat4<Q> B_none = M.transpose() * none * M;
+  const ItemAccuracy n = reflect_none(std::nullopt, B_none, nullptr);
+  CHECK_FALSE(n.bound);
+  CHECK_FALSE(n.inaccurate);
+  // a B with real points is wrong, however close its entries (audit 38a F1: a rounded imaginary sphere
+  // came back a real one, unflagged); one still without them, farther off, is not
+  Mat4<Q> B_real = B_none;
+  B_real(3, 3) -= 2;  // (its constant less 2: |x - c|^2 = 1, a real sphere of radius 1)
+  REQUIRE_FALSE(without_real_points(B_real));
+  const ItemAccuracy nr = reflect_none(std::nullopt, B_real, nullptr);
+  CHECK(nr.inaccurate);
+  CHECK_FALSE(nr.bound);
+  CHECK_THAT(nr.reason, Catch::Contains("B has real points"));
+  CHECK_FALSE(reflect_none(std::nullopt, Mat4<Q>(2 * B_none + Mat4<Q>::Identity()), nullptr).inaccurate);
 }

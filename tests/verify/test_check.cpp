@@ -367,6 +367,33 @@ TEST_CASE("check_reflection: qverify's reflection passes, wrong ones fail", "[ch
   CHECK(re.proved_exactly == static_cast<int>(re.points));
 }
 
+TEST_CASE("check_reflection: a quadric without real points must stay without them", "[check]") {
+  // (x - c)^2 + y^2 + z^2 + 1/100 = 0: no real point, so M^T A M has none either. A rounded B that became a
+  // real sphere was skipped ("no real point to sample") and eval left it unflagged (audit 38a F1).
+  const Vec4<double> plane(0, 0, 1, -1);
+  // (here (x - c)^2 + y^2 + z^2 + 1/64 = 0, c = 1000.5: its doubles exact)
+  const double c = 1000.5;
+  Mat4<double> A = Mat4<double>::Identity();
+  A(0, 3) = A(3, 0) = -c;
+  A(3, 3) = c * c + 1.0 / 64;
+  const Mat4<double> M = mirror_matrix<double>(plane);
+  ReflectionCandidate<double> right;
+  right.B = Mat4<double>(M.transpose() * A * M);
+  const CheckReport r = check_reflection<double>(A, plane, right);
+  INFO(r.summary());
+  CHECK(r.skipped);  // definite: nothing to sample, nothing wrong
+  CHECK(r.problems.size() == 1);
+  ReflectionCandidate<double> real = right;
+  (*real.B)(3, 3) -= 1;  // now |x - c'|^2 = 63/64: a real sphere
+  const CheckReport rr = check_reflection<double>(A, plane, real);
+  CHECK_FALSE(rr.passed);
+  CHECK_FALSE(rr.skipped);
+  CHECK_THAT(rr.summary(), Catch::Contains("B has real points, where M^T A M has none"));
+  ReflectionCandidate<double> point = right;
+  (*point.B)(3, 3) -= 1.0 / 64;  // a single real point (semidefinite): also wrong
+  CHECK_FALSE(check_reflection<double>(A, plane, point).passed);
+}
+
 TEST_CASE("bad input at the check door: an InputError naming the argument, nothing computed", "[check]") {
   const Mat4<double> A = unit_sphere<double>();
   const Vec4<double> L = lamp<double>();

@@ -444,6 +444,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
     if (got.B)
       if (std::string zero = reflection_zero_problem(Aw, *got.B); !zero.empty()) problems.push_back(std::move(zero));
     if (got.B)
+      if (std::string real = reflection_real_points_problem(Aw, *got.B); !real.empty()) problems.push_back(std::move(real));
+    if (got.B)
       if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };

@@ -353,6 +353,12 @@ std::vector<std::string> shadow_zero_problems(const Mat4<Rational>& A, const Vec
                                               const Vec4<Rational>* polar, const Mat4<Rational>* R);
 /// The same for B (zero exactly when A is): the problem, or "".
 std::string reflection_zero_problem(const Mat4<Rational>& A, const Mat4<Rational>& B);
+/// A quadric without real points (A definite, hence M^T A M too: the image of the empty set is empty):
+/// B must have none either, its symmetric part definite (exactly: its leading minors). A B with real
+/// points is wrong whatever its size, and no sampled distance sees it, as there is no exact point to
+/// measure from: a rounded image of an imaginary sphere 3e7 from the origin came back a real sphere of
+/// radius 5000, unflagged, and verify skipped it (audit 38a F1). The problem, or "".
+std::string reflection_real_points_problem(const Mat4<Rational>& A, const Mat4<Rational>& B);
 /// M's error against the exact reflection M_ref (in M's frame), as verify judges it (M_error) and eval
 /// counts it (error_bound): the largest entry of M - M_ref over the larger of 1 and M_ref's largest
 /// entry. Exact: M is not sampled, so this part of the bound is certified.
