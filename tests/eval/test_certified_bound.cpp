@@ -995,6 +995,15 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   const Mat4<Q> sphere = quadric_of({1, 1, 1}, {0, 0, 0}, -1);
   REQUIRE(light_plane_meets_terminator(sphere, Vec4<Q>(3, 0, Q(3, 10), 1)));
   CHECK_FALSE(light_plane_meets_terminator(sphere, Vec4<Q>(3, 0, 2, 1)));
+  // A lamp just above the sphere's top: pi (z = 1 / l) and h (z = l) are parallel, 2e-7 apart, and meet
+  // nowhere; in world coordinates R's rounded products lost one of them (bounded, and off, at 1.15e-9:
+  // audit 38a F2). h cuts the sphere's skin, nearly: the frame at the light's height; 1 above, not.
+  const Vec4<Q> grazing(0, 0, 1 + Q(1, 10000000), 1);
+  CHECK_FALSE(light_plane_meets_terminator(sphere, grazing));
+  CHECK(wants_light_height_frame(sphere, grazing, Vec3<Q>::Zero(), Q(1)));
+  CHECK(wants_light_height_frame(Mat4<Q>(-sphere), grazing, Vec3<Q>::Zero(), Q(1)));  // (either sign)
+  CHECK_FALSE(wants_light_height_frame(sphere, Vec4<Q>(0, 0, 2, 1), Vec3<Q>::Zero(), Q(1)));
+  CHECK_FALSE(wants_light_height_frame(sphere, Vec4<Q>(0, 0, Q(102, 100), 1), Vec3<Q>::Zero(), Q(1)));
   // a cylinder along z: its terminator (two lines along z) crosses every h, and the frame moves
   // wherever the scene's point of its axis is (any point of it: 9.5 radii from the light's height it
   // once did not, and the terminator, sampled about the lamp's foot on the axis, failed there); along

@@ -53,7 +53,9 @@ bool wants_local_frame(const Vec3<Rational>& center, const Rational& s2);
 bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>& L);
 
 /// Does a shadow item want the frame at the light's height? For an ellipsoid where h meets the
-/// terminator (which is bounded); for a quadric without a centre (a paraboloid) where h meets the
+/// terminator (which is bounded), or cuts the ellipsoid, or nearly (its least value on h within
+/// |A(centre)| / 64 of 0: R's planes close together over the terminator, a lamp just above a sphere's
+/// top); for a quadric without a centre (a paraboloid) where h meets the
 /// terminator; for a line of centres (a cylinder, whose given centre is any point of its axis)
 /// wherever the light's height is within 64 radii (beyond the 16 half-widths its samples reach) of the lamp's
 /// foot on the axis (shadow_origin puts the frame there); for another quadric with a centre wherever
