@@ -1004,6 +1004,18 @@ TEST_CASE("eval: a light beside the object, R in the frame at the light's height
   CHECK(wants_light_height_frame(Mat4<Q>(-sphere), grazing, Vec3<Q>::Zero(), Q(1)));  // (either sign)
   CHECK_FALSE(wants_light_height_frame(sphere, Vec4<Q>(0, 0, 2, 1), Vec3<Q>::Zero(), Q(1)));
   CHECK_FALSE(wants_light_height_frame(sphere, Vec4<Q>(0, 0, Q(102, 100), 1), Vec3<Q>::Zero(), Q(1)));
+  {  // and eval there: the item in that frame, certified far below the target, not flagged
+    const Scene top = parse_scene(R"({"format": "qverify-scene/1", "quadrics": [{"id": "ball", "sphere": {"center": [0, 0, 0],
+        "radius": 1}}], "lights": [{"id": "lamp", "position": [0, 0, "1.0000001"]}], "requests": {"reflections": []}})",
+                                  "top.json");
+    const ResultSet rs = computed_results(top, *parse_precision("double"), Method::direct, Frame::local, AccuracyOptions{});
+    REQUIRE(rs.shadows.size() == 1);
+    REQUIRE(rs.shadows[0].origin);
+    REQUIRE(rs.shadows[0].accuracy);
+    REQUIRE(rs.shadows[0].accuracy->bound);
+    CHECK(*rs.shadows[0].accuracy->bound < 1e-15);
+    CHECK_FALSE(rs.shadows[0].accuracy->inaccurate);
+  }
   // a cylinder along z: its terminator (two lines along z) crosses every h, and the frame moves
   // wherever the scene's point of its axis is (any point of it: 9.5 radii from the light's height it
   // once did not, and the terminator, sampled about the lamp's foot on the axis, failed there); along
