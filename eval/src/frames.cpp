@@ -71,6 +71,14 @@ bool wants_local_frame(const Vec3<Q>& center, const Q& s2) {
   return c * c > Q(64 * 64) * s2 && double_holds(c);
 }
 
+namespace {
+/// A(centre), K = A's spatial part invertible: the value the "nearly" tests below compare with.
+Q centre_value(const Mat4<Q>& A) {
+  const Vec3<Q> b = A.topRightCorner<3, 1>();
+  return A(3, 3) - b.dot(Mat3<Q>(A.topLeftCorner<3, 3>()).inverse() * b);
+}
+}  // namespace
+
 bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
   if (L(3) == 0) return false;  // a parallel light: h is the plane at infinity
   const Vec4<Q> pi = A * L;
@@ -90,11 +98,8 @@ bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
   if (disc >= 0) return true;
   // nearly: on the line A's value comes within |A(centre)| / 64 of 0 (a = 0 with disc < 0: b = 0,
   // A constant on the line). Both sides move with A's scale alone, not with units or placement.
-  const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  if (a == 0 || K.determinant() == 0) return false;
-  const Vec3<Q> centre = -(K.inverse() * Vec3<Q>(A.topRightCorner<3, 1>()));
-  const Q r = A(3, 3) + Vec3<Q>(A.topRightCorner<3, 1>()).dot(centre);
-  return abs(Q(disc / a)) <= abs(r) / 64;
+  if (a == 0 || Mat3<Q>(A.topLeftCorner<3, 3>()).determinant() == 0) return false;
+  return abs(Q(disc / a)) <= abs(centre_value(A)) / 64;
 }
 
 namespace {
@@ -107,25 +112,23 @@ bool height_plane_nearly_meets(const Mat4<Q>& A, int s, const Q& l) {
   const Eigen::Matrix<Q, 2, 1> v = S.block<2, 1>(0, 2) * l + S.block<2, 1>(0, 3);
   const Q c = S(2, 2) * l * l + 2 * S(2, 3) * l + S(3, 3);
   const Q least = c - v.dot(K2.inverse() * v);
-  const Mat3<Q> K = S.topLeftCorner<3, 3>();
-  const Vec3<Q> centre = -(K.inverse() * Vec3<Q>(S.topRightCorner<3, 1>()));
-  const Q r = S(3, 3) + Vec3<Q>(S.topRightCorner<3, 1>()).dot(centre);
-  return least <= abs(r) / 64;
+  return least <= abs(centre_value(A)) / 64;
 }
 }  // namespace
 
 bool wants_light_height_frame(const Mat4<Q>& A, const Vec4<Q>& L, const std::optional<Vec3<Q>>& centre, const Q& s2) {
   if (L(3) == 0) return false;  // a parallel light: h is the plane at infinity
   if (!double_holds(Q(L(2) / L(3)))) return false;  // (a height no double holds: no frame there)
-  const bool meets = light_plane_meets_terminator(A, L);
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
-  // An ellipsoid: its terminator is bounded. Where h meets it, and also where h cuts the ellipsoid or
-  // nearly: R's planes, pi and h, then lie close together over the terminator even where they meet
-  // nowhere near it (parallel: a lamp just above a sphere's top), and R's rounded products in world
+  // An ellipsoid: its terminator is bounded. Where h cuts the ellipsoid or nearly, which it does where
+  // it meets the terminator (or nearly: A's least value on the line pi ∩ h is no less than on h):
+  // also where it meets the terminator nowhere near, R's planes, pi and h, lie close together over
+  // the terminator (parallel: a lamp just above a sphere's top), and R's rounded products in world
   // coordinates lose one of them: a unit sphere lit from 1e-7 above its top had R bounded (and off)
   // at 1.15e-9, in the frame at the light's height 1e-23 (audit 38a F2). The frame there lies within
   // the ellipsoid's height, where it costs P and the polar plane nothing.
-  if (const int s = *definiteness<Q, 3>(K); s != 0) return meets || height_plane_nearly_meets(A, s, Q(L(2) / L(3)));
+  if (const int s = *definiteness<Q, 3>(K); s != 0) return height_plane_nearly_meets(A, s, Q(L(2) / L(3)));
+  const bool meets = light_plane_meets_terminator(A, L);
   // No centre (a paraboloid): the frame where h meets the terminator, at its height (near the object's
   // part that matters). A centre: wherever the light's height is within 4 sizes of it, also where h misses
   // the terminator: an unbounded terminator is bounded in a ball about the sampled points, and where R's

@@ -442,11 +442,9 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
       problems.push_back("B is not proportional to M^T A M (exact proof mode)");
     if (got.B && !symmetric_within(*got.B, T)) problems.push_back("B is not symmetric");
     if (got.B)
-      if (std::string zero = reflection_zero_problem(Aw, *got.B); !zero.empty()) problems.push_back(std::move(zero));
-    if (got.B)
-      if (std::string real = reflection_real_points_problem(Aw, *got.B); !real.empty()) problems.push_back(std::move(real));
-    if (got.B)
-      if (std::string sign = reflection_sign_problem(*got.B, B_ref); !sign.empty()) problems.push_back(std::move(sign));
+      for (std::string p : {reflection_zero_problem(Aw, *got.B), reflection_real_points_problem(Aw, *got.B),
+                            reflection_sign_problem(*got.B, B_ref)})
+        if (!p.empty()) problems.push_back(std::move(p));
     if (std::string status = status_problem(got.status, rep.exact_status); !status.empty()) problems.push_back(std::move(status));
   };
   const ItemPoints pts = reflected_points(Aw, Mw, opt.samples, item_seed(opt.seed, 2, Aw, plane));
