@@ -1,6 +1,7 @@
 /// \file gmp_block_cache.cpp
 /// GMP's limb arrays reused through a small per-thread cache, in the sanitizer build only (linked into
-/// the CLI, the test programs and the fuzzers of the asan preset; never into a release build).
+/// the CLI and the test programs of the asan preset, not its fuzzers: tests/sanitizers/CMakeLists.txt;
+/// never into a release build).
 ///
 /// Why: the exact arithmetic (Boost's `mpq_rational`, MPFR, MPFI) allocates and frees a limb array
 /// at nearly every operation, and AddressSanitizer's allocator (redzones, the call stack of every

@@ -7,7 +7,8 @@
 
 namespace {
 
-/// Exact arithmetic enough for every cached size class to be taken and given back many times.
+/// Exact arithmetic whose blocks (of several size classes, growing with the denominator) are taken
+/// from the cache and given back to it many times.
 void traffic() {
   mpq_t sum, term;
   mpq_inits(sum, term, nullptr);
