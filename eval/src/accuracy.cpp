@@ -1088,9 +1088,9 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   const Q s = L.dot(pi_ref_);
   P_ref_ = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
-  P_floor_ = GradientFloor(A, ball_, s);
+  P_floor_ = terminator_gradient_floor(A, pi_ref_, ball_, s);
   // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
-  const std::optional<Measure> hf = terminator_h_floor(A, L);
+  const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
   if (hf) R_floor_ = *hf * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
   cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,
             !crosses(h_, ball_) || R_crossing || R_floor_ > 0};

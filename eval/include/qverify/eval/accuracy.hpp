@@ -224,11 +224,12 @@ struct CoveredBound {
 ///    R's planes cross);
 ///  - elsewhere (a hyperbola, a parabola, a line pair) over every point within the object size of
 ///    A's centre (ItemPoints::ball) by ball bounds (certified_bound.hpp): the polar plane; P where
-///    A's gradient has a floor on the terminator there, or P is indefinite (a cone's plane pair: second
+///    A's gradient has a floor on the terminator there (terminator_gradient_floor: A's own, its
+///    section's, a cone's on its section's lines), or P is indefinite (a cone's plane pair: second
 ///    order near its apex, in shells split while the innermost ball bounds the most); R where the
-///    line h . x = 0 of the polar plane misses the terminator (a floor of |h . x| on it,
-///    terminator_h_floor), where h misses the ball, or where R's planes cross (second order near
-///    their line).
+///    line h . x = 0 of the polar plane misses the terminator in the ball (a floor of |h . x| on
+///    it, terminator_h_floor with the ball), where h misses the ball, or where R's planes cross
+///    (second order near their line).
 /// P on its generator lines, R on the polar plane inside the object and on h are not bounded: they
 /// are verify's checks of the results' shapes (that P is the cone from L, R the plane pair), beyond
 /// the geometric error, measured on samples. Bounded, they flagged correctly rounded results: a
@@ -256,7 +257,7 @@ class ShadowBounds {
   Ball ball_{Vec3<Rational>::Zero(), Rational(0), std::nullopt};
   Mat4<Rational> P_ref_, R_ref_;
   Vec4<Rational> pi_ref_, h_;
-  GradientFloor P_floor_;
+  ShellFloor P_floor_;  ///< terminator_gradient_floor: P_ref's gradient on the terminator
   Measure R_floor_ = 0;  ///< terminator_h_floor times |pi_xyz|: R_ref's gradient on the terminator
   /// R in the ball as a plane pair (ball_plane_pair_bound: the terminator from R's first plane, then
   /// R from that plane's points); where h misses the ball also against R_ref in one step, and where

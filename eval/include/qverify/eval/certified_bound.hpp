@@ -146,7 +146,14 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 /// c = D(0) < 0 the line h . x = 0 misses the terminator, and the t of the terminator's points
 /// nearest 0 is D's root of least magnitude, 2 |c| / (|b| + sqrt(b^2 - 4 a c)) (for either sign of
 /// a; the whole line family misses where b^2 < 4 a c), enclosed from below.
-std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L);
+///
+/// With a `ball`, the floor over the terminator's points in the ball only, where larger: the least
+/// |t| of those points, bounded from below by interval bisection of t outward from 0 (a piece of t
+/// is cleared where its lines miss A, or meet it outside the ball only). Where h . x = 0 meets the
+/// terminator outside the ball, R's planes cross there, not in the ball, and R_ref's gradient on the
+/// terminator in the ball keeps away from 0 (audit 39a F1: without it, R was bounded by second
+/// order, as where its planes cross, at 1e7 times its true error).
+std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L, const Ball* ball = nullptr);
 
 /// The map of points x = c + s y into an item's or a geometry's own frame (c its centre, s > 0 its
 /// length, in the results' frame): quadrics go to T^T X T, planes to T^T p.
@@ -261,9 +268,41 @@ std::optional<SaddleDirections> saddle_directions(const Mat4<Rational>& ref);
 /// |t| |up| <= sqrt(|a| / (c / |up|^2)), and with `down` where a >= 0. So every point x is within
 /// sqrt(|x^T hat x| / curvature) of hat's zero set (Euclidean distance), gradient or not.
 Measure saddle_curvature(const Mat4<Rational>& hat, const SaddleDirections& d);
+/// Both of saddle_curvature's curvatures, up^T H up / |up|^2 and -down^T H down / |down|^2, each 0
+/// where not positive: where x^T hat x < 0 the first alone bounds the distance (the root along
+/// `up`), where it is > 0 the second alone.
+struct SaddleCurvatures {
+  Measure up = 0, down = 0;
+};
+SaddleCurvatures saddle_curvatures(const Mat4<Rational>& hat, const SaddleDirections& d);
 
 /// A floor of a reference's gradient over the zero set in a shell of a ball: (inner, outer) -> floor.
 using ShellFloor = std::function<Measure(const Measure& inner, const Measure& outer)>;
+
+/// The section's own quadric: C = Pr^T A Pr + nu pi pi^T, Pr the orthogonal projection onto the plane
+/// pi (x -> x - n (n . x + pi_w) / |n|^2, n = pi_xyz) and nu |n|^2 a power of 2 near |A_xyz,xyz|_F.
+/// At a point x of the section A ∩ pi, C(x) = A(x) = 0 and (C x)_xyz = Pr_xyz (A x)_xyz, the part of
+/// A's gradient along the plane: |(C x)_xyz| <= |(A x)_xyz|. C is the section's conic extruded along
+/// n, with n an eigenvector of C's spatial part (eigenvalue nu |n|^2): its spatial part is invertible
+/// where the conic's is, so a GradientFloor of C sees the conic's own curvature, not A's.
+Mat4<Rational> section_quadric(const Mat4<Rational>& A, const Vec4<Rational>& pi);
+
+/// gamma >= 0 with |K y|^2 >= gamma |y|^2 for every y on the cone y^T K y = 0 in the plane n . y = 0
+/// (K symmetric), proved exactly by the S-lemma's certificate: S = K^2 - tau K - mu n n^T - gamma I
+/// positive definite (Sylvester, exact) gives y^T K^2 y = y^T S y + tau y^T K y + mu (n . y)^2 +
+/// gamma |y|^2 >= gamma |y|^2 there. tau from a floating maximisation of the least eigenvalue of
+/// K^2 - tau K on the plane, mu negative enough; 0 where no certificate is found (a direction of
+/// the plane on the cone where K y = 0).
+Rational cone_section_floor(const Mat3<Rational>& K, const Vec3<Rational>& n);
+
+/// A floor of |scale (A x)_xyz| over the terminator's points x (A ∩ pi) in a shell of the ball: the
+/// larger of GradientFloor(A) and GradientFloor(section_quadric(A, pi)) (both hold there), and for a
+/// cone whose apex V lies on pi, sqrt(cone_section_floor(K, pi_xyz)) (inner - |c - V|). A's own
+/// floor is over all of A in the shell: a nearly flat cone (eigenvalues -1, 1e-6, 1) lit along its
+/// flat direction had a floor 1e6 below its gradient on the terminator, and P was bounded at 8e-6
+/// where its error was 7e-12 (audit 39a F1); the section's conic, a line pair, is not flat.
+ShellFloor terminator_gradient_floor(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Ball& ball,
+                                     const Rational& scale);
 
 /// Ball bounds: the first-order distance of the returned `hat` (frame with `origin`) over every
 /// point x of the ball where the exact reference `ref` vanishes, relative to `size`. With lambda
