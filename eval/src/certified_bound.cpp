@@ -1009,6 +1009,33 @@ Measure msqrt(const Q& q) { return sqrt(to_measure(q)); }
 
 }  // namespace
 
+namespace {
+/// The S-lemma's floors of |K y|^2 on y^T K y = -r (GradientFloor, header): (gamma, c) with
+/// |K y|^2 >= gamma |y|^2 + c there, each proved exactly (K^2 - tau K - gamma I positive definite,
+/// c = -tau r), tau at 0 and at the breakpoints l_i + l_j of min_i (l_i^2 - tau l_i) (K's eigenvalues
+/// l_i in double), where gamma |y|^2 - tau r is largest for some |y|.
+std::vector<std::pair<Measure, Measure>> central_certificates(const Mat3<Q>& K, const Q& r) {
+  std::vector<std::pair<Measure, Measure>> out;
+  Q big;
+  const Eigen::Matrix3d Kd = scaled_to_double(K, big);
+  if (big == 0) return out;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Kd, Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return out;
+  const Eigen::Vector3d l = eig.eigenvalues();
+  const Mat3<Q> K2 = K * K;
+  for (const double tau_d : {0.0, l(0) + l(1), l(0) + l(2), l(1) + l(2)}) {
+    double gamma_d = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) gamma_d = std::min(gamma_d, l(i) * l(i) - tau_d * l(i));
+    gamma_d *= 1 - 0x1p-20;
+    if (!(gamma_d > 0) || !std::isfinite(gamma_d)) continue;
+    const Q tau = to_rational(tau_d) * big, gamma = to_rational(gamma_d) * big * big;
+    if (definiteness<Q, 3>(Mat3<Q>(K2 - tau * K - gamma * Mat3<Q>::Identity())) != 1) continue;
+    out.emplace_back(to_measure(gamma), to_measure(Q(-tau * r)));
+  }
+  return out;
+}
+}  // namespace
+
 GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale) {
   const Mat3<Q> K = A.topLeftCorner<3, 3>();
   const Vec3<Q> k = A.topRightCorner<3, 1>();
@@ -1040,6 +1067,7 @@ GradientFloor::GradientFloor(const Mat4<Q>& A, const Ball& ball, const Q& scale)
       if (tau > 0) steady_ = std::max(steady_, Measure(sqrt(Measure(to_measure(tau) * r_))));
     }
     if (core.kernel.cols() == 0 && mu > 0) linear_ = sqrt(mu_);
+    if (core.kernel.cols() == 0) certificates_ = central_certificates(K, r);
     return;
   }
   kind_ = Kind::paraboloid;
@@ -1061,6 +1089,11 @@ Measure GradientFloor::operator()(const Measure& inner, const Measure& outer) co
     if (r_ > 0) f = r_ / (outer + d0_);
     f = std::max(f, steady_);
     if (linear_ > 0 && inner > d0_) f = std::max(f, Measure(linear_ * (inner - d0_)));
+    const Measure y = inner > d0_ ? Measure(inner - d0_) : Measure(0);
+    for (const auto& [gamma, c] : certificates_) {
+      const Measure sq = gamma * y * y + c;
+      if (sq > f * f) f = sqrt(sq);
+    }
   } else if (kind_ == Kind::paraboloid) {
     f = kn_;
     // |y| >= rho, |y|^2 = w + (k_n . y / |k_n|)^2 <= w + ((sigma w + a0) / (2 |k_n|))^2 with w = |Py|^2:

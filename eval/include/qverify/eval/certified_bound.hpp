@@ -224,6 +224,11 @@ CertifiedBound reflection_bound(const ReflectionGeometry& g, const std::optional
 ///    paraboloid (kernel = span k_n), A = 0 gives |k_n . y| <= (sigma |Py|^2 + |A(y0)|) / 2, so that
 ///    |y| >= inner - |c - y0| bounds |Py| from below; and so does |y| >= max(inner - |c - v|,
 ///    |c - v| - outer) about its vertex v (y0 = v, A(v) = 0), on whichever side of v the shell lies.
+///  - K invertible, by the S-lemma: |K y|^2 = y^T (K^2 - tau K) y + tau y^T K y >= gamma |y|^2 - tau r
+///    on A wherever K^2 - tau K - gamma I is positive semidefinite (proved exactly, tau at the
+///    breakpoints of K's eigenvalues): a flat hyperboloid, y1^2 + y2^2 - 10^6 y3^2 = 1, has
+///    |K y| >= 1000 sqrt(|y|^2 - 1) + ... where the least |eigenvalue| and |r| gave |y| and 1 (its
+///    points at |y| keep y3 near |y| / 1000: audit 39a F1, P under a sun bounded at 6e4 times its error).
 /// `scale` multiplies every floor (P's reference on the terminator is (L^T A L) A's gradient).
 class GradientFloor {
  public:
@@ -237,6 +242,8 @@ class GradientFloor {
   Measure r_ = 0, steady_ = 0, linear_ = 0;      ///< centre: |r|, sqrt(lambda |r|), sqrt(mu) (K invertible)
   Measure kn_ = 0, a0_ = 0, sigma_ = 0, mu_ = 0; ///< paraboloid: |k_n|, |A(y0)|, sigma, mu
   Measure dv_ = 0;                               ///< paraboloid: |c - its vertex|
+  /// centre (K invertible): (gamma, c) with |K y|^2 >= gamma |y|^2 + c on A (the S-lemma, header)
+  std::vector<std::pair<Measure, Measure>> certificates_;
   bool grows_ = false;                           ///< a paraboloid (the kernel is k_n's line)
   bool flat_ = false;                            ///< a parabolic cylinder (the kernel a plane, k_n in it)
 };
@@ -299,8 +306,9 @@ Rational cone_section_floor(const Mat3<Rational>& K, const Vec3<Rational>& n);
 /// larger of GradientFloor(A) and GradientFloor(section_quadric(A, pi)) (both hold there), and for a
 /// cone whose apex V lies on pi, sqrt(cone_section_floor(K, pi_xyz)) (inner - |c - V|). A's own
 /// floor is over all of A in the shell: a nearly flat cone (eigenvalues -1, 1e-6, 1) lit along its
-/// flat direction had a floor 1e6 below its gradient on the terminator, and P was bounded at 8e-6
-/// where its error was 7e-12 (audit 39a F1); the section's conic, a line pair, is not flat.
+/// flat direction had a floor 1e6 below its gradient on the terminator (500 below with A's S-lemma
+/// floor), and P was bounded at 8e-6 where its error was 7e-12 (audit 39a F1); on the section's
+/// lines, which are not flat, the gradient is 0.58 |x - V| and more.
 ShellFloor terminator_gradient_floor(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Ball& ball,
                                      const Rational& scale);
 
