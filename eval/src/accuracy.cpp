@@ -1081,6 +1081,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   if (geo_) {
     if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
     cover_ = {true, true, geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
+    if (geo_->R_ball && crosses(h_, ball_)) split_ = crossing_split(A, L, ball_);
     return;
   }
   ball_ = ball_in_units(pts.ball, unit_);
@@ -1092,6 +1093,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
   const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
   if (hf) R_floor_ = *hf * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
+  if (!hf && crosses(h_, ball_)) split_ = crossing_split(A, L, ball_);
   cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,
             !crosses(h_, ball_) || R_crossing || R_floor_ > 0};
 }
@@ -1152,6 +1154,15 @@ CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<
   // As a plane pair in two steps, a bound of the Euclidean distance (which the line where R's planes
   // cross, in the ball, needs: no first-order distance is bounded near it).
   const CertifiedBound pair = ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
+  // Where h . x = 0 meets the terminator in the ball: first order outside small balls about those
+  // points (|h . x| has a floor there), as a plane pair inside each, about its crossing point
+  if (split_) {
+    const Measure floor = split_->floor * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
+    CertifiedBound b = ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; },
+                                          size, false, &pi_ref_);
+    for (const Ball& near : split_->near) b = combined(b, ball_plane_pair_bound(R, pi_ref_, h_, near, origin, size));
+    take(b);
+  }
   if (crosses(h_, ball_)) {
     take(pair);
     return *best;

@@ -883,20 +883,32 @@ std::optional<HLines> h_lines(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>
 /// (-gamma / (2 beta) where alpha = 0), all lie outside the ball (|x - c|^2 > reach^2, enclosed); the
 /// first piece not cleared at the finest width, 2^-24 of the ball's t-range, ends the side. 0 where
 /// the first piece at 0 is not cleared (h . x = 0 meets the terminator in the ball, or nearly).
-double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball) {
+double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball, const std::vector<Ball>& near = {}) {
   const Vec3<Q> m = h.head<3>();
   const Vec3<Q> pc = f.p0 - ball.centre;
+  std::vector<Vec3<Q>> pn;  // p0 - each near ball's centre
+  for (const Ball& b : near) pn.push_back(f.p0 - b.centre);
   return upward([&] {
     const IA reach = enc(ball.reach), r2 = CGAL::square(reach);
     const IA alpha = enc(f.alpha), b0 = enc(f.b0), b1 = enc(f.b1), g0 = enc(f.g0), g1 = enc(f.g1), g2 = enc(f.g2);
     const V3 p = enc3(pc), w = enc3(f.w), u = enc3(f.u);
+    std::vector<V3> pk;
+    std::vector<IA> rk2;
+    for (std::size_t k = 0; k < near.size(); ++k) pk.push_back(enc3(pn[k])), rk2.push_back(CGAL::square(enc(near[k].reach)));
     // every t of the ball: |t| <= |h . c| + reach |m|
     const double span = (CGAL::abs(enc(Q(m.dot(ball.centre) + h(3)))) + reach * norm_of(m)).sup();
     if (!(span > 0) || !std::isfinite(span)) return 0.0;
+    // (outside the ball, or inside one of the near balls: not the points the floor is for)
     const auto outside = [&](const IA& t, const IA& s) {
       IA d2(0);
       for (std::size_t i = 0; i < 3; ++i) d2 += CGAL::square(p[i] + t * w[i] + s * u[i]);
-      return d2.inf() > r2.sup();
+      if (d2.inf() > r2.sup()) return true;
+      for (std::size_t k = 0; k < pk.size(); ++k) {
+        IA dk(0);
+        for (std::size_t i = 0; i < 3; ++i) dk += CGAL::square(pk[k][i] + t * w[i] + s * u[i]);
+        if (dk.sup() < rk2[k].inf()) return true;
+      }
+      return false;
     };
     const auto cleared = [&](const IA& t) {
       const IA beta = b0 + b1 * t, gamma = g0 + g1 * t + g2 * CGAL::square(t);
@@ -971,6 +983,29 @@ std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L, co
     const IA num = IA(2) * CGAL::abs(enc(c)), den = CGAL::abs(enc(b)) + CGAL::sqrt(enc(disc));
     return (num / den).inf();
   }));
+}
+
+std::optional<CrossingSplit> crossing_split(const Mat4<Q>& A, const Vec4<Q>& L, const Ball& ball) {
+  const Vec4<Q> pi = A * L, h = reference_second_plane(L);
+  if (h.head<3>().isZero() || pi.head<3>().isZero()) return std::nullopt;
+  const std::optional<HLines> f = h_lines(A, pi, h);
+  if (!f || f->alpha == 0) return std::nullopt;
+  // the terminator's points on h . x = 0: s = (-b0 +- sqrt(D0)) / alpha on the line x = p0 + s u
+  const Q D0 = f->b0 * f->b0 - f->alpha * f->g0;
+  if (D0 < 0) return std::nullopt;
+  CrossingSplit out;
+  const Q delta = ball.reach * exact_pow2(-16);
+  const Q root = exact_measure(sqrt(to_measure(D0)));  // (80 digits: far inside delta)
+  for (const int sign : {1, -1}) {
+    const Vec3<Q> x = f->p0 + f->u * Q((-f->b0 + sign * root) / f->alpha);
+    const Q reach = ball.reach + delta;
+    if (Vec3<Q>(x - ball.centre).squaredNorm() <= reach * reach) out.near.push_back(Ball{x, delta, std::nullopt});
+    if (D0 == 0) break;
+  }
+  if (out.near.empty()) return std::nullopt;
+  out.floor = Measure(ball_h_floor(*f, h, ball, out.near));
+  if (!(out.floor > 0)) return std::nullopt;
+  return out;
 }
 
 Mat4<Q> generator_map(const Vec4<Q>& L, const Q& rho) {

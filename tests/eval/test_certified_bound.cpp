@@ -918,6 +918,10 @@ TEST_CASE("ball bound: R where h crosses the terminator, at the crossing points"
     }
     INFO("bound " << b.bound.upper << ", the crossing points at least " << worst.str(6) << " away");
     CHECK(worst <= Measure(b.bound.upper));
+    // near the truth: worst is below it, and the bound within 1.5 of worst (crossing_split: small balls
+    // about the crossing points, where the value's sign is known; the bound about the ball's centre was
+    // 2 to 6 times the distance there, audit 37a F3)
+    CHECK(Measure(b.bound.upper) <= worst * 3 / 2);
     CHECK(worst > Measure(rel) * 1e3);  // not first order: a sampled bound (2x the samples' error) missed it
     CHECK(b.bound.upper < 1e3 * std::sqrt(rel));
     AccuracyOptions opt;
@@ -973,6 +977,7 @@ TEST_CASE("ball bound: R where h crosses a needle's terminator, in the box about
     }
     INFO("bound " << b.bound.upper << ", the crossing points at least " << worst.str(6) << " away");
     CHECK(worst <= Measure(b.bound.upper));
+    CHECK(Measure(b.bound.upper) <= worst * 3);  // (crossing_split, as above: 1.2 to 2.5 times worst)
     CHECK(b.bound.upper < 1e-11);
     ShadowMeter meter(A, L, AccuracyOptions{});
     const ItemAccuracy acc = meter(std::nullopt, P_ref, pi_ref, R);
@@ -1349,4 +1354,50 @@ TEST_CASE("GradientFloor: the S-lemma's floor on a central quadric, shell by she
     CHECK(checked > 8);
     if (tight) CHECK(best > Measure(1) / 2);  // (the floor was 1000 low there)
   }
+}
+
+TEST_CASE("crossing_split: small balls about the crossing points, and |h . x|'s floor on the terminator outside them",
+          "[accuracy][certified]") {
+  // A unit sphere lit from the side, L = (3, 0, 1/2): h (z = 1/2) meets the terminator at
+  // (1/4, +-sqrt(11)/4, 1/2), in the ball about the whole terminator
+  const Mat4<Q> A = quadric_of({1, 1, 1}, {0, 0, 0}, -1);
+  const Vec4<Q> L(3, 0, Q(1, 2), 1);
+  const auto geo = shadow_geometry(A, L);
+  REQUIRE(geo);
+  REQUIRE(geo->R_ball);
+  const auto split = crossing_split(A, L, *geo->R_ball);
+  REQUIRE(split);
+  REQUIRE(split->near.size() == 2);
+  for (const Ball& b : split->near) {
+    const Vec3<Measure> c(to_measure(b.centre(0)), to_measure(b.centre(1)), to_measure(b.centre(2)));
+    CHECK(abs(Measure(c(0) - Measure(1) / 4)) < Measure(1e-60));
+    CHECK(abs(Measure(abs(c(1)) - sqrt(Measure(11)) / 4)) < Measure(1e-60));
+    CHECK(c(2) == Measure(1) / 2);
+    CHECK(b.reach == geo->R_ball->reach * exact_pow2(-16));
+  }
+  CHECK(split->floor > 0);
+  // the floor at exact terminator points outside the small balls; attained near their edges (within 4)
+  const ItemPoints pts = terminator_points(A, L, 512, 3);
+  Measure least = std::numeric_limits<Measure>::infinity();
+  int outside = 0;
+  for (const RootPoint& x : pts.points) {
+    const auto xc = x.coords();
+    Vec3<Measure> p;
+    for (int i = 0; i < 3; ++i) p(i) = to_measure(xc[static_cast<std::size_t>(i)]) / to_measure(xc[3]);
+    bool near = false;
+    for (const Ball& b : split->near)
+      near = near || (p - Vec3<Measure>(to_measure(b.centre(0)), to_measure(b.centre(1)), to_measure(b.centre(2)))).norm() <
+                         to_measure(b.reach);
+    if (near) continue;
+    ++outside;
+    least = std::min(least, Measure(abs(Measure(p(2) - Measure(1) / 2))));
+  }
+  CHECK(outside > 400);
+  CHECK(split->floor <= least);
+  // (the least sampled |h . x| is of the order of the spacing of 512 points, far above the balls' edges)
+  CHECK(split->floor > Measure(1e-7));
+  // none where h misses the terminator in the ball: lit from (3, 0, 5)
+  const auto high = shadow_geometry(A, Vec4<Q>(3, 0, 5, 1));
+  REQUIRE(high);
+  if (high->R_ball) CHECK_FALSE(crossing_split(A, Vec4<Q>(3, 0, 5, 1), *high->R_ball));
 }

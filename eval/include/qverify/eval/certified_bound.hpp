@@ -155,6 +155,21 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 /// order, as where its planes cross, at 1e7 times its true error).
 std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L, const Ball* ball = nullptr);
 
+/// Where h . x = 0 meets the terminator in the ball (R's planes cross there, and a rounded R is about
+/// sqrt(eps) off at those points, a distance only the second order bounds): balls `near` of radius
+/// reach / 2^16 about the crossing points (rational points within 10^-70 of them), and `floor`, a
+/// floor of |h . x| over the terminator's points in the ball outside them (terminator_h_floor's
+/// bisection). R is then bounded to first order against R_ref with floor |pi_xyz| outside, and as a
+/// plane pair in each near ball, about its crossing point, where the value's sign is known and the
+/// curvature against it counts: the plane pair's bound about the ball's centre took the smaller
+/// curvature over shells through the crossing points, 13 times the true distance there (audit 39a,
+/// audit 37a F3). nullopt where no crossing point is in the ball, or no floor is found.
+struct CrossingSplit {
+  std::vector<Ball> near;
+  Measure floor = 0;
+};
+std::optional<CrossingSplit> crossing_split(const Mat4<Rational>& A, const Vec4<Rational>& L, const Ball& ball);
+
 /// The map of points x = c + s y into an item's or a geometry's own frame (c its centre, s > 0 its
 /// length, in the results' frame): quadrics go to T^T X T, planes to T^T p.
 Mat4<Rational> own_frame(const Vec3<Rational>& c, const Rational& s);
