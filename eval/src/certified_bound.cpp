@@ -880,9 +880,10 @@ std::optional<HLines> h_lines(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>
 /// Within the ball: the least |t| of the terminator's points there, bounded from below, by interval
 /// bisection of t outward from 0 on either side. A piece [t0, t1] of t is cleared where no line of it
 /// meets A (D < 0 over it) or where the points where they meet, s = (-beta +- sqrt(D)) / alpha
-/// (-gamma / (2 beta) where alpha = 0), all lie outside the ball (|x - c|^2 > reach^2, enclosed); the
-/// first piece not cleared at the finest width, 2^-24 of the ball's t-range, ends the side. 0 where
-/// the first piece at 0 is not cleared (h . x = 0 meets the terminator in the ball, or nearly).
+/// (-gamma / (2 beta) where alpha = 0), all lie outside the ball (|x - c|^2 > reach^2, enclosed) or
+/// inside one of the `near` balls; the first piece not cleared at the finest width, 2^-24 of the
+/// ball's t-range, or the 4096th piece, ends the side. 0 where the first piece at 0 is not cleared
+/// (h . x = 0 meets the terminator in the ball, or nearly).
 double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball, const std::vector<Ball>& near = {}) {
   const Vec3<Q> m = h.head<3>();
   const Vec3<Q> pc = f.p0 - ball.centre;
@@ -921,14 +922,21 @@ double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball, const s
       const IA root = CGAL::sqrt(IA(std::max(D.inf(), 0.0), D.sup()));
       return outside(t, (-beta + root) / alpha) && outside(t, (-beta - root) / alpha);
     };
-    constexpr int kFinest = 24;
+    constexpr int kFinest = 24, kBudget = 4096;
     double least = span;
     for (const double side : {1.0, -1.0}) {
-      // depth-first from 0 outward: a stack of pieces [lo, hi] (|lo| < |hi|), nearest 0 on top
+      // depth-first from 0 outward: a stack of pieces [lo, hi] (|lo| < |hi|), nearest 0 on top. Every
+      // piece nearer 0 than the top one is cleared, so the walk may stop anywhere: after kBudget
+      // pieces it does (enclosures too wide to clear but the finest pieces, over a long stretch of t,
+      // would take up to 2^24 of them)
       std::vector<std::pair<double, int>> stack{{0.0, 0}};  // a piece: its near end and its depth
-      while (!stack.empty()) {
+      for (int budget = kBudget; !stack.empty(); --budget) {
         const auto [near, depth] = stack.back();
         if (std::abs(near) >= least) break;
+        if (budget == 0) {
+          least = std::abs(near);
+          break;
+        }
         stack.pop_back();
         const double width = std::ldexp(span, -depth), far = near + side * width;
         if (cleared(IA(std::min(near, far), std::max(near, far)))) continue;
