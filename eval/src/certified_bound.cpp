@@ -923,32 +923,37 @@ double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball, const s
       return outside(t, (-beta + root) / alpha) && outside(t, (-beta - root) / alpha);
     };
     constexpr int kFinest = 24, kBudget = 4096;
-    double least = span;
+    // pieces k span 2^-depth, k < 2^24: exact in double with span rounded up to 28 bits (a piece's
+    // ends computed with rounding would leave gaps between neighbours: review of session 40)
+    const double span28 = std::ldexp(std::ceil(std::ldexp(span, 28 - std::ilogb(span))), std::ilogb(span) - 28);
+    const auto at = [&](double k, int depth) { return std::ldexp(span28 * k, -depth); };
+    double least = span28;
     for (const double side : {1.0, -1.0}) {
       // depth-first from 0 outward: a stack of pieces [lo, hi] (|lo| < |hi|), nearest 0 on top. Every
       // piece nearer 0 than the top one is cleared, so the walk may stop anywhere: after kBudget
       // pieces it does (enclosures too wide to clear but the finest pieces, over a long stretch of t,
       // would take up to 2^24 of them)
-      std::vector<std::pair<double, int>> stack{{0.0, 0}};  // a piece: its near end and its depth
+      std::vector<std::pair<double, int>> stack{{0.0, 0}};  // a piece: its index k and its depth
       for (int budget = kBudget; !stack.empty(); --budget) {
-        const auto [near, depth] = stack.back();
-        if (std::abs(near) >= least) break;
+        const auto [k, depth] = stack.back();
+        const double near = at(k, depth);
+        if (near >= least) break;
         if (budget == 0) {
-          least = std::abs(near);
+          least = near;
           break;
         }
         stack.pop_back();
-        const double width = std::ldexp(span, -depth), far = near + side * width;
-        if (cleared(IA(std::min(near, far), std::max(near, far)))) continue;
+        const double far = at(k + 1, depth);
+        if (cleared(side > 0 ? IA(near, far) : IA(-far, -near))) continue;
         if (depth == kFinest) {
-          least = std::abs(near);
+          least = near;
           break;
         }
-        stack.push_back({near + side * width / 2, depth + 1});
-        stack.push_back({near, depth + 1});
+        stack.push_back({2 * k + 1, depth + 1});
+        stack.push_back({2 * k, depth + 1});
       }
     }
-    // (the ldexp pieces are exact in double; least is a near end, every |t| below it cleared)
+    // (least is a near end, every |t| below it cleared)
     return least;
   });
 }
@@ -1003,7 +1008,9 @@ std::optional<CrossingSplit> crossing_split(const Mat4<Q>& A, const Vec4<Q>& L, 
   if (D0 < 0) return std::nullopt;
   CrossingSplit out;
   const Q delta = ball.reach * exact_pow2(-16);
-  const Q root = exact_measure(sqrt(to_measure(D0)));  // (80 digits: far inside delta)
+  // (80 digits: near the crossing points, unless -b0 + root cancels; a ball that then misses its
+  // point leaves the piece at t = 0 uncleared, and there is no split)
+  const Q root = exact_measure(sqrt(to_measure(D0)));
   for (const int sign : {1, -1}) {
     const Vec3<Q> x = f->p0 + f->u * Q((-f->b0 + sign * root) / f->alpha);
     const Q reach = ball.reach + delta;
@@ -1488,10 +1495,17 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
         bool euclidean = euclidean_only;
         if (!euclidean_only) {
           const IA gradient = IA(floors[j]) - gn - tighter(r * e3, box_image(E3a, rho));
-          if (gradient.inf() > 0) d = (value / (IA(2) * gradient)).sup();
-          if (V && gradient.inf() > 0)  // (the motion part, above)
+          // The first order only where the curvature cannot undo it: along the unit u of the gradient
+          // hat's form is a + 2 b t + c t^2 (b = |(hat z)_xyz| >= G, |c| <= |H3|_F), with a root within
+          // |a| / b, twice the first-order distance, where b^2 >= |a| |c|. Elsewhere a point whose
+          // first-order distance is tiny may be far from hat: a flat cone's P changed by 4e-16 near its
+          // apex was bounded at 1.7e-10 where a terminator point lay 3.6e-5 away (review of session 40:
+          // its floor, raised 500 times there, let the first order win against the honest second).
+          const bool first_order = gradient.inf() > 0 && (CGAL::square(gradient) - value * h3).inf() >= 0;
+          if (first_order) d = (value / (IA(2) * gradient)).sup();
+          if (V && first_order)  // (the motion part, above)
             d = std::min(d, (moved / (IA(2) * gradient) + shift * IA(floors[j]) / gradient).sup());
-          out.gradient = std::min(out.gradient, gradient.inf() <= 0 ? 0.0 : h3.sup() == 0 ? kInf : (gradient / h3).inf());
+          out.gradient = std::min(out.gradient, !first_order ? 0.0 : h3.sup() == 0 ? kInf : (gradient / h3).inf());
         } else {
           // Euclidean, first order: along the unit u of the form's gradient b = |(hat_s z)_xyz| >= G, and
           // f(z + t u) = a + 2 b t + c t^2, |c| <= |H3|_F: where b^2 >= |a| |c| it has a root within |a| / b

@@ -157,7 +157,7 @@ std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Ra
 
 /// Where h . x = 0 meets the terminator in the ball (R's planes cross there, and a rounded R is about
 /// sqrt(eps) off at those points, a distance only the second order bounds): balls `near` of radius
-/// reach / 2^16 about the crossing points (rational points within 10^-70 of them), and `floor`, a
+/// reach / 2^16 about the crossing points (rational points computed in 80 digits), and `floor`, a
 /// floor of |h . x| over the terminator's points in the ball outside them (terminator_h_floor's
 /// bisection). R is then bounded to first order against R_ref with floor |pi_xyz| outside, and as a
 /// plane pair in each near ball, about its crossing point, where the value's sign is known and the
