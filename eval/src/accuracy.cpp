@@ -1073,6 +1073,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   const Mat4<Q> A = object_in_units(canonical_quadric(A_world), unit_);
   const Vec4<Q> L = point_in_units(canonical_light(L_world), unit_);
   pi_ref_ = A * L;
+  const Measure pi_norm = sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
   h_ = reference_second_plane(L);
   R_ref_ = reference_plane_pair(A, L);
   // where h crosses a ball, R's planes cross there, and R is bounded as a plane pair (R_ball_bound)
@@ -1082,6 +1083,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
     if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
     cover_ = {true, true, geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
     if (geo_->R_ball && crosses(h_, ball_)) split_ = crossing_split(A, L, ball_);
+    if (split_) split_floor_ = split_->floor * pi_norm;
     return;
   }
   ball_ = ball_in_units(pts.ball, unit_);
@@ -1092,8 +1094,11 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   P_floor_ = terminator_gradient_floor(A, pi_ref_, ball_, s);
   // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
   const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
-  if (hf) R_floor_ = *hf * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
-  if (!hf && crosses(h_, ball_)) split_ = crossing_split(A, L, ball_);
+  if (hf) R_floor_ = *hf * pi_norm;
+  if (!hf && crosses(h_, ball_)) {
+    split_ = crossing_split(A, L, ball_);
+    if (split_) split_floor_ = split_->floor * pi_norm;
+  }
   cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,
             !crosses(h_, ball_) || R_crossing || R_floor_ > 0};
 }
@@ -1142,24 +1147,23 @@ CertifiedBound ShadowBounds::R_ball_bound(const Mat4<Q>& R, const std::optional<
   const auto smaller = [](const CertifiedBound& a, const CertifiedBound& b) { return b.upper < a.upper ? b : a; };
   std::optional<CertifiedBound> best;
   const auto take = [&](const CertifiedBound& b) { best = best ? smaller(*best, b) : b; };
+  // R against R_ref in one step, to first order, with a constant floor of R_ref's gradient
+  const auto one_step = [&](const Measure& floor) {
+    return ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; }, size,
+                              false, &pi_ref_);
+  };
   // Where h . x keeps away from 0 on the terminator, R_ref's gradient there does too (R_floor_): the
   // line where R's planes cross may pass through the ball, off the terminator, where a rounded R is
   // truly about sqrt(eps) off, but no terminator point is near it (a hyperbolic paraboloid's R was
   // flagged at 6.7e-9 there, 1.3e-16 off on the terminator: audit 31a F2).
-  if (R_floor_ > 0) {
-    const Measure floor = R_floor_;
-    take(ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; }, size,
-                            false, &pi_ref_));
-  }
+  if (R_floor_ > 0) take(one_step(R_floor_));
   // As a plane pair in two steps, a bound of the Euclidean distance (which the line where R's planes
   // cross, in the ball, needs: no first-order distance is bounded near it).
   const CertifiedBound pair = ball_plane_pair_bound(R, pi_ref_, h_, ball_, origin, size);
   // Where h . x = 0 meets the terminator in the ball: first order outside small balls about those
   // points (|h . x| has a floor there), as a plane pair inside each, about its crossing point
   if (split_) {
-    const Measure floor = split_->floor * sqrt(to_measure(Q(pi_ref_.head<3>().squaredNorm())));
-    CertifiedBound b = ball_quadric_bound(R, R_ref_, ball_, origin, [floor](const Measure&, const Measure&) { return floor; },
-                                          size, false, &pi_ref_);
+    CertifiedBound b = one_step(split_floor_);
     for (const Ball& near : split_->near) b = combined(b, ball_plane_pair_bound(R, pi_ref_, h_, near, origin, size));
     take(b);
   }

@@ -2,6 +2,7 @@
 // (a separate code path: exact points in Q(sqrt d), not intervals): the bound is never below an error
 // measured at an exact point, it is zero for exact results, and it is tight (within the factor of its
 // stopping rule of a distance it certifies as attained).
+#include "audit_scenes.hpp"
 #include "laws.hpp"
 
 #include <qverify/eval/accuracy.hpp>
@@ -1115,32 +1116,9 @@ TEST_CASE("saddle directions exist exactly where the spatial part is indefinite"
 
 namespace {
 
-/// Audit 39a's items whose ball bounds were 10^3 to 10^7 times their error (verify failed them).
-/// A two-sheet hyperboloid lit from its asymptotic cone (a parabola), moved by an exact rotation and
-/// translation: h . x = 0 meets the parabola 2.4 object sizes from the ball's centre.
-constexpr const char* kTwoSheetsMoved = R"({"format":"qverify-scene/1","name":"f1_h2_moved","quadrics":[{"id":"q","matrix":[
-  ["-41629336/4941729","10143713/1520532","-23505832/4941729","1149649352251/652308228"],
-  ["10143713/1520532","-2366863/467856","1238942/380133","-1721673156767/1404971568"],
-  ["-23505832/4941729","1238942/380133","-10207696/4941729","128201308450/163077057"],
-  ["1149649352251/652308228","-1721673156767/1404971568","128201308450/163077057","-179789802028486393/602732802672"]]}],
-  "lights":[{"id":"p8","position":["117722/5187","2539/627","248815/741"]}],"mirrors":[]})";
-/// A cone of eigenvalues -1, 1e-6, 1 under a sun along its flat direction nearly (L^T A L = 1e-6):
-/// a line pair on which A's gradient is 0.58 |x - apex| and more, where A's floor over all of its
-/// points is 1e-3 |x - apex| (the S-lemma's; 1e-6 from its least |eigenvalue|).
-constexpr const char* kFlatConeSun = R"({"format":"qverify-scene/1","name":"CO_adv1 d6","quadrics":[{"id":"q","matrix":[
-  ["-5249999/56250000","-21000001/22500000","17999993/56250000","-1532998733/675000000"],
-  ["-21000001/22500000","1/9000000","-2999993/22500000","167998733/270000000"],
-  ["17999993/56250000","-2999993/22500000","5250049/56250000","-369008869/675000000"],
-  ["-1532998733/675000000","167998733/270000000","-369008869/675000000","24865605289/8100000000"]]}],
-  "lights":[{"id":"d6","direction":["1/5","1","-7/5"]}],"mirrors":[]})";
-/// A cone of eigenvalues -1/9, 1, 1e6 lit from 1.4 beside its apex: P is nearly a plane pair, curved
-/// 1.7 up and 4e-7 down, and its value at the apex is negative.
-constexpr const char* kNarrowCone = R"({"format":"qverify-scene/1","name":"CO_adv2 p3","quadrics":[{"id":"q","matrix":[
-  ["5183999825/7569","791999848/2523","-864000256/2523","118295997515/15138"],
-  ["791999848/2523","121000560/841","-131999588/841","9036499930/2523"],
-  ["-864000256/2523","-131999588/841","144000207/841","-6572000595/1682"],
-  ["118295997515/15138","9036499930/2523","-6572000595/1682","674862242650/7569"]]}],
-  "lights":[{"id":"p3","position":["-18406251/1812500","-20124991/21750000","144499937/87000000"]}],"mirrors":[]})";
+using test::kFlatConeSun;
+using test::kNarrowCone;
+using test::kTwoSheetsMoved;
 
 struct AuditItem {
   Mat4<Q> A;

@@ -10,6 +10,7 @@
 #include <qverify/report/verify_document.hpp>
 #include <qverify/verify/verifier.hpp>
 
+#include "audit_scenes.hpp"
 #include "laws.hpp"
 
 #include <catch2/catch.hpp>
@@ -1300,13 +1301,7 @@ TEST_CASE("verify: a flat cone's P changed near its apex fails, its first-order 
   // the Lagrange condition), its first-order distance 6e-11. The terminator's gradient floor raised
   // 500 times let the ball bound's first order win there (1.7e-10: a pass); the first order now counts
   // only where the curvature cannot undo it, and the bound is 2e-4.
-  const Scene sc = parse_scene(R"({"format":"qverify-scene/1","name":"CO_adv1 d6","quadrics":[{"id":"q","matrix":[
-    ["-5249999/56250000","-21000001/22500000","17999993/56250000","-1532998733/675000000"],
-    ["-21000001/22500000","1/9000000","-2999993/22500000","167998733/270000000"],
-    ["17999993/56250000","-2999993/22500000","5250049/56250000","-369008869/675000000"],
-    ["-1532998733/675000000","167998733/270000000","-369008869/675000000","24865605289/8100000000"]]}],
-    "lights":[{"id":"d6","direction":["1/5","1","-7/5"]}],"mirrors":[]})",
-                               "flat-cone.json");
+  const Scene sc = parse_scene(test::kFlatConeSun, "flat-cone.json");
   const char* candidate = R"({"format":"qverify-eval/1","precision":"double","shadows":[{"quadric":"q","light":"d6","status":"ok","origin":[-1.3333333333333333,2.5,14.0],"P":[[-1.95999972,-1.4e-06,-0.28000096,-1.99502455174406e-16],[-1.4e-06,-1.1339537073845723e-41,-2e-07,-1.0886631441116096e-16],[-0.28000096,-2e-07,-0.04000028,3.6030747092573556e-16],[-1.99502455174406e-16,-1.0886631441116096e-16,3.6030747092573556e-16,9.999999999998121e-20]],"polar_plane":[1.3999998666666666,3.3333333333333335e-07,0.20000093333333333,1.0362080576303217e-16],"R":[[0.0,0.0,0.0,1.3999998666666666],[0.0,0.0,0.0,3.3333333333333335e-07],[0.0,0.0,0.0,0.20000093333333333],[1.3999998666666666,3.3333333333333335e-07,0.20000093333333333,2.0724161152606434e-16]]}],"reflections":[]})";
   const ResultSet rs = candidate_results_text(sc, candidate, "changed.json", *parse_precision("double"));
   const auto checks = verify_document(sc, verify_results(sc, rs, VerifyOptions{}))["checks"];

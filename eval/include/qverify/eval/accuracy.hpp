@@ -260,6 +260,7 @@ class ShadowBounds {
   ShellFloor P_floor_;  ///< terminator_gradient_floor: P_ref's gradient on the terminator
   Measure R_floor_ = 0;  ///< terminator_h_floor times |pi_xyz|: R_ref's gradient on the terminator
   std::optional<CrossingSplit> split_;  ///< where h . x = 0 meets the terminator in the ball
+  Measure split_floor_ = 0;  ///< split_'s floor of |h . x| outside its balls, times |pi_xyz|
   /// R in the ball as a plane pair (ball_plane_pair_bound: the terminator from R's first plane, then
   /// R from that plane's points); where h misses the ball also against R_ref in one step, and where
   /// R_floor_ > 0 against R_ref with that floor (over the terminator only), the smallest.
