@@ -30,5 +30,15 @@ inline constexpr const char* kNarrowCone = R"({"format":"qverify-scene/1","name"
   ["-864000256/2523","-131999588/841","144000207/841","-6572000595/1682"],
   ["118295997515/15138","9036499930/2523","-6572000595/1682","674862242650/7569"]]}],
   "lights":[{"id":"p3","position":["-18406251/1812500","-20124991/21750000","144499937/87000000"]}],"mirrors":[]})";
+/// The flat cone's one-sheet hyperboloid (the same matrix, A's value at the centre -1) under a sun
+/// along its asymptotic cone nearly (L^T A L = 1e-6): P is nearly the double plane (pi . x)^2, and
+/// at its waist, 1000 from the centre, A's gradient on the terminator falls to 0.003, where P's
+/// gradient direction curves against it (the first order's guard fails) while P curves 1.5e-12 up.
+inline constexpr const char* kFlatHyperboloidSun = R"({"format":"qverify-scene/1","name":"H1_adv1 d7","quadrics":[{"id":"q","matrix":[
+  ["-5249999/56250000","-21000001/22500000","17999993/56250000","-1532998733/675000000"],
+  ["-21000001/22500000","1/9000000","-2999993/22500000","167998733/270000000"],
+  ["17999993/56250000","-2999993/22500000","5250049/56250000","-369008869/675000000"],
+  ["-1532998733/675000000","167998733/270000000","-369008869/675000000","16765605289/8100000000"]]}],
+  "lights":[{"id":"d7","direction":["1/5","1","-7/5"]}],"mirrors":[]})";
 
 }  // namespace qverify::test

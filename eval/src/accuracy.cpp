@@ -1092,6 +1092,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   P_ref_ = reference_cone(A, L);
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
   P_floor_ = terminator_gradient_floor(A, pi_ref_, ball_, s);
+  P_slopes_ = terminator_saddle_slopes(A, pi_ref_, ball_, s, P_ref_);
   // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
   const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
   if (hf) R_floor_ = *hf * pi_norm;
@@ -1135,7 +1136,9 @@ CoveredBound ShadowBounds::operator()(const std::optional<Vec3<Q>>& origin_world
           "R");
     return out;
   }
-  if (P && cover_.P) add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size, false, &pi_ref_), "P");
+  if (P && cover_.P)
+    add(ball_quadric_bound(*P, P_ref_, ball_, origin, P_floor_, size, false, &pi_ref_, P_slopes_ ? &*P_slopes_ : nullptr),
+        "P");
   if (polar && cover_.polar) add(ball_plane_bound(*polar, pi_ref_, ball_, origin, size), "polar_plane");
   if (R && cover_.R) add(R_ball_bound(*R, origin, size), "R");
   return out;

@@ -961,7 +961,10 @@ double ball_h_floor(const HLines& f, const Vec4<Q>& h, const Ball& ball, const s
 }  // namespace
 
 std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L, const Ball* ball) {
-  const Vec4<Q> pi = A * L, h = reference_second_plane(L);
+  return terminator_plane_floor(A, A * L, reference_second_plane(L), ball);
+}
+
+std::optional<Measure> terminator_plane_floor(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>& h, const Ball* ball) {
   const Vec3<Q> n = pi.head<3>(), m = h.head<3>();
   if (m.isZero() || n.isZero()) return std::nullopt;  // (h or the polar plane at infinity)
   const std::optional<HLines> f = h_lines(A, pi, h);
@@ -1275,6 +1278,22 @@ ShellFloor terminator_gradient_floor(const Mat4<Q>& A, const Vec4<Q>& pi, const 
   };
 }
 
+std::optional<SaddleSlopes> terminator_saddle_slopes(const Mat4<Q>& A, const Vec4<Q>& pi, const Ball& ball, const Q& scale,
+                                                     const Mat4<Q>& P_ref) {
+  const std::optional<SaddleDirections> d = saddle_directions(P_ref);
+  if (!d || pi.head<3>().isZero()) return std::nullopt;
+  // (A x)_xyz . w = (A (w, 0)) . x: a plane's value, floored on the terminator in the ball
+  const auto slope = [&](const Vec3<Q>& w) {
+    Vec4<Q> wh;
+    wh << w, Q(0);
+    const std::optional<Measure> t = terminator_plane_floor(A, pi, Vec4<Q>(A * wh), &ball);
+    return t ? Measure(abs(to_measure(scale)) * *t / msqrt(w.squaredNorm())) : Measure(0);
+  };
+  SaddleSlopes out{*d, slope(d->up), slope(d->down)};
+  if (!(out.up > 0) && !(out.down > 0)) return std::nullopt;
+  return out;
+}
+
 Mat4<Q> symmetric_part(const Mat4<Q>& X) { return X == Mat4<Q>(X.transpose()) ? X : Mat4<Q>((X + X.transpose()) / 2); }
 
 Mat3<Q> spatial_part(const Mat4<Q>& Qm) {
@@ -1377,7 +1396,7 @@ Vec4<Q> plane_pair_part(const Mat4<Q>& E, const Vec4<Q>& w) {
 
 CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_in, const Ball& ball,
                                   const std::optional<Vec3<Q>>& o, const ShellFloor& floor, double size,
-                                  bool euclidean_only, const Vec4<Q>* within) {
+                                  bool euclidean_only, const Vec4<Q>* within, const SaddleSlopes* slopes) {
   const Mat4<Q> hat_in = symmetric_part(hat_given);  // (its gradient is the surface's: measure_quadric)
   if (hat_in.isZero() && !ref_in.isZero()) return {kInf, 0, 1};  // vanishes everywhere, and is no quadric
   // as quadric_result: both scaled exactly to entries near 1, the reference moved into the frame
@@ -1425,6 +1444,36 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
   const SaddleCurvatures signed_curvature = saddle ? saddle_curvatures(hat, *saddle) : SaddleCurvatures{};
   const double up = lower_double(signed_curvature.up), down = lower_double(signed_curvature.down);
   const double curvature = up > 0 && down > 0 ? std::min(up, down) : 0.0;
+  // Along a saddle direction w (unit) with the reference's slope |(ref z)_xyz . w| floored on the
+  // geometry (SaddleSlopes, for these very directions): hat's form is a + 2 b t + c t^2 there, c the
+  // signed curvature along w (exact), |b| >= |lambda| slope - |(E z)_xyz|. Where a < 0 along `up`
+  // (a > 0 along `down`) and c does not oppose, a root lies within |a| / (2 b), else within |a| / b
+  // where b^2 >= |a| |c|: a flat one-sheet hyperboloid's P near its waist, where the gradient's own
+  // direction curves against it (|H|_F 2 against a gradient 1e-9: the first order's guard fails) and
+  // the curvature along `up` is 1e-12 (the second order gave 1e-5), has a root along `up` within
+  // twice the first-order distance (6.8e-11 of the size, exactly: audit 39a's H1_adv1 under d7).
+  struct Along {
+    double slope = 0, toward_lo = 0, toward_hi = 0;  // the floor |lambda| slope; c toward the root, enclosed
+    bool helps = false;                              // c >= 0 toward the root, exactly
+  };
+  std::optional<std::array<Along, 2>> along;  // [0]: up, for a < 0; [1]: down, for a > 0
+  if (slopes && saddle && slopes->directions.up == saddle->up && slopes->directions.down == saddle->down) {
+    const Mat3<Q> H = spatial_part(hat);
+    std::array<Along, 2> a;
+    for (int k = 0; k < 2; ++k) {
+      const Vec3<Q>& w = k == 0 ? saddle->up : saddle->down;
+      const Q c = w.dot(H * w) / w.squaredNorm();
+      const Q toward = k == 0 ? c : Q(-c);  // (a > 0 along down: the root where the form falls)
+      Along& x = a[static_cast<std::size_t>(k)];
+      x.slope = lower_double(lambda_scale * (k == 0 ? slopes->up : slopes->down));
+      x.helps = toward >= 0;
+      const Measure m = abs(to_measure(toward));
+      x.toward_lo = lower_double(m);
+      x.toward_hi = Measure(m * Measure(1 + 1e-15)).convert_to<double>();
+      if (!std::isfinite(x.toward_hi)) x.toward_hi = kInf;
+    }
+    along = a;
+  }
   const Mat3<Q> H3s = Mat3<Q>(hat.topLeftCorner<3, 3>() + hat.topLeftCorner<3, 3>().transpose()) / 2;
   const Mat3<Q> E3s = Mat3<Q>(E3 + E3.transpose()) / 2;
   // The shells come in batches of kShells, radii (3/4)^j of the batch's outer one, and the ball of
@@ -1516,6 +1565,26 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
           const double second = CGAL::sqrt(value / IA(against)).sup();
           if (second < d) {
             d = second;
+            euclidean = true;
+          }
+        }
+        if (along) {  // (above: a root along a saddle direction, the slope's linear term with the curvature)
+          const IA e = gn + tighter(r * e3, box_image(E3a, rho));
+          const auto root_within = [&](const Along& w) {
+            double best = kInf;
+            const IA b = IA(w.slope) - e;
+            if (b.inf() > 0) {
+              if (w.helps) best = (value / (IA(2) * b)).sup();
+              else if ((CGAL::square(b) - value * IA(w.toward_hi)).inf() >= 0) best = (value / b).sup();
+            }
+            if (w.helps && w.toward_lo > 0) best = std::min(best, CGAL::sqrt(value / IA(w.toward_lo)).sup());
+            return best;
+          };
+          double dw = 0;
+          if (!positive) dw = std::max(dw, root_within((*along)[0]));
+          if (!negative) dw = std::max(dw, root_within((*along)[1]));
+          if (dw < d) {
+            d = dw;
             euclidean = true;
           }
         }

@@ -258,6 +258,7 @@ class ShadowBounds {
   Mat4<Rational> P_ref_, R_ref_;
   Vec4<Rational> pi_ref_, h_;
   ShellFloor P_floor_;  ///< terminator_gradient_floor: P_ref's gradient on the terminator
+  std::optional<SaddleSlopes> P_slopes_;  ///< terminator_saddle_slopes: P_ref's slopes along its saddle directions
   Measure R_floor_ = 0;  ///< terminator_h_floor times |pi_xyz|: R_ref's gradient on the terminator
   std::optional<CrossingSplit> split_;  ///< where h . x = 0 meets the terminator in the ball
   Measure split_floor_ = 0;  ///< split_'s floor of |h . x| outside its balls, times |pi_xyz|

@@ -154,6 +154,10 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 /// terminator in the ball keeps away from 0 (audit 39a F1: without it, R was bounded by second
 /// order, as where its planes cross, at 1e7 times its true error).
 std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Rational>& L, const Ball* ball = nullptr);
+/// The same for any plane h against the terminator of the polar plane pi (terminator_h_floor is it
+/// with pi = A L and h = reference_second_plane(L)).
+std::optional<Measure> terminator_plane_floor(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Vec4<Rational>& h,
+                                              const Ball* ball = nullptr);
 
 /// Where h . x = 0 meets the terminator in the ball (R's planes cross there, and a rounded R is about
 /// sqrt(eps) off at those points, a distance only the second order bounds): balls `near` of radius
@@ -301,6 +305,21 @@ SaddleCurvatures saddle_curvatures(const Mat4<Rational>& hat, const SaddleDirect
 /// A floor of a reference's gradient over the zero set in a shell of a ball: (inner, outer) -> floor.
 using ShellFloor = std::function<Measure(const Measure& inner, const Measure& outer)>;
 
+/// Floors, over the geometry in a ball, of the reference's slope along its saddle directions:
+/// |(ref x)_xyz . up| / |up| and |(ref x)_xyz . down| / |down| (0: none). Along a unit w the form of a
+/// result hat near ref is a + 2 b t + c t^2 with c its exact curvature along w, so where a < 0 < c
+/// along `up` (a > 0 > c along `down`) a root of hat lies within |a| / (2 |b|), whatever the
+/// curvature along the gradient (ball_quadric_bound).
+struct SaddleSlopes {
+  SaddleDirections directions;
+  Measure up = 0, down = 0;
+};
+/// For P_ref = s A - pi pi^T on the terminator (pi . x = 0), where (P_ref x)_xyz = s (A x)_xyz:
+/// |s| times terminator_plane_floor of the plane A (w, 0) over |w|, for P_ref's saddle directions
+/// w; nullopt where P_ref has none or neither slope has a floor.
+std::optional<SaddleSlopes> terminator_saddle_slopes(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Ball& ball,
+                                                     const Rational& s, const Mat4<Rational>& P_ref);
+
 /// The section's own quadric: C = Pr^T A Pr + nu pi pi^T, Pr the orthogonal projection onto the plane
 /// pi (x -> x - n (n . x + pi_w) / |n|^2, n = pi_xyz) and nu |n|^2 a power of 2 near |A_xyz,xyz|_F.
 /// At a point x of the section A ∩ pi, C(x) = A(x) = 0 and (C x)_xyz = Pr_xyz (A x)_xyz, the part of
@@ -359,9 +378,12 @@ ShellFloor terminator_gradient_floor(const Mat4<Rational>& A, const Vec4<Rationa
 /// the reference is indefinite, at most |(V z)_xyz| + sqrt(|hat(z - V z)| / saddle_curvature(hat)),
 /// hat(z - V z) = z^T E_m z - 2 (E z)_xyz . (V z)_xyz + (V z)_xyz^T hat_xyz (V z)_xyz (a plane pair
 /// or a cone moved, where its gradient vanishes). The smallest counts.
+/// `slopes` (for the reference's saddle_directions): with a root along a saddle direction w from the
+/// linear term too (SaddleSlopes), where the value may have the sign w serves.
 CertifiedBound ball_quadric_bound(const Mat4<Rational>& hat, const Mat4<Rational>& ref, const Ball& ball,
                                   const std::optional<Vec3<Rational>>& origin, const ShellFloor& floor, double size,
-                                  bool euclidean_only = false, const Vec4<Rational>* within = nullptr);
+                                  bool euclidean_only = false, const Vec4<Rational>* within = nullptr,
+                                  const SaddleSlopes* slopes = nullptr);
 /// The e of E's part w e^T + e w^T nearest E (Frobenius), exact: e = (E w - w (w.E w) / (2 w.w)) / w.w.
 Vec4<Rational> plane_pair_part(const Mat4<Rational>& E, const Vec4<Rational>& w);
 CertifiedBound ball_plane_bound(const Vec4<Rational>& hat, const Vec4<Rational>& ref, const Ball& ball,
