@@ -40,5 +40,14 @@ inline constexpr const char* kFlatHyperboloidSun = R"({"format":"qverify-scene/1
   ["17999993/56250000","-2999993/22500000","5250049/56250000","-369008869/675000000"],
   ["-1532998733/675000000","167998733/270000000","-369008869/675000000","16765605289/8100000000"]]}],
   "lights":[{"id":"d7","direction":["1/5","1","-7/5"]}],"mirrors":[]})";
+/// A two-sheet hyperboloid (eigenvalues -0.049, -0.04, 0.11, its own size 3.8) lit from 4.2 of its
+/// sizes below its centre: h meets the terminator 0.79 and 0.83 of the object's size (21) from the
+/// centre, inside the sampled ball.
+inline constexpr const char* kTwoSheetsLitBelow = R"({"format":"qverify-scene/1","name":"H2_0_matrix p8","quadrics":[{"id":"q","matrix":[
+  ["-44131/1476225","46592/1476225","30862/1476225","-711616/4428675"],
+  ["46592/1476225","85331/1476225","100366/1476225","612062/4428675"],
+  ["30862/1476225","100366/1476225","-9124/1476225","3232/4428675"],
+  ["-711616/4428675","612062/4428675","3232/4428675","-25687201/13286025"]]}],
+  "lights":[{"id":"p8","position":["-6","1","-103/6"]}],"mirrors":[]})";
 
 }  // namespace qverify::test

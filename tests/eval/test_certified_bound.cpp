@@ -1119,6 +1119,7 @@ namespace {
 using test::kFlatConeSun;
 using test::kFlatHyperboloidSun;
 using test::kNarrowCone;
+using test::kTwoSheetsLitBelow;
 using test::kTwoSheetsMoved;
 
 struct AuditItem {
@@ -1279,6 +1280,38 @@ TEST_CASE("eval: audit 39a's unbounded terminators are bounded near their error,
     CHECK(*s.accuracy->bound < 1e-9);  // bounds of 1.9e-8, 8.4e-6 and 5e-7 before
     CHECK_FALSE(s.accuracy->inaccurate);
   }
+}
+
+TEST_CASE("eval: h crossing an unbounded terminator inside its sample's ball, beyond 4 own sizes: the frame at the light's height",
+          "[accuracy][certified][frames]") {
+  // In the quadric's frame a double R was truly 1.2e-9 of the object's size off at the crossing points
+  // (flagged, and failed by verify: audit 39a); at the light's height R rounds as pi does.
+  const AuditItem it = audit_item(kTwoSheetsLitBelow);
+  const Vec3<Q> centre = quadric_core(it.A).y;
+  const Q s2 = size_squared(quadric_to_local(it.A, centre));
+  const Q dz = it.L(2) / it.L(3) - centre(2);
+  CHECK(dz * dz > 16 * s2);  // (beyond the 4 own sizes of the older rule)
+  CHECK(light_plane_meets_terminator(it.A, it.L));
+  CHECK(wants_light_height_frame(it.A, it.L, centre, s2));
+  const Scene sc = parse_scene(kTwoSheetsLitBelow, "audit.json");
+  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct, Frame::local, AccuracyOptions{});
+  REQUIRE(rs.shadows.size() == 1);
+  const ShadowMatrices& s = rs.shadows[0];
+  REQUIRE(s.origin);
+  CHECK(abs(Q((*s.origin)(2) - it.L(2) / it.L(3))) < Q(1, 1000000000));  // (-103/6, rounded to a double)
+  REQUIRE(s.accuracy);
+  REQUIRE(s.accuracy->bound);
+  const ShadowError e = shadow_error(it.pts, s.origin, s.P, s.polar, s.R);
+  const Measure sampled = std::max({relative(e.P, it.pts.size), relative(e.polar, it.pts.size), relative(e.R, it.pts.size)});
+  INFO("bound " << *s.accuracy->bound << ", sampled " << sampled.str(6));
+  CHECK(sampled <= Measure(*s.accuracy->bound));
+  CHECK(*s.accuracy->bound < 1e-12);  // 2.9e-9 in the quadric's frame
+  CHECK_FALSE(s.accuracy->inaccurate);
+  // the same hyperboloid lit from 1000 of its sizes below: h meets the terminator far outside its
+  // sample's ball, and the frame stays the quadric's
+  const Vec4<Q> far(it.L(0), it.L(1), Q(centre(2) - 4000), 1);
+  CHECK(light_plane_meets_terminator(it.A, far));
+  CHECK_FALSE(wants_light_height_frame(it.A, far, centre, s2));
 }
 
 TEST_CASE("terminator_saddle_slopes: P_ref's slope along its saddle directions, floored on the terminator in the ball",

@@ -62,8 +62,12 @@ bool light_plane_meets_terminator(const Mat4<Rational>& A, const Vec4<Rational>&
 /// the light's height is within 4 sizes of it
 /// (s2 = size_squared), met or not: its terminator may be unbounded, and is
 /// bounded in a ball about the sampled points, which R's crossing line may cross away from the
-/// terminator. Farther away (a cylinder's terminator crossed far from its centre, say) the first-order
-/// bound in the item's ball holds, and a frame there would only put the object away from its origin.
+/// terminator; and farther, where h meets the terminator inside the ball of the item's default
+/// sample (an unbounded terminator's sample reaches many of the quadric's own sizes: a two-sheet
+/// hyperboloid lit from 4.2 sizes below had R truly 1e-9 to 1.1e-8 of the object's size off at the
+/// crossing points in its own frame, 1e-17 at the light's height). Elsewhere (a cylinder's
+/// terminator crossed far from its centre, say) the first-order bound in the item's ball holds, and
+/// a frame there would only put the object away from its origin.
 bool wants_light_height_frame(const Mat4<Rational>& A, const Vec4<Rational>& L,
                               const std::optional<Vec3<Rational>>& centre, const Rational& s2);
 
