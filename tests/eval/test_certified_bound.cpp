@@ -1134,6 +1134,22 @@ AuditItem audit_item(const char* json) {
   return it;
 }
 
+/// The one shadow item of an audit scene as eval computes it at `precision` (default frames), bounded.
+ShadowMatrices audit_shadow(const char* json, const char* precision) {
+  const Scene sc = parse_scene(json, "audit.json");
+  const ResultSet rs = computed_results(sc, *parse_precision(precision), Method::direct, Frame::local, AccuracyOptions{});
+  REQUIRE(rs.shadows.size() == 1);
+  REQUIRE(rs.shadows[0].accuracy);
+  REQUIRE(rs.shadows[0].accuracy->bound);
+  return rs.shadows[0];
+}
+
+/// Its error at the item's exact points (first-order distances; P's apex and R's crossings apart), relative.
+Measure sampled_error(const AuditItem& it, const ShadowMatrices& s) {
+  const ShadowError e = shadow_error(it.pts, s.origin, s.P, s.polar, s.R);
+  return std::max({relative(e.P, it.pts.size), relative(e.polar, it.pts.size), relative(e.R, it.pts.size)});
+}
+
 }  // namespace
 
 TEST_CASE("terminator_h_floor in a ball: the terminator's points there, where h . x = 0 meets it outside",
@@ -1252,21 +1268,14 @@ TEST_CASE("terminator_gradient_floor: holds at exact terminator points, and sees
 
 TEST_CASE("eval: audit 39a's unbounded terminators are bounded near their error, wherever they stand",
           "[accuracy][certified]") {
-  const Precision dbl = *parse_precision("double");
   for (const auto& [name, json] : {std::pair<const char*, const char*>{"two sheets, moved: R's floor in the ball", kTwoSheetsMoved},
                                    {"a flat cone under a sun: P's floor on the section", kFlatConeSun},
                                    {"a narrow cone lit beside its apex: the curvature against the apex's sign", kNarrowCone}}) {
     INFO(name);
-    const Scene sc = parse_scene(json, "audit.json");
     const AuditItem it = audit_item(json);
-    const ResultSet rs = computed_results(sc, dbl, Method::direct, Frame::local, AccuracyOptions{});
-    REQUIRE(rs.shadows.size() == 1);
-    const ShadowMatrices& s = rs.shadows[0];
-    REQUIRE(s.accuracy);
-    REQUIRE(s.accuracy->bound);
+    const ShadowMatrices s = audit_shadow(json, "double");
     // the error measured at the exact points (their first-order distance; P's apex apart) is below it
-    const ShadowError e = shadow_error(it.pts, s.origin, s.P, s.polar, s.R);
-    const Measure sampled = std::max({relative(e.P, it.pts.size), relative(e.polar, it.pts.size), relative(e.R, it.pts.size)});
+    const Measure sampled = sampled_error(it, s);
     INFO("bound " << *s.accuracy->bound << ", sampled " << sampled.str(6));
     CHECK(sampled <= Measure(*s.accuracy->bound));
     // a cone's apex: the Euclidean distance from P, at least distance_floor, is below it too
@@ -1293,16 +1302,10 @@ TEST_CASE("eval: h crossing an unbounded terminator inside its sample's ball, be
   CHECK(dz * dz > 16 * s2);  // (beyond the 4 own sizes of the older rule)
   CHECK(light_plane_meets_terminator(it.A, it.L));
   CHECK(wants_light_height_frame(it.A, it.L, centre, s2));
-  const Scene sc = parse_scene(kTwoSheetsLitBelow, "audit.json");
-  const ResultSet rs = computed_results(sc, *parse_precision("double"), Method::direct, Frame::local, AccuracyOptions{});
-  REQUIRE(rs.shadows.size() == 1);
-  const ShadowMatrices& s = rs.shadows[0];
+  const ShadowMatrices s = audit_shadow(kTwoSheetsLitBelow, "double");
   REQUIRE(s.origin);
   CHECK(abs(Q((*s.origin)(2) - it.L(2) / it.L(3))) < Q(1, 1000000000));  // (-103/6, rounded to a double)
-  REQUIRE(s.accuracy);
-  REQUIRE(s.accuracy->bound);
-  const ShadowError e = shadow_error(it.pts, s.origin, s.P, s.polar, s.R);
-  const Measure sampled = std::max({relative(e.P, it.pts.size), relative(e.polar, it.pts.size), relative(e.R, it.pts.size)});
+  const Measure sampled = sampled_error(it, s);
   INFO("bound " << *s.accuracy->bound << ", sampled " << sampled.str(6));
   CHECK(sampled <= Measure(*s.accuracy->bound));
   CHECK(*s.accuracy->bound < 1e-12);  // 2.9e-9 in the quadric's frame
@@ -1358,15 +1361,9 @@ TEST_CASE("eval: a flat one-sheet hyperboloid's P at its waist, bounded from its
   // first-order distance, 60 digits), 1.6e-15 at the sampled points. The first order's guard fails
   // there (P's gradient direction curves 1.7 against a gradient of 3e-9) and the second order along
   // `up` (curvature 1.5e-12) gave 5.5e-6: flagged and failed (audit 39a, H1_adv1 under d7).
-  const Scene sc = parse_scene(kFlatHyperboloidSun, "audit.json");
   const AuditItem it = audit_item(kFlatHyperboloidSun);
-  const ResultSet rs = computed_results(sc, *parse_precision("long-double"), Method::direct, Frame::local, AccuracyOptions{});
-  REQUIRE(rs.shadows.size() == 1);
-  const ShadowMatrices& s = rs.shadows[0];
-  REQUIRE(s.accuracy);
-  REQUIRE(s.accuracy->bound);
-  const ShadowError e = shadow_error(it.pts, s.origin, s.P, s.polar, s.R);
-  const Measure sampled = std::max({relative(e.P, it.pts.size), relative(e.polar, it.pts.size), relative(e.R, it.pts.size)});
+  const ShadowMatrices s = audit_shadow(kFlatHyperboloidSun, "long-double");
+  const Measure sampled = sampled_error(it, s);
   INFO("bound " << *s.accuracy->bound << ", sampled " << sampled.str(6));
   CHECK(sampled <= Measure(*s.accuracy->bound));
   CHECK(*s.accuracy->bound < 1e-9);
