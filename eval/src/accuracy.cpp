@@ -1079,11 +1079,14 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   // where h crosses a ball, R's planes cross there, and R is bounded as a plane pair (R_ball_bound)
   const bool R_crossing = saddle_directions(R_ref_).has_value();
   geo_ = shadow_geometry(A, L);
+  const auto split_in_ball = [&] {
+    split_ = crossing_split(A, L, ball_);
+    if (split_) split_floor_ = split_->floor * pi_norm;
+  };
   if (geo_) {
     if (geo_->R_ball) ball_ = *geo_->R_ball;  // (the whole terminator: not the sampled points' ball)
     cover_ = {true, true, geo_->R_floor > 0 || (geo_->R_ball && (!crosses(h_, *geo_->R_ball) || R_crossing))};
-    if (geo_->R_ball && crosses(h_, ball_)) split_ = crossing_split(A, L, ball_);
-    if (split_) split_floor_ = split_->floor * pi_norm;
+    if (geo_->R_ball && crosses(h_, ball_)) split_in_ball();
     return;
   }
   ball_ = ball_in_units(pts.ball, unit_);
@@ -1096,10 +1099,7 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
   const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
   if (hf) R_floor_ = *hf * pi_norm;
-  if (!hf && crosses(h_, ball_)) {
-    split_ = crossing_split(A, L, ball_);
-    if (split_) split_floor_ = split_->floor * pi_norm;
-  }
+  if (!hf && crosses(h_, ball_)) split_in_ball();
   cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,
             !crosses(h_, ball_) || R_crossing || R_floor_ > 0};
 }

@@ -1001,25 +1001,45 @@ std::optional<Measure> terminator_plane_floor(const Mat4<Q>& A, const Vec4<Q>& p
   }));
 }
 
+namespace {
+/// The terminator's points on h . x = 0 (HLines: the line x = p0 + s u at t = 0, where A is
+/// alpha s^2 + 2 b0 s + g0): s = (-b0 +- sqrt(D0)) / alpha, or -g0 / (2 b0) where alpha = 0; rationals
+/// computed in 80 digits (near the points, unless -b0 + root cancels).
+std::vector<Vec3<Q>> crossings(const HLines& f) {
+  std::vector<Vec3<Q>> out;
+  if (f.alpha == 0) {
+    if (f.b0 != 0) out.push_back(f.p0 + f.u * Q(-f.g0 / (2 * f.b0)));
+    return out;
+  }
+  const Q D0 = f.b0 * f.b0 - f.alpha * f.g0;
+  if (D0 < 0) return out;
+  const Q root = exact_measure(sqrt(to_measure(D0)));
+  for (const int sign : {1, -1}) {
+    out.push_back(f.p0 + f.u * Q((-f.b0 + sign * root) / f.alpha));
+    if (D0 == 0) break;
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<Vec3<Q>> terminator_crossings(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>& h) {
+  if (h.head<3>().isZero() || pi.head<3>().isZero()) return {};
+  const std::optional<HLines> f = h_lines(A, pi, h);
+  return f ? crossings(*f) : std::vector<Vec3<Q>>{};
+}
+
 std::optional<CrossingSplit> crossing_split(const Mat4<Q>& A, const Vec4<Q>& L, const Ball& ball) {
   const Vec4<Q> pi = A * L, h = reference_second_plane(L);
   if (h.head<3>().isZero() || pi.head<3>().isZero()) return std::nullopt;
   const std::optional<HLines> f = h_lines(A, pi, h);
   if (!f || f->alpha == 0) return std::nullopt;
-  // the terminator's points on h . x = 0: s = (-b0 +- sqrt(D0)) / alpha on the line x = p0 + s u
-  const Q D0 = f->b0 * f->b0 - f->alpha * f->g0;
-  if (D0 < 0) return std::nullopt;
   CrossingSplit out;
   const Q delta = ball.reach * exact_pow2(-16);
-  // (80 digits: near the crossing points, unless -b0 + root cancels; a ball that then misses its
-  // point leaves the piece at t = 0 uncleared, and there is no split)
-  const Q root = exact_measure(sqrt(to_measure(D0)));
-  for (const int sign : {1, -1}) {
-    const Vec3<Q> x = f->p0 + f->u * Q((-f->b0 + sign * root) / f->alpha);
-    const Q reach = ball.reach + delta;
+  // (a ball whose centre cancellation moved off its point leaves the piece at t = 0 uncleared, and
+  // there is no split)
+  const Q reach = ball.reach + delta;
+  for (const Vec3<Q>& x : crossings(*f))
     if (Vec3<Q>(x - ball.centre).squaredNorm() <= reach * reach) out.near.push_back(Ball{x, delta, std::nullopt});
-    if (D0 == 0) break;
-  }
   if (out.near.empty()) return std::nullopt;
   out.floor = Measure(ball_h_floor(*f, h, ball, out.near));
   if (!(out.floor > 0)) return std::nullopt;
@@ -1568,8 +1588,9 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
             euclidean = true;
           }
         }
+        // |(E z)_xyz| on the shell, where the saddle directions' slopes or the moved point's second order need it
+        const IA e = along || (V && curvature > 0) ? gn + tighter(r * e3, box_image(E3a, rho)) : IA(0);
         if (along) {  // (above: a root along a saddle direction, the slope's linear term with the curvature)
-          const IA e = gn + tighter(r * e3, box_image(E3a, rho));
           const auto root_within = [&](const Along& w) {
             double best = kInf;
             const IA b = IA(w.slope) - e;
@@ -1595,7 +1616,6 @@ CertifiedBound ball_quadric_bound(const Mat4<Q>& hat_given, const Mat4<Q>& ref_i
           // Where the gradient vanishes (a plane pair's crossing line, a cone's apex) the first order
           // says nothing, and the second order from z itself, sqrt of a value that grows with the
           // move, bounded a plane pair moved by 1e-9 at 9.5e-6 (audit 35a F3).
-          const IA e = gn + tighter(r * e3, box_image(E3a, rho));
           const IA at = moved + IA(2) * e * shift + CGAL::square(shift) * h3;
           const double second = (shift + CGAL::sqrt(at / IA(curvature))).sup();
           if (second < d) {

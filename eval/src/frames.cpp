@@ -80,66 +80,34 @@ Q centre_value(const Mat4<Q>& A) {
 }  // namespace
 
 namespace {
-/// The line pi ∩ h of a point light, x0 + t d, and A on it, a t^2 + 2 b t + c; none where the planes
-/// are parallel (or the same: R is then pi's double plane).
-struct HeightLine {
-  Vec4<Q> x0, d;
-  Q a, b, c;
-};
-std::optional<HeightLine> height_line(const Mat4<Q>& A, const Vec4<Q>& L) {
-  const Vec4<Q> pi = A * L;
-  const Q l = L(2) / L(3);
-  // the line pi ∩ {z = l}: pi_x x + pi_y y = -(pi_z l + pi_w) in that plane
-  const Q rhs = -(pi(2) * l + pi(3));
-  HeightLine out{Vec4<Q>(0, 0, l, 1), Vec4<Q>(-pi(1), pi(0), 0, 0), Q(0), Q(0), Q(0)};
-  if (abs(pi(0)) >= abs(pi(1))) {
-    if (pi(0) == 0) return std::nullopt;
-    out.x0(0) = rhs / pi(0);
-  } else {
-    out.x0(1) = rhs / pi(1);
-  }
-  out.a = out.d.dot(A * out.d), out.b = out.d.dot(A * out.x0), out.c = out.x0.dot(A * out.x0);
-  return out;
-}
-
 /// Does h meet the terminator (exactly) at a point within the ball of the item's default sample
-/// (terminator_points: the object size about its centre, where the bounds look)? In 80 digits: a
-/// choice of frame, not a predicate of the output.
+/// (terminator_points: the object size about its centre, where the bounds look)? The points in 80
+/// digits (terminator_crossings): a choice of frame, not a predicate of the output.
 bool crossing_in_sample(const Mat4<Q>& A, const Vec4<Q>& L) {
-  const std::optional<HeightLine> f = height_line(A, L);
-  if (!f) return false;
-  const Q disc = f->b * f->b - f->a * f->c;
-  if (disc < 0 || (f->a == 0 && f->b == 0)) return false;
-  std::vector<Vec4<Measure>> at;
-  const auto point = [&](const Measure& t) {
-    Vec4<Measure> x;
-    for (int i = 0; i < 4; ++i) x(i) = to_measure(f->x0(i)) + t * to_measure(f->d(i));
-    at.push_back(x);
-  };
-  if (f->a == 0) {
-    point(-to_measure(f->c) / (2 * to_measure(f->b)));
-  } else {
-    const Measure root = sqrt(to_measure(disc));
-    point((-to_measure(f->b) + root) / to_measure(f->a));
-    point((-to_measure(f->b) - root) / to_measure(f->a));
-  }
+  const std::vector<Vec3<Q>> at = terminator_crossings(A, Vec4<Q>(A * L), reference_second_plane(L));
+  if (at.empty()) return false;
   const ItemPoints pts = terminator_points(A, L, kDefaultSamples, item_seed(1, 1, A, L));
   if (pts.points.empty()) return false;
-  const Measure reach = to_measure(pts.ball.reach);
-  for (const Vec4<Measure>& x : at) {
-    Measure d2 = 0;
-    for (int i = 0; i < 3; ++i) d2 += (x(i) - to_measure(pts.ball.centre(i))) * (x(i) - to_measure(pts.ball.centre(i)));
-    if (d2 <= reach * reach) return true;
-  }
+  for (const Vec3<Q>& x : at)
+    if (Vec3<Q>(x - pts.ball.centre).squaredNorm() <= pts.ball.reach * pts.ball.reach) return true;
   return false;
 }
 }  // namespace
 
 bool light_plane_meets_terminator(const Mat4<Q>& A, const Vec4<Q>& L) {
   if (L(3) == 0) return false;  // a parallel light: h is the plane at infinity
-  const std::optional<HeightLine> f = height_line(A, L);
-  if (!f) return false;
-  const Q &a = f->a, &b = f->b, &c = f->c;
+  const Vec4<Q> pi = A * L;
+  const Q l = L(2) / L(3);
+  // the line pi ∩ {z = l}: pi_x x + pi_y y = -(pi_z l + pi_w) in that plane
+  const Q rhs = -(pi(2) * l + pi(3));
+  Vec4<Q> x0(0, 0, l, 1), d(-pi(1), pi(0), 0, 0);
+  if (abs(pi(0)) >= abs(pi(1))) {
+    if (pi(0) == 0) return false;  // the planes are parallel (or the same: R is then pi's double plane)
+    x0(0) = rhs / pi(0);
+  } else {
+    x0(1) = rhs / pi(1);
+  }
+  const Q a = d.dot(A * d), b = d.dot(A * x0), c = x0.dot(A * x0);
   if (a == 0 && b == 0) return c == 0;  // A constant on the line
   const Q disc = b * b - a * c;
   if (disc >= 0) return true;

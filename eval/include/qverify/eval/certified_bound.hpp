@@ -158,6 +158,9 @@ std::optional<Measure> terminator_h_floor(const Mat4<Rational>& A, const Vec4<Ra
 /// with pi = A L and h = reference_second_plane(L)).
 std::optional<Measure> terminator_plane_floor(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Vec4<Rational>& h,
                                               const Ball* ball = nullptr);
+/// The terminator's points on the plane h (pi . x = 0 = h . x, A(x) = 0), rationals computed in 80
+/// digits: none where h is parallel to pi, at infinity, or its line on pi misses A or lies on it.
+std::vector<Vec3<Rational>> terminator_crossings(const Mat4<Rational>& A, const Vec4<Rational>& pi, const Vec4<Rational>& h);
 
 /// Where h . x = 0 meets the terminator in the ball (R's planes cross there, and a rounded R is about
 /// sqrt(eps) off at those points, a distance only the second order bounds): balls `near` of radius
