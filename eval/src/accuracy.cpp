@@ -1096,8 +1096,9 @@ ShadowBounds::ShadowBounds(const Mat4<Q>& A_world, const Vec4<Q>& L_world, const
   // on the terminator (P_ref x)_xyz = s (A x)_xyz
   P_floor_ = terminator_gradient_floor(A, pi_ref_, ball_, s);
   P_slopes_ = terminator_saddle_slopes(A, pi_ref_, ball_, s, P_ref_);
-  // on the terminator (R_ref x)_xyz = (h . x) pi_xyz
-  const std::optional<Measure> hf = terminator_h_floor(A, L, &ball_);
+  // on the terminator (R_ref x)_xyz = (h . x) pi_xyz. (Under a parallel light h . x = 1 at every
+  // point, the constant floor plane_pair_floor gives R_ball_bound's one step as well: not taken twice.)
+  const std::optional<Measure> hf = L(3) != 0 ? terminator_h_floor(A, L, &ball_) : std::nullopt;
   if (hf) R_floor_ = *hf * pi_norm;
   if (!hf && crosses(h_, ball_)) split_in_ball();
   cover_ = {P_floor_(0, reach) > 0 || saddle_directions(P_ref_).has_value(), true,

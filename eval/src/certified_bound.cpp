@@ -966,10 +966,12 @@ std::optional<Measure> terminator_h_floor(const Mat4<Q>& A, const Vec4<Q>& L, co
 
 std::optional<Measure> terminator_plane_floor(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>& h, const Ball* ball) {
   const Vec3<Q> n = pi.head<3>(), m = h.head<3>();
-  if (m.isZero() || n.isZero()) return std::nullopt;  // (h or the polar plane at infinity)
+  if (n.isZero()) return std::nullopt;  // (the polar plane at infinity)
   const std::optional<HLines> f = h_lines(A, pi, h);
   if (!f) {
     // parallel planes: h . x is the same at every point of the polar plane (m = c n: h . x = h_w - c pi_w).
+    // With m = 0 (c = 0) h . x is h_w at every finite point: R_ref's plane at infinity under a parallel
+    // light, or a saddle slope's plane A (w, 0) where A w has no xyz part (review of session 41).
     // With no floor R was judged on its samples alone, and one chord (--samples 1 or 2) let an R 8e-6
     // off elsewhere pass (audit 33a F1: a lamp straight above a level cylinder's axis).
     const Q c = m.dot(n) / n.squaredNorm();

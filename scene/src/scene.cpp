@@ -59,7 +59,7 @@ class Reader {
     std::optional<Rational> v;
     if (n.kind == Kind::number) v = parse_decimal(n.text, err);
     else if (n.kind == Kind::string) v = parse_rational(n.text, err);
-    else fail(path, std::string("expected a number (or a \"p/q\" string), found ") + n.kind_name());
+    else fail(path, std::string("expected a number (or a decimal or \"p/q\" string), found ") + n.kind_name());
     if (!v) fail(path, err);
     return Num{*v, path, n.text};
   }

@@ -154,6 +154,43 @@ TEST_CASE("verify --precision exact proves every sampled point of the examples",
   CHECK(a.out == b.out);
 }
 
+TEST_CASE("every verify check that is not skipped has the contract's per-quadric keys, points or none", "[cli][verify]") {
+  // A lamp inside a cylinder (the terminator's one real point lies at infinity), a double plane and the
+  // zero quadric have no finite point to sample; their checks are judged as matrices and by the zero
+  // tests, and still carry on_A, on_P, on_R (on_B), measures of no point (audit 42c F1: scripts that
+  // read them unguarded crashed on these).
+  const std::string file = temp_file("no-finite-points.json", R"({"format": "qverify-scene/1", "name": "none",
+    "quadrics": [{"id": "pipe", "cylinder": {"point": [0, 0, 0], "axis": [0, 0, 1], "radius": 1}},
+                 {"id": "zero", "matrix": [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]]},
+                 {"id": "ball", "sphere": {"center": [0, 0, 0], "radius": 1}}],
+    "lights": [{"id": "inside", "position": ["1/10", "1/5", "2/5"]}],
+    "mirrors": [{"id": "m", "plane": [0, 0, 1, -5]}]})");
+  for (const char* p : {"double", "exact"}) {
+    INFO(p);
+    const Run r = run("verify " + file + " --json --precision " + p);
+    REQUIRE(r.code == 0);
+    const auto doc = nlohmann::json::parse(r.out);
+    int none = 0;
+    for (const auto& c : doc["checks"]) {
+      INFO(c.dump());
+      if (c["status"] == "skipped") continue;  // (the lamp inside the ball: no real point at all)
+      CHECK(c["status"] == "pass");
+      const bool shadow = c["kind"] == "shadow";
+      for (const char* k : shadow ? std::vector<const char*>{"on_A", "on_P", "on_R"} : std::vector<const char*>{"on_B"}) {
+        REQUIRE(c.contains(k));
+        CHECK(c[k]["max_residual"].is_number());
+        CHECK(c[k]["max_distance"].is_number());
+      }
+      if (c["points"] == 0) {
+        ++none;
+        for (const char* k : {"on_A", "on_P", "on_R", "on_B"})
+          if (c.contains(k)) CHECK(c[k]["judged"] == false);
+      }
+    }
+    CHECK(none == 3);  // the cylinder lit from inside, the zero quadric's shadow and its reflection
+  }
+}
+
 TEST_CASE("verify in floating precisions passes within the accuracy target, float only at a float-sized one - the paper route's world R fails where its planes cross the terminator",
           "[cli][verify]") {
   for (const char* p : {"float", "double", "long-double", "float128", "mpfr:200"})

@@ -649,7 +649,10 @@ TEST_CASE("terminator_h_floor: never above |h . x| at a terminator point, none w
                         {"a cone lit from outside", cone, {3, 0, 1, 1}, false},
                         // y^2 + (z - 3)^2 = 1 lit from (0, 0, 5), straight above its axis: the polar plane z = 7/2
                         // is parallel to h (z = 5), and h . x is one number on it (audit 33a F1)
-                        {"a level cylinder lit from above its axis", quadric_of({0, 1, 1}, {0, 0, -3}, 8), {0, 0, 5, 1}, true}};
+                        {"a level cylinder lit from above its axis", quadric_of({0, 1, 1}, {0, 0, -3}, 8), {0, 0, 5, 1}, true},
+                        // a parallel light's h is the plane at infinity: h . x = 1 at every finite point (as
+                        // for a saddle slope's plane A (w, 0) where A w has no xyz part: review of session 41)
+                        {"a hyperboloid under a sun", hyperboloid, {1, 2, 3, 0}, true}};
   int floors = 0;
   for (const Case& c : cases) {
     INFO(c.name);
@@ -672,7 +675,7 @@ TEST_CASE("terminator_h_floor: never above |h . x| at a terminator point, none w
     CHECK(*t0 <= least);
     CHECK(*t0 >= least / 1000);  // (the floor is the terminator's own, not a loose one)
   }
-  CHECK(floors == 5);
+  CHECK(floors == 6);
 }
 
 TEST_CASE("ball bound: a translated R is bounded by about its translation", "[accuracy][certified]") {

@@ -137,9 +137,10 @@ Mat4<Rational> reference_plane_pair(const Mat4<Rational>& A, const Vec4<Rational
 
 /// A lower bound t0 > 0 of |h . x| over the terminator's finite real points x = (p, 1) (h =
 /// reference_second_plane(L): R_ref's gradient there is (h . x) pi_xyz), whatever its shape; nullopt
-/// where none is found (the line h . x = 0 of the polar plane meets or touches the terminator, h is
-/// the plane at infinity, or the lines of the polar plane along h are asymptotic to A). Where h is
-/// parallel to the polar plane, h . x is one number on it, exactly. Exactly: on
+/// where none is found (the line h . x = 0 of the polar plane meets or touches the terminator, or the
+/// lines of the polar plane along h are asymptotic to A). Where h is parallel to the polar plane, h . x
+/// is one number on it, exactly; where h is the plane at infinity (0, 0, 0, h_w), as under a parallel
+/// light, it is h_w at every finite point. Exactly: on
 /// the lines x = p0 + t w + s u of the polar plane (pi . x = 0, h . x = t, u along both planes),
 /// A(x) = alpha s^2 + 2 beta(t) s + gamma(t), beta linear and gamma quadratic in t, alpha =
 /// u^T K u != 0; such a line meets A where D(t) = beta^2 - alpha gamma = a t^2 + b t + c >= 0. With
