@@ -35,6 +35,7 @@ json ladder_json(const AuditRow& row, std::size_t n_items) {
   error_fields(r, row.stats, p ? p->significand_bits() : std::nullopt);
   r["items"] = n_items;
   r["inaccurate_items"] = f.inaccurate_items;
+  if (p && p->kind != Precision::Kind::exact) r["missed_flags"] = f.missed_flags;
   r["reps_per_batch"] = f.reps_per_batch;
   r["batches"] = f.batches;
   r["inputs_rounded"] = f.inputs_rounded;
@@ -150,6 +151,11 @@ json audit_json(const AuditReport& a) {
                   "repeated until it lasts >= " +
                   std::to_string(static_cast<int>(a.options.batch_seconds * 1000)) +
                   " ms; results kept behind a compiler barrier), single thread";
+  doc["flag_check"] =
+      "every floating row's items are checked as verify checks them (" + std::to_string(a.options.samples) +
+      " exact points, seed 1): an item whose geometric error there exceeds eval's accuracy target 1e-9 while eval did "
+      "not flag it inaccurate is listed in the row's missed_flags (a sample bounds the error from below: a flag proved "
+      "missing), and the audit exits 1";
   doc["rows"] = rows;
   doc["pareto"] = a.pareto;
   doc["items"] = items_json(a);
@@ -170,6 +176,12 @@ std::string audit_text(const AuditReport& a, const std::string& dir) {
                        r.ladder ? fmt::format("{}/{}", r.ladder->inaccurate_items, a.items.size()) : std::string("-"),
                        std::find(a.pareto.begin(), a.pareto.end(), r.key()) != a.pareto.end() ? "*" : "");
   }
+  for (const AuditRow& r : a.rows)
+    if (r.ladder && !r.ladder->missed_flags.empty()) {
+      out += fmt::format("\nMISSED FLAG in {}: geometric error beyond 1e-9 without `inaccurate`:", r.key());
+      for (const std::string& item : r.ladder->missed_flags) out += " " + item;
+      out += "\n";
+    }
   if (const AuditRow* row = candidate_row(a)) {
     const CandidateFacts& c = *row->candidate;
     out += fmt::format("\ncandidate {}: {}", c.name, c.status);

@@ -60,6 +60,16 @@ std::string audit_candidate_html(const json& doc) {
 }
 }  // namespace
 
+namespace {
+/// A ladder row's missed flags (audit.hpp LadderFacts::missed_flags), after its count of flagged items.
+std::string missed_flags_html(const json& row) {
+  if (!row.contains("missed_flags") || row["missed_flags"].empty()) return "";
+  std::string items;
+  for (const auto& it : row["missed_flags"]) items += (items.empty() ? "" : ", ") + html_escape(it.get<std::string>());
+  return "<br><b>missed: " + items + "</b>";
+}
+}  // namespace
+
 std::string audit_html(const json& doc, const std::string& svg) {
   std::string b;
   b += "<p>Scene: <b>" + html_escape(doc["scene"].get<std::string>()) +
@@ -80,7 +90,7 @@ std::string audit_html(const json& doc, const std::string& svg) {
          (r["correct_bits"].is_null() && r["max_rel_error"] == 0 ? std::string("exact") : sci(r["correct_bits"])) +
          "</td><td>" +
          sci(r["inputs_rounded"]) + "</td><td>" + sci(r["inaccurate_items"]) + " of " + sci(r["items"]) +
-         "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
+         missed_flags_html(r) + "</td><td class=\"l\">" + (front ? "yes" : "") + "</td></tr>\n";
   }
   b += "</table>\n";
   if (doc.contains("candidate")) b += audit_candidate_html(doc);
@@ -106,7 +116,8 @@ std::string audit_html(const json& doc, const std::string& svg) {
     b += "</ul>\n";
   }
   b += "<h2>How the numbers are made</h2>\n<p class=\"note\"><b>Error.</b> " + html_escape(doc["scale_removal"].get<std::string>()) +
-       " correct bits = -log2(max rel. error).</p>\n<p class=\"note\"><b>Time.</b> " +
+       " correct bits = -log2(max rel. error).</p>\n<p class=\"note\"><b>Flags.</b> " +
+       html_escape(doc["flag_check"].get<std::string>()) + ".</p>\n<p class=\"note\"><b>Time.</b> " +
        html_escape(doc["timing"].get<std::string>()) + ".</p>\n";
   return html_page("qverify precision audit", b);
 }

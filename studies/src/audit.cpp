@@ -145,6 +145,15 @@ class SceneAudit {
     f.batches = tr.batches;
     f.inputs_rounded = tr.inputs_rounded;
     if (prec.kind == Precision::Kind::mpfr) f.working_bits = digits_for_bits(prec.bits).bits;
+    // eval's flag self-checked, as stress checks it (FlagCheck): verify's exact points measure each
+    // item's geometric error from below, so one beyond the target that eval did not flag is a flag
+    // proved missing. (Exact rows have neither flags nor errors.)
+    if (prec.kind != Precision::Kind::exact) {
+      const VerifyReport v = verify_results(sc_, tr.results, VerifyOptions{opt_.samples, 1, kDefaultAccuracy});
+      for (const VerifyCheck& g : v.checks)
+        if (g.report && !g.report->skipped && !(g.report->geometric_error <= kDefaultAccuracy) && !g.inaccurate)
+          f.missed_flags.push_back(g.kind + " " + g.quadric + "/" + g.other);
+    }
     r.ladder = f;
     return r;
   }
@@ -278,6 +287,12 @@ class SceneAudit {
 };
 
 }  // namespace
+
+bool audit_found_error(const AuditReport& a) {
+  return std::any_of(a.rows.begin(), a.rows.end(), [](const AuditRow& r) {
+    return (r.candidate && r.candidate->bad) || (r.ladder && !r.ladder->missed_flags.empty());
+  });
+}
 
 AuditReport run_audit(const Scene& sc, const AuditOptions& opt) {
   create_output_directory(opt.out_dir);  // before the measurements: a bad --out fails at once

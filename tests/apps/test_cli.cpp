@@ -405,6 +405,15 @@ TEST_CASE("audit writes the three reports - both axes are measured", "[cli][audi
     if (key.rfind("exact/", 0) == 0) CHECK(x["correct_bits"].is_null());
     else CHECK(x["correct_bits"].is_number());
   }
+  // eval's flag self-checked on every floating row: nothing beyond 1e-9 on verify's points unflagged
+  // (the float rows are beyond it, and flagged), hence exit 0 above
+  CHECK(doc.contains("flag_check"));
+  for (const auto& [key, x] : row) {
+    INFO(key);
+    if (key.rfind("exact/", 0) == 0) CHECK_FALSE(x.contains("missed_flags"));
+    else CHECK(x["missed_flags"] == nlohmann::json::array());
+  }
+  CHECK(row["float/direct"]["inaccurate_items"].get<int>() > 0);
   CHECK(doc["items"].size() == 6);  // only the requested pairs
   CHECK(doc["skipped"].size() == 14);
   CHECK(!doc["pareto"].empty());

@@ -298,7 +298,16 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
   opt.scene_text = "{}";  // what the candidate is given (not parsed by these callables)
   SECTION("right") {
     opt.candidate = eval_candidate("robust", std::nullopt);
-    const auto doc = audit_json(run_audit(sc, opt));
+    const AuditReport a = run_audit(sc, opt);
+    CHECK_FALSE(audit_found_error(a));
+    // the ladder's double row is in the world frame, far off for this ball and flagged so: no flag missed
+    CHECK(a.rows[0].ladder->inaccurate_items > 0);
+    CHECK(a.rows[0].ladder->missed_flags.empty());
+    // a flag that eval missed is an error the audit found (exit 1), as a bad candidate is
+    AuditReport missed = a;
+    missed.rows[0].ladder->missed_flags = {"shadow ball/lamp"};
+    CHECK(audit_found_error(missed));
+    const auto doc = audit_json(a);
     const auto& row = doc["rows"].back();
     CHECK(row["source"] == "candidate");
     CHECK(row["run"] == "robust");
@@ -315,6 +324,7 @@ TEST_CASE("audit with a candidate: a row beside the ladder", "[stress][candidate
     CHECK(row["max_geometric_error"].get<double>() > 1e-3);
     REQUIRE(doc["candidate"]["reproducers"].size() == 1);
     CHECK(doc["candidate"]["reproducers"][0]["scene"] == "failures/world-audit-0.json");
+    CHECK(audit_found_error(run_audit(sc, opt)));
     CHECK(std::filesystem::exists(dir / "failures/world-audit-0.json"));
   }
   SECTION("right geometry, wrong sign or status: failed checks, named, and a reproducer") {

@@ -37,7 +37,8 @@ struct AuditOptions {
   std::optional<Candidate> candidate;
   std::string scene_text;              ///< the scene as given to the candidate (empty: read from the scene's file)
   double accuracy = kDefaultAccuracy;  ///< the candidate's accuracy target T
-  int samples = kDefaultSamples;       ///< exact points per item for its geometric error (verify's, seed 1)
+  int samples = kDefaultSamples;       ///< exact points per item for its geometric error (verify's, seed 1): the
+                                       ///< candidate's, and the ladder rows' for eval's flag self-check
 };
 
 /// The default ladder: float, double, long-double, float128, mpfr:128, mpfr:256, interval, exact.
@@ -52,6 +53,11 @@ struct ErrorStats {
 /// What timed_results measured of a ladder row beside its errors.
 struct LadderFacts {
   int inaccurate_items = 0;  ///< eval's flag: items whose error bound exceeds the accuracy target
+  /// eval's flag self-checked (floating rows): the items ("shadow ball/lamp") whose geometric error on
+  /// verify's exact points (AuditOptions::samples, seed 1) exceeds eval's accuracy target, 1e-9, while
+  /// eval did not flag them `inaccurate`. A sample bounds the error from below, so each is a flag
+  /// proved missing: an error of qverify's beyond tolerance, and the audit exits 1.
+  std::vector<std::string> missed_flags;
   long reps_per_batch = 0;
   int batches = 0;
   std::size_t inputs_rounded = 0;
@@ -112,6 +118,10 @@ struct AuditReport {
   std::vector<SkippedPair> skipped;
   Plot error_vs_time;
 };
+
+/// Did the audit find an error beyond tolerance: the candidate bad, or a flag of eval's missed on a
+/// ladder row? (`qverify audit` exits 1.)
+bool audit_found_error(const AuditReport& a);
 
 /// Runs the audit. `out_dir` is created first (a bad one fails before any work:
 /// FileWriteError naming the path); a candidate that fails or misses the target
