@@ -147,11 +147,13 @@ class SceneAudit {
     if (prec.kind == Precision::Kind::mpfr) f.working_bits = digits_for_bits(prec.bits).bits;
     // eval's flag self-checked, as stress checks it (FlagCheck): verify's exact points measure each
     // item's geometric error from below, so one beyond the target that eval did not flag is a flag
-    // proved missing. (Exact rows have neither flags nor errors.)
+    // proved missing. (Exact rows have neither flags nor errors. An infinite error, a point off the
+    // result where its gradient vanishes, is no distance, and proves nothing here: verify fails it.)
     if (prec.kind != Precision::Kind::exact) {
       const VerifyReport v = verify_results(sc_, tr.results, VerifyOptions{opt_.samples, 1, kDefaultAccuracy});
       for (const VerifyCheck& g : v.checks)
-        if (g.report && !g.report->skipped && !(g.report->geometric_error <= kDefaultAccuracy) && !g.inaccurate)
+        if (g.report && !g.report->skipped && std::isfinite(g.report->geometric_error) &&
+            g.report->geometric_error > kDefaultAccuracy && !g.inaccurate)
           f.missed_flags.push_back(g.kind + " " + g.quadric + "/" + g.other);
     }
     r.ladder = f;
