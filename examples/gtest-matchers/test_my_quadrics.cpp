@@ -23,6 +23,30 @@ TEST(MyMirrors, MirrorImage) {
   EXPECT_THAT(mine::mirror_image(A, floor_mirror), IsMirrorImageOf(A, floor_mirror));
 }
 
+// A lamp inside the ellipsoid: no real terminator point to sample. The matchers still give a
+// verdict, judging the cone against the exact one up to a factor: the right one passes, the slip fails.
+TEST(MyShadows, LampInside) {
+  const Eigen::Matrix4d A = ellipsoid();
+  const Eigen::Vector4d inside(1, 2, 3, 1);  // the centre
+  EXPECT_THAT(mine::shadow_cone(A, inside), IsShadowConeOf(A, inside));
+  EXPECT_NONFATAL_FAILURE(EXPECT_THAT(mine::shadow_cone_with_slip(A, inside), IsShadowConeOf(A, inside)),
+                          "judged as matrices");
+}
+
+// Options last, as for the Catch2 matchers: the accuracy target. A float renderer's cone is about
+// float's epsilon off: it fails the default target 1e-9 and passes a float-sized one.
+TEST(MyShadows, AccuracyTarget) {
+  const Eigen::Matrix4f A = ellipsoid().cast<float>();
+  const Eigen::Vector4f L(4.1f, 5.3f, 12.7f, 1);  // (the fixtures' integers would make float exact)
+  const Eigen::Vector4f AL = A * L;
+  const Eigen::Matrix4f P = L.dot(AL) * A - AL * AL.transpose();  // the same formula, in float
+  EXPECT_NONFATAL_FAILURE(EXPECT_THAT(P, IsShadowConeOf(A, L)), "accuracy target 1e-09");
+  qverify::CheckOptions loose;
+  loose.accuracy = 1e-5;
+  EXPECT_THAT(P, IsShadowConeOf(A, L, loose));
+  EXPECT_PRED_FORMAT4(AssertShadowCone, P, A, L, loose);
+}
+
 // The slips must be caught: each assertion is expected to fail, with qverify's explanation.
 TEST(MySlips, AreCaught) {
   const Eigen::Matrix4d A = ellipsoid();

@@ -39,3 +39,44 @@ TEST_CASE("Catch2 matchers accept the right matrices and explain the wrong ones"
   off(2, 2) += Rational(1, 1000000000);
   CHECK_FALSE(IsShadowConeOf(Aq, Lq).match(off));
 }
+
+TEST_CASE("matchers give a verdict where the geometry has no real point: judged as matrices, as verify skips it",
+          "[check]") {
+  // A lamp inside a sphere, and an imaginary sphere in a mirror: verify skips such items (neither pass
+  // nor fail); a matcher must pass a right result and fail a wrong one (audit 42d: every matcher failed
+  // the right one as "SKIPPED").
+  const Mat4<double> A = sphere_quadric<double>(Vec3<double>(0, 0, 0), 2);
+  const Vec4<double> inside(0, 0, 1, 1), plane(0, 0, 1, 2);
+  const Mat4<double> P = tangent_cone<double>(A, inside);
+  ShadowCandidate<double> c;
+  c.P = P;
+  CHECK(check_shadow<double>(A, inside, c).skipped);  // verify's way
+  CHECK_THAT(P, IsShadowConeOf(A, inside));
+  Mat4<double> off = P;
+  off(0, 3) = off(3, 0) = 1e-6 * P.cwiseAbs().maxCoeff();
+  auto cone = IsShadowConeOf(A, inside);
+  CHECK_FALSE(cone.match(off));
+  CHECK_THAT(cone.describe(), Catch::Contains("judged as matrices"));
+  CHECK_FALSE(IsShadowConeOf(A, inside).match(Mat4<double>(-P)));  // the sign counts
+
+  Mat4<double> imaginary = Mat4<double>::Identity();  // x^2 + y^2 + z^2 + 1 = 0
+  const Mat4<double> M = mirror_matrix<double>(plane);
+  const Mat4<double> B = reflection<double>(imaginary, M, Method::direct).B;
+  ReflectionCandidate<double> r;
+  r.B = B;
+  CHECK(check_reflection<double>(imaginary, plane, r).skipped);
+  CHECK_THAT(B, IsMirrorImageOf(imaginary, plane));
+  CHECK_FALSE(IsMirrorImageOf(imaginary, plane).match(imaginary));  // (not through the origin: B differs)
+}
+
+TEST_CASE("a wrong M is explained by M's own error and the expected M, not by the stand-in quadric's B", "[check]") {
+  const Vec4<double> plane(0, 0, 1, 0);
+  Mat4<double> M = mirror_matrix<double>(plane);
+  M(2, 3) += 0.5;
+  auto m = IsMirrorMatrixOf(plane);
+  CHECK_FALSE(m.match(M));
+  const std::string why = m.describe();
+  CHECK_THAT(why, Catch::Contains("expected M"));
+  CHECK_THAT(why, Catch::Contains("M's largest entry off the reflection: 0.5"));
+  CHECK_THAT(why, !Catch::Contains("expected B"));
+}

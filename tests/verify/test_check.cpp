@@ -651,20 +651,27 @@ TEST_CASE("batch checks reject bad input before computing anything, naming the i
   };
   SymBatch<double> bad = P;
   bad(3, 1) = std::numeric_limits<double>::quiet_NaN();
-  CHECK(error_of([&] { check_shadow_batch(A, L, bad, pi, R, opt); }) == "check_shadows | [3].P[0][1]");
+  // (errors name the function called, the item and the entry of its matrix: audit 42d named check_shadows)
+  CHECK(error_of([&] { check_shadow_batch(A, L, bad, pi, R, opt); }) == "check_shadow_batch | [3].P[0][1]");
   CHECK(error_of([&] { check_shadow_batch(A, Vec4Batch<double>(L.topRows(4)), P, pi, R, opt); }) == "check_shadow_batch | L");
   CHECK(error_of([&] { check_shadow_batch(A, L, SymBatch<double>(), Vec4Batch<double>(), SymBatch<double>(), opt); }) ==
         "check_shadow_batch | candidate");
   Vec4Batch<double> dark = L;
   dark.row(1).setZero();
-  CHECK(error_of([&] { check_shadow_batch(A, dark, P, pi, R, opt); }) == "check_shadows | [1].L");
+  CHECK(error_of([&] { check_shadow_batch(A, dark, P, pi, R, opt); }) == "check_shadow_batch | [1].L");
   std::vector<Mat4<double>> As{unit_sphere<double>()};
   std::vector<Vec4<double>> Ls{lamp<double>(), lamp<double>()};
   std::vector<ShadowCandidate<double>> cs(1);
   CHECK(error_of([&] { check_shadows<double>(As, Ls, cs, opt); }) == "check_shadows | L");
   opt.check.accuracy = -1;
-  CHECK(error_of([&] { check_shadow_batch(A, L, P, pi, R, opt); }) == "check_shadows | accuracy");
+  CHECK(error_of([&] { check_shadow_batch(A, L, P, pi, R, opt); }) == "check_shadow_batch | accuracy");
   CHECK_FALSE(called);
-  // an empty batch is no error and no work
+  // an empty batch is no error and no work, from vectors and from arrays alike (a frame without
+  // objects: the arrays' "no rows, not given" had made it "nothing to check", audit 42d)
   CHECK(check_shadows<double>({}, {}, {}, BatchCheckOptions{}).empty());
+  CHECK(check_shadow_batch(SymBatch<double>(), Vec4Batch<double>(), SymBatch<double>(), Vec4Batch<double>(),
+                           SymBatch<double>()).empty());
+  CHECK(check_reflection_batch(SymBatch<double>(), Vec4Batch<double>(), AffineBatch<double>(), SymBatch<double>()).empty());
+  CHECK(error_of([&] { check_reflection_batch(SymBatch<double>(), Vec4Batch<double>(), AffineBatch<double>(),
+                                              SymBatch<double>(A.topRows(1))); }) == "check_reflection_batch | B");
 }

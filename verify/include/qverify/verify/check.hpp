@@ -46,6 +46,13 @@ struct CheckOptions {
   /// Information only: the shadow was computed by the paper's route (its
   /// frame's conditioning enters consistent_with_precision's kappa).
   Method method = Method::direct;
+  /// Where the geometry has no real point at all (a lamp inside an ellipsoid, an imaginary
+  /// quadric): false, verify's way, skips the item, neither pass nor fail (CheckReport::skipped);
+  /// true judges the results as matrices against the exact ones, up to a factor (as_matrices), as
+  /// where the real points lie at infinity, and M on its own. The test-framework matchers
+  /// (testing/checks.hpp) set it: their verdict is pass or fail, and a right result passes
+  /// (audit 42d: a right P of a lamp inside a sphere failed every matcher as "SKIPPED").
+  bool judge_without_points = false;
 };
 
 /// A shadow to check, every part optional (a renderer may compute only P):
@@ -118,6 +125,8 @@ struct CheckReport {
   /// The exact reference (computed here, not by the core under test), for messages:
   /// P_ref = (L^T A L) A - (A L)(A L)^T, polar = A L, B_ref = M^T A M (in the candidate's frame).
   std::optional<Mat4<Rational>> reference;
+  /// Reflections with M given: the exact reflection in the candidate's frame, for messages.
+  std::optional<Mat4<Rational>> mirror_reference;
   std::vector<std::string> notes;
   std::optional<Vec3<Rational>> origin;  ///< the candidate's frame (local coordinates x - origin)
 
@@ -206,9 +215,13 @@ std::vector<CheckReport> check_reflections(const std::vector<Mat4<S>>& A, const 
 /// matrix as its 10 entries A00 A01 A02 A03 A11 A12 A13 A22 A23 A33): what
 /// shadow_batch returns for A and L, or another program's results in that layout.
 /// An array with no rows is a result not given (not checked); any other must have
-/// one row per item (InputError naming it). `status`: the status words the program
+/// one row per item (InputError naming it). No items at all (A with no rows, a frame
+/// without objects) is no error: no reports. `status`: the status words the program
 /// reported, one per item ("" where it gave none), each checked against the exact word
-/// as check_shadow checks ShadowCandidate::status; empty: none given.
+/// as check_shadow checks ShadowCandidate::status; empty: none given. An InputError
+/// names this function, the item [k] and the entry of its matrix ([k].A[i][j]).
+/// The matrices are in world coordinates (there is no origin here; check_shadows takes
+/// one per item).
 std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec4Batch<double>& L,
                                             const SymBatch<double>& P, const Vec4Batch<double>& polar_plane,
                                             const SymBatch<double>& R, const BatchCheckOptions& opt = {},
