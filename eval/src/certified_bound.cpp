@@ -976,7 +976,7 @@ std::optional<Measure> terminator_plane_floor(const Mat4<Q>& A, const Vec4<Q>& p
     // off elsewhere pass (audit 33a F1: a lamp straight above a level cylinder's axis).
     const Q c = m.dot(n) / n.squaredNorm();
     const Q level = abs(Q(h(3) - c * pi(3)));
-    if (level == 0) return std::nullopt;  // (the same plane)
+    if (level == 0) return std::nullopt;  // (the same plane, or h = 0)
     const double t0 = upward([&] { return enc(level).inf(); });
     if (!(t0 > 0) || !std::isfinite(t0)) return std::nullopt;
     return Measure(t0);

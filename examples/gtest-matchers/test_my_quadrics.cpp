@@ -45,6 +45,24 @@ TEST(MyShadows, AccuracyTarget) {
   loose.accuracy = 1e-5;
   EXPECT_THAT(P, IsShadowConeOf(A, L, loose));
   EXPECT_PRED_FORMAT4(AssertShadowCone, P, A, L, loose);
+  // every matcher and predicate formatter takes the options (here the right double results)
+  const Eigen::Matrix4d Ad = ellipsoid();
+  const Eigen::Vector4d pi = Ad * lamp;
+  const Eigen::Vector4d h(0, 0, lamp(3), -lamp(2));  // R's second plane z = l_z
+  const Eigen::Matrix4d R = pi * h.transpose() + h * pi.transpose();
+  const Eigen::Matrix4d M = mine::mirror(floor_mirror), B = mine::mirror_image(Ad, floor_mirror);
+  EXPECT_THAT(pi, qverify::testing::IsPolarPlaneOf(Ad, lamp, loose));
+  EXPECT_THAT(R, qverify::testing::IsTerminatorQuadricOf(Ad, lamp, loose));
+  EXPECT_THAT(B, IsMirrorImageOf(Ad, floor_mirror, loose));
+  EXPECT_THAT(M, qverify::testing::IsMirrorMatrixOf(floor_mirror, loose));
+  EXPECT_PRED_FORMAT4(qverify::testing::AssertPolarPlane, pi, Ad, lamp, loose);
+  EXPECT_PRED_FORMAT4(qverify::testing::AssertTerminatorQuadric, R, Ad, lamp, loose);
+  EXPECT_PRED_FORMAT4(qverify::testing::AssertMirrorImage, B, Ad, floor_mirror, loose);
+  EXPECT_PRED_FORMAT3(qverify::testing::AssertMirrorMatrix, M, floor_mirror, loose);
+  EXPECT_PRED_FORMAT3(qverify::testing::AssertPolarPlane, pi, Ad, lamp);
+  EXPECT_PRED_FORMAT3(qverify::testing::AssertTerminatorQuadric, R, Ad, lamp);
+  EXPECT_PRED_FORMAT3(qverify::testing::AssertMirrorImage, B, Ad, floor_mirror);
+  EXPECT_PRED_FORMAT2(qverify::testing::AssertMirrorMatrix, M, floor_mirror);
 }
 
 // The slips must be caught: each assertion is expected to fail, with qverify's explanation.

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -27,7 +28,7 @@ json metric_json(const QuadricCheck& c) {
 
 /// The check's measures: points, target, object size, geometric error, one entry per quadric checked.
 void measures_json(json& c, const CheckReport& r, const std::vector<const char*>& quadrics,
-                   const std::vector<const char*>& contract_keys) {
+                   const std::vector<std::pair<const char*, const char*>>& contract_keys) {
   c["points"] = r.points;
   c["tolerance"] = r.accuracy;
   c["accuracy"] = r.accuracy;
@@ -35,14 +36,15 @@ void measures_json(json& c, const CheckReport& r, const std::vector<const char*>
   c["geometric_error"] = number_or_null(r.geometric_error);
   for (const char* name : quadrics)
     if (const QuadricCheck* q = r.find(name)) c[name] = metric_json(*q);
-  // The contract's per-quadric keys are in every judged check (scripts read them unguarded: audit 42c
-  // F1). With no finite point to sample (a terminator real only at infinity, A L = 0, a zero quadric)
-  // they measure nothing: no point, no residual; the results were judged without points (as_matrices,
-  // the zero and sign tests), which the verdict and the note say.
+  // The contract's per-quadric keys (key, result) are in every check with a report, for each result
+  // given, as where there are points (scripts read them unguarded: audit 42c F1). With no finite
+  // point to sample (a terminator real only at infinity, A L = 0, a zero quadric) they measure
+  // nothing: no point, no residual; the results were judged without points (as_matrices, the zero
+  // and sign tests), which the verdict and the note say.
   if (r.points == 0)
-    for (const char* name : contract_keys)
-      if (!c.contains(name))
-        c[name] = {{"max_residual", 0.0}, {"max_distance", 0.0}, {"judged", false}, {"points", 0}};
+    for (const auto& [key, result] : contract_keys)
+      if (!c.contains(key) && std::find(r.given.begin(), r.given.end(), result) != r.given.end())
+        c[key] = {{"max_residual", 0.0}, {"max_distance", 0.0}, {"judged", false}, {"geometric_error", 0.0}, {"points", 0}};
 }
 
 /// A check's problems in one line.
@@ -77,7 +79,7 @@ json check_json(const VerifyCheck& v, bool exact) {
   }
   if (shadow) {
     measures_json(c, r, {"on_A", "on_P", "on_R", "on_polar_plane", "on_generators", "R_on_polar_plane", "as_matrices"},
-                  {"on_A", "on_P", "on_R"});
+                  {{"on_A", "A"}, {"on_P", "P"}, {"on_R", "R"}});
     c["R_on_second_plane"] = number_or_null(r.second_plane_error.value_or(0));
     if (exact) c["proved_exactly"] = r.proved_exactly;
     c["consistent_with_precision"] = r.consistent_with_precision;
@@ -90,7 +92,7 @@ json check_json(const VerifyCheck& v, bool exact) {
     for (const std::string& n : r.notes) notes += (notes.empty() ? "" : "; ") + n;
     if (!notes.empty()) c["note"] = notes;
   } else {
-    measures_json(c, r, {"on_B"}, {"on_B"});
+    measures_json(c, r, {"on_B"}, {{"on_B", "B"}});
     if (exact) c["proved_exactly"] = r.proved_exactly;
     c["consistent_with_precision"] = r.consistent_with_precision;
     c["rounding_tolerance"] = r.rounding_tolerance;

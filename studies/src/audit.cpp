@@ -145,7 +145,7 @@ class SceneAudit {
     f.batches = tr.batches;
     f.inputs_rounded = tr.inputs_rounded;
     if (prec.kind == Precision::Kind::mpfr) f.working_bits = digits_for_bits(prec.bits).bits;
-    // eval's flag self-checked, as stress checks it (FlagCheck): verify's exact points measure each
+    // eval's flag self-checked as stress checks it (FlagCheck), with finite errors only: verify's exact points measure each
     // item's geometric error from below, so one beyond the target that eval did not flag is a flag
     // proved missing. (Exact rows have neither flags nor errors. An infinite error, a point off the
     // result where its gradient vanishes, is no distance, and proves nothing here: verify fails it.)

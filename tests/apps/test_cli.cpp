@@ -155,10 +155,10 @@ TEST_CASE("verify --precision exact proves every sampled point of the examples",
 }
 
 TEST_CASE("every verify check that is not skipped has the contract's per-quadric keys, points or none", "[cli][verify]") {
-  // A lamp inside a cylinder (the terminator's one real point lies at infinity), a double plane and the
-  // zero quadric have no finite point to sample; their checks are judged as matrices and by the zero
-  // tests, and still carry on_A, on_P, on_R (on_B), measures of no point (audit 42c F1: scripts that
-  // read them unguarded crashed on these).
+  // A lamp inside a cylinder (the terminator's one real point lies at infinity) and the zero quadric
+  // have no finite point to sample; their checks are judged as matrices and by the zero tests, and
+  // still carry on_A, on_P, on_R (on_B), measures of no point (audit 42c F1: scripts that read them
+  // unguarded crashed on these).
   const std::string file = temp_file("no-finite-points.json", R"({"format": "qverify-scene/1", "name": "none",
     "quadrics": [{"id": "pipe", "cylinder": {"point": [0, 0, 0], "axis": [0, 0, 1], "radius": 1}},
                  {"id": "zero", "matrix": [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]]},
@@ -184,7 +184,10 @@ TEST_CASE("every verify check that is not skipped has the contract's per-quadric
       if (c["points"] == 0) {
         ++none;
         for (const char* k : {"on_A", "on_P", "on_R", "on_B"})
-          if (c.contains(k)) CHECK(c[k]["judged"] == false);
+          if (c.contains(k)) {
+            CHECK(c[k]["judged"] == false);
+            CHECK(c[k]["geometric_error"] == 0);
+          }
       }
     }
     CHECK(none == 3);  // the cylinder lit from inside, the zero quadric's shadow and its reflection

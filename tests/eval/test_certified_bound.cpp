@@ -678,6 +678,18 @@ TEST_CASE("terminator_h_floor: never above |h . x| at a terminator point, none w
   CHECK(floors == 6);
 }
 
+TEST_CASE("terminator_plane_floor: a plane without a normal is h_w at every finite point, none for h = 0",
+          "[accuracy][certified]") {
+  // The saddle slopes floor the plane A (w, 0), which has no xyz part where K w = 0 (a paraboloid's
+  // axis): h . x = h_w everywhere then (review of session 41: it got no floor).
+  const Mat4<Q> paraboloid = quadric_of({1, 1, 0}, {0, 0, -1}, 0);
+  const Vec4<Q> L(3, 4, -5, 1), pi = paraboloid * L;
+  const std::optional<Measure> t = terminator_plane_floor(paraboloid, pi, Vec4<Q>(0, 0, 0, -3));
+  REQUIRE(t);
+  CHECK(*t == 3);
+  CHECK_FALSE(terminator_plane_floor(paraboloid, pi, Vec4<Q>::Zero()));
+}
+
 TEST_CASE("ball bound: a translated R is bounded by about its translation", "[accuracy][certified]") {
   // R moved rigidly by d is within |d| of every point of the exact plane pair, the terminator's
   // included. Where h passes near the ball, R's one-step bound divided the value's largest over a

@@ -59,6 +59,19 @@ TEST_CASE("matchers give a verdict where the geometry has no real point: judged 
   CHECK_THAT(cone.describe(), Catch::Contains("judged as matrices"));
   CHECK_FALSE(IsShadowConeOf(A, inside).match(Mat4<double>(-P)));  // the sign counts
 
+  // every matcher, and the exact proof mode: a rational P exactly right passes, one off by 2^-60 fails
+  CHECK_THAT(Vec4<double>(A * inside), IsPolarPlaneOf(A, inside));
+  CHECK_FALSE(IsPolarPlaneOf(A, inside).match(Vec4<double>(-(A * inside))));
+  const ShadowResult<double> s = shadow<double>(A, inside, Method::direct);
+  CHECK_THAT(s.R, IsTerminatorQuadricOf(A, inside));
+  const Mat4<Rational> Aq = exact_matrix(A);
+  const Vec4<Rational> Lq = exact_matrix(inside);
+  const Mat4<Rational> Pq = tangent_cone<Rational>(Aq, Lq);
+  CHECK_THAT(Pq, IsShadowConeOf(Aq, Lq));
+  Mat4<Rational> Pq_off = Pq;
+  Pq_off(0, 1) = Pq_off(1, 0) = Rational(1, 1152921504606846976LL);  // 2^-60
+  CHECK_FALSE(IsShadowConeOf(Aq, Lq).match(Pq_off));
+
   Mat4<double> imaginary = Mat4<double>::Identity();  // x^2 + y^2 + z^2 + 1 = 0
   const Mat4<double> M = mirror_matrix<double>(plane);
   const Mat4<double> B = reflection<double>(imaginary, M, Method::direct).B;
@@ -67,6 +80,20 @@ TEST_CASE("matchers give a verdict where the geometry has no real point: judged 
   CHECK(check_reflection<double>(imaginary, plane, r).skipped);
   CHECK_THAT(B, IsMirrorImageOf(imaginary, plane));
   CHECK_FALSE(IsMirrorImageOf(imaginary, plane).match(imaginary));  // (not through the origin: B differs)
+  // M alone on a quadric without real points: judged without points, a verdict either way
+  CheckOptions judge;
+  judge.judge_without_points = true;
+  ReflectionCandidate<double> m;
+  m.M = M;
+  CHECK(check_reflection<double>(imaginary, plane, m).skipped);
+  const CheckReport right = check_reflection<double>(imaginary, plane, m, judge);
+  CHECK(right.passed);
+  CHECK_FALSE(right.skipped);
+  (*m.M)(2, 3) += 0.5;
+  const CheckReport wrong = check_reflection<double>(imaginary, plane, m, judge);
+  CHECK_FALSE(wrong.passed);
+  CHECK_FALSE(wrong.skipped);
+  CHECK_THAT(wrong.summary(), Catch::Contains("expected M"));
 }
 
 TEST_CASE("a wrong M is explained by M's own error and the expected M, not by the stand-in quadric's B", "[check]") {

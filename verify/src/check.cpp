@@ -159,7 +159,7 @@ std::string CheckReport::summary() const {
   if (reference && !passed && !skipped && P_or_B)
     s << "  expected " << (kind == "shadow" ? "P = (L^T A L) A - (A L)(A L)^T" : "B = M^T A M")
       << " up to a positive factor (exact, rounded to double):\n" << fmt_matrix(*reference) << "\n";
-  if (mirror_reference && M_error && !passed && (exact ? *M_error != 0 : !(*M_error <= accuracy)))
+  if (mirror_reference && M_error && M_off)
     s << "  M's largest entry off the reflection: " << fmt_double(*M_error)
       << " (relative to max(1, |M|max)); expected M (exact, rounded to double):\n" << fmt_matrix(*mirror_reference) << "\n";
   for (const std::string& n : notes) s << "  note: " << n << "\n";
@@ -210,6 +210,9 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   const Q s = Le.dot(pi_ref);
   const Mat4<Q> P_ref = s * Ae - pi_ref * pi_ref.transpose();
   rep.reference = P_ref;
+  for (const auto& [name, is] : {std::pair<const char*, bool>{"A", got.A.has_value()}, {"P", got.P.has_value()},
+                                 {"polar_plane", got.polar_plane.has_value()}, {"R", got.R.has_value()}})
+    if (is) rep.given.emplace_back(name);
   // The same world points for every frame: sampled on the world terminator, then moved exactly.
   // The results' cross residual against the exact ones in the item's frame (shadow_matrix_error),
   // computed once: the exact proof mode and the matrices' check both judge it.
@@ -428,6 +431,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // M and B of the reference, in the result's frame: M_local = T^-1 M T, B_local = T^T M^T A M T.
   const Mat4<Q> M_ref = translation<Q>(Vec3<Q>(-o)) * Mw * translation<Q>(o);
   if (got.M) rep.mirror_reference = M_ref;
+  if (got.M) rep.given.emplace_back("M");
+  if (got.B) rep.given.emplace_back("B");
   const Mat4<Q> B_ref = quadric_to_local(Mat4<Q>(Mw.transpose() * Aw * Mw), o);
   rep.reference = B_ref;
   // B's cross residual against M^T A M about the item's base point, computed once (the exact proof
@@ -444,7 +449,8 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
     if (got.M) {  // M must be the reflection (exactly, or within the accuracy target relative to its largest entry)
       m_err = mirror_error(*got.M, M_ref);  // (accuracy.hpp: eval's bound counts the same)
       rep.M_error = to_d(m_err);
-      if (exact ? *got.M != M_ref : (m_err > T)) problems.push_back("M is not the reflection in the mirror plane");
+      rep.M_off = exact ? *got.M != M_ref : m_err > T;
+      if (rep.M_off) problems.push_back("M is not the reflection in the mirror plane");
     }
     // Exact proof mode: B is M^T A M up to a factor, whatever the samples (as for a shadow's results)
     if (exact && rep.exact_status == "ok" && got.B && B_error() != 0)
@@ -461,7 +467,9 @@ CheckReport check_reflection_exact(const Mat4<Q>& Aw, const Vec4<Q>& plane, cons
   // measures it (a B off by 7x in one entry was skipped, and audit called it a pass: audit 31b F1)
   // (CheckOptions::judge_without_points: also one without any real point, for a pass or fail verdict)
   if (pts.points.empty() && got.B && (opt.judge_without_points || !without_real_points(Aw))) {
-    const std::string where = without_real_points(Aw) ? "the quadric has no real point" : "the quadric's real points all lie at infinity";
+    const std::string where = Aw.isZero()                ? "the quadric is zero (every point lies on it: none to sample)"
+                              : without_real_points(Aw) ? "the quadric has no real point"
+                                                        : "the quadric's real points all lie at infinity";
     const QuadricCheck c = matrices_check(B_error(), exact, T);
     if (!c.passed)
       rep.problems.push_back(where + ", where B is judged as a matrix: B " +
@@ -741,7 +749,8 @@ std::vector<CheckReport> check_shadow_batch(const SymBatch<double>& A, const Vec
   const Eigen::Index n = A.rows();
   same_rows(n, L.rows(), where, "L");
   if (!status.empty()) same_rows(n, static_cast<Eigen::Index>(status.size()), where, "status");
-  if (n == 0 && P.rows() + polar_plane.rows() + R.rows() == 0) return {};  // no items: nothing to check, no error
+  if (n == 0 && P.rows() + polar_plane.rows() + R.rows() == 0)  // no items: nothing to check, no error (options checked)
+    return named_shadow_checks<double>(where, {}, {}, {}, opt);
   if (P.rows() + polar_plane.rows() + R.rows() == 0) throw InputError(where, "candidate", "nothing to check: give P, polar_plane or R");
   if (P.rows()) same_rows(n, P.rows(), where, "P");
   if (polar_plane.rows()) same_rows(n, polar_plane.rows(), where, "polar_plane");
@@ -768,7 +777,8 @@ std::vector<CheckReport> check_reflection_batch(const SymBatch<double>& A, const
   const Eigen::Index n = A.rows();
   same_rows(n, planes.rows(), where, "planes");
   if (!status.empty()) same_rows(n, static_cast<Eigen::Index>(status.size()), where, "status");
-  if (n == 0 && M.rows() + B.rows() == 0) return {};  // no items: nothing to check, no error
+  if (n == 0 && M.rows() + B.rows() == 0)  // no items: nothing to check, no error (options checked)
+    return named_reflection_checks<double>(where, {}, {}, {}, opt);
   if (M.rows() + B.rows() == 0) throw InputError(where, "candidate", "nothing to check: give M or B");
   if (M.rows()) same_rows(n, M.rows(), where, "M");
   if (B.rows()) same_rows(n, B.rows(), where, "B");

@@ -125,8 +125,13 @@ struct CheckReport {
   /// The exact reference (computed here, not by the core under test), for messages:
   /// P_ref = (L^T A L) A - (A L)(A L)^T, polar = A L, B_ref = M^T A M (in the candidate's frame).
   std::optional<Mat4<Rational>> reference;
-  /// Reflections with M given: the exact reflection in the candidate's frame, for messages.
+  /// Reflections with M given: the exact reflection in the candidate's frame, for messages, and
+  /// whether M is off it (not equal when exact; M_error beyond the target otherwise).
   std::optional<Mat4<Rational>> mirror_reference;
+  bool M_off = false;
+  /// The results the check was given ("A", "P", "polar_plane", "R"; "M", "B"): where there is no
+  /// finite point to sample, the document writes a measure of no point for each (verify_document).
+  std::vector<std::string> given;
   std::vector<std::string> notes;
   std::optional<Vec3<Rational>> origin;  ///< the candidate's frame (local coordinates x - origin)
 
