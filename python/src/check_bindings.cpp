@@ -87,8 +87,11 @@ Measure candidate_epsilon(const Kinds& candidate) {
 }
 
 CheckOptions options(const py::object& samples, const py::object& seed, const py::object& accuracy,
-                     const py::object& method) {
+                     const py::object& method, const py::object& judge_without_points) {
   CheckOptions opt;
+  if (!py::isinstance<py::bool_>(judge_without_points))
+    bad_argument("judge_without_points", "expected True or False, found " + type_name(judge_without_points));
+  opt.judge_without_points = judge_without_points.cast<bool>();
   opt.samples = samples_arg(samples);
   opt.seed = seed_arg(seed);
   opt.accuracy = accuracy_arg(accuracy);
@@ -213,8 +216,8 @@ const auto plain_name = [](const char* arg) { return std::string(arg); };
 CheckReport check_shadow_py(py::handle A_in, py::handle L_in, const py::object& P_in, const py::object& polar_in,
                             const py::object& R_in, const py::object& origin_in, const py::object& status_in,
                             const py::object& samples, const py::object& seed, const py::object& accuracy,
-                            const py::object& method, const py::object& exact) {
-  const CheckOptions opt = options(samples, seed, accuracy, method);
+                            const py::object& method, const py::object& exact, const py::object& judge) {
+  const CheckOptions opt = options(samples, seed, accuracy, method, judge);
   const ShadowCall call = read_shadow(A_in, L_in, P_in, polar_in, R_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
   return run_check(call, opt);
@@ -222,8 +225,9 @@ CheckReport check_shadow_py(py::handle A_in, py::handle L_in, const py::object& 
 
 CheckReport check_reflection_py(py::handle A_in, py::handle plane_in, const py::object& M_in, const py::object& B_in,
                                 const py::object& origin_in, const py::object& status_in, const py::object& samples,
-                                const py::object& seed, const py::object& accuracy, const py::object& exact) {
-  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"));
+                                const py::object& seed, const py::object& accuracy, const py::object& exact,
+                                const py::object& judge) {
+  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"), judge);
   const ReflectionCall call = read_reflection(A_in, plane_in, M_in, B_in, origin_in, status_arg(status_in), exact, plain_name);
   py::gil_scoped_release nogil;
   return run_check(call, opt);
@@ -353,8 +357,8 @@ std::vector<CheckReport> check_shadows_py(const py::object& A_in, const py::obje
                                           const py::object& samples, const py::object& seed,
                                           const py::object& accuracy, const py::object& method, const py::object& exact,
                                           const py::object& threads,
-                                          const py::object& progress) {
-  const CheckOptions opt = options(samples, seed, accuracy, method);
+                                          const py::object& progress, const py::object& judge) {
+  const CheckOptions opt = options(samples, seed, accuracy, method, judge);
   const BatchCheckOptions bopt = batch_options(opt, threads, progress);
   const BatchArg A("A", A_in, 2), L("L", L_in, 1), P("P", P_in, 2), polar("polar_plane", polar_in, 1), R("R", R_in, 2),
       origin("origin", origin_in, 1);
@@ -377,8 +381,9 @@ std::vector<CheckReport> check_reflections_py(const py::object& A_in, const py::
                                               const py::object& B_in, const py::object& origin_in,
                                               const py::object& status_in, const py::object& samples,
                                               const py::object& seed, const py::object& accuracy, const py::object& exact,
-                                              const py::object& threads, const py::object& progress) {
-  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"));
+                                              const py::object& threads, const py::object& progress,
+                                              const py::object& judge) {
+  const CheckOptions opt = options(samples, seed, accuracy, py::str("direct"), judge);
   const BatchCheckOptions bopt = batch_options(opt, threads, progress);
   const BatchArg A("A", A_in, 2), plane("plane", plane_in, 1), M("M", M_in, 2), B("B", B_in, 2), origin("origin", origin_in, 1);
   if (!A.given()) bad_argument("A", "the quadrics are needed");
@@ -508,6 +513,7 @@ Attributes:
         py::arg("polar_plane") = py::none(), py::arg("R") = py::none(), py::kw_only(), py::arg("origin") = py::none(),
         py::arg("status") = py::none(), py::arg("samples") = kDefaultSamples, py::arg("seed") = 1,
         py::arg("accuracy") = kDefaultAccuracy, py::arg("method") = "direct", py::arg("exact") = py::none(),
+        py::arg("judge_without_points") = false,
         R"(Checks a shadow volume computed by any program against the exact geometry.
 
 A and L are taken exactly (a float is the dyadic rational it holds). Exact
@@ -534,6 +540,11 @@ Args:
         when any of P, polar_plane, R holds exact numbers (int, Fraction,
         strings), a floating check otherwise. True forces proof mode (every
         residual exactly zero), False the floating check.
+    judge_without_points: where the terminator has no real point (a lamp
+        inside an ellipsoid), False (default, as `verify`) skips the check:
+        rep.skipped, neither passed nor failed; True judges the results as
+        matrices against the exact ones, up to a factor, for a pass or fail
+        (as the C++ test matchers do).
 
 Returns:
     CheckReport: passed, geometric_error, object_size, points, checks, ...
@@ -554,7 +565,7 @@ Example:
         py::arg("status") = py::none(), py::arg("samples") = kDefaultSamples, py::arg("seed") = 1,
         py::arg("accuracy") = kDefaultAccuracy, py::arg("method") = "direct", py::arg("exact") = py::none(),
         py::arg("threads") = 0,
-        py::arg("progress") = py::none(),
+        py::arg("progress") = py::none(), py::arg("judge_without_points") = false,
         R"(Checks many shadows at once: a test suite's whole table, a renderer's frame.
 
 Report k is what check_shadow(A[k], L[k], P=P[k], ...) returns for item k
@@ -570,8 +581,9 @@ Args:
     status: the status words the candidates reported, checked against the
         exact ones as in check_shadow: None (none reported), one str for
         every item, or a sequence of n (str, or None for an item without).
-    samples, seed, accuracy, method, exact: as in check_shadow (each
-        item's mode, proof or floating, decided from its own numbers).
+    samples, seed, accuracy, method, exact, judge_without_points: as in
+        check_shadow (each item's mode, proof or floating, decided from its
+        own numbers).
     threads: 0 (default) for one per logical processor.
     progress: None, or a callable progress(done, total) called after each
         item (one call at a time, done = 1, 2, ..., n).
@@ -598,6 +610,7 @@ Example:
         py::arg("B") = py::none(), py::kw_only(), py::arg("origin") = py::none(), py::arg("status") = py::none(),
         py::arg("samples") = kDefaultSamples, py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy,
         py::arg("exact") = py::none(), py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("judge_without_points") = false,
         R"(Checks many mirror images at once (as check_shadows does shadows).
 
 Report k is what check_reflection(A[k], plane[k], M=M[k], B=B[k], ...)
@@ -608,8 +621,8 @@ Args:
     plane: the mirror planes (a, b, c, d), (n, 4) or one (4,) for all.
     M, B: the candidates' reflection matrices and mirror images, (n, 4, 4)
         or one for all; give either.
-    origin, status, samples, seed, accuracy, exact, threads, progress: as
-        in check_shadows.
+    origin, status, samples, seed, accuracy, exact, threads, progress,
+        judge_without_points: as in check_shadows.
 
 Returns:
     list[CheckReport], one per item, in order.
@@ -621,7 +634,7 @@ Raises:
   m.def("check_reflection", &check_reflection_py, py::arg("A"), py::arg("plane"), py::arg("M") = py::none(),
         py::arg("B") = py::none(), py::kw_only(), py::arg("origin") = py::none(), py::arg("status") = py::none(),
         py::arg("samples") = kDefaultSamples, py::arg("seed") = 1, py::arg("accuracy") = kDefaultAccuracy,
-        py::arg("exact") = py::none(),
+        py::arg("exact") = py::none(), py::arg("judge_without_points") = false,
         R"(Checks a mirror image computed by any program against the exact geometry.
 
 Exact points of A are sampled, reflected exactly in the plane, and the given
@@ -631,7 +644,8 @@ Args:
     A: the quadric's symmetric 4x4 matrix.
     plane: (a, b, c, d) of the mirror plane a x + b y + c z + d = 0.
     M, B: the candidate's reflection matrix and mirror image; give either.
-    origin, status, samples, seed, accuracy, exact: as in check_shadow.
+    origin, status, samples, seed, accuracy, exact, judge_without_points: as
+        in check_shadow (a quadric without real points, M alone included).
 
 Returns:
     CheckReport.

@@ -224,6 +224,29 @@ def test_special_statuses(sphere):
     assert rep.geometric_error is None and not rep.passed and "skipped" in repr(rep)
 
 
+def test_judge_without_points_gives_a_verdict_where_verify_skips(sphere):
+    # a lamp inside the sphere: no real terminator point. judge_without_points=True judges the results
+    # as matrices against the exact ones (as the C++ test matchers do): right passes, wrong fails
+    inside = [0.25, 0, 0, 1]
+    s = qverify.shadow(sphere, inside)
+    rep = qverify.check_shadow(sphere, inside, P=s.P, polar_plane=s.polar_plane, R=s.R, judge_without_points=True)
+    assert rep.passed and not rep.skipped, rep.summary
+    off = s.P.copy()
+    off[0, 1] = off[1, 0] = 1e-6
+    rep = qverify.check_shadow(sphere, inside, P=off, judge_without_points=True)
+    assert not rep.passed and not rep.skipped and "judged as matrices" in rep.summary
+    reps = qverify.check_shadows(sphere, inside, P=np.stack([s.P, off]), judge_without_points=True)
+    assert [r.passed for r in reps] == [True, False]
+    imaginary = np.eye(4)  # x^2 + y^2 + z^2 + 1 = 0
+    r = qverify.reflection(imaginary, [0, 0, 1, 2])
+    assert qverify.check_reflection(imaginary, [0, 0, 1, 2], M=r.M, B=r.B).skipped
+    assert qverify.check_reflection(imaginary, [0, 0, 1, 2], M=r.M, B=r.B, judge_without_points=True).passed
+    assert not qverify.check_reflections(imaginary, [0, 0, 1, 2], B=imaginary, judge_without_points=True)[0].passed
+    with pytest.raises(qverify.InputError) as e:
+        qverify.check_shadow(sphere, inside, P=s.P, judge_without_points=1)
+    assert e.value.path == "judge_without_points"
+
+
 def test_a_wrong_status_fails(sphere, light):
     s = qverify.shadow(sphere, light)
     assert qverify.check_shadow(sphere, light, P=s.P, status="ok").passed
