@@ -1025,15 +1025,13 @@ std::vector<Vec3<Q>> crossings(const HLines& f) {
 }  // namespace
 
 std::vector<Vec3<Q>> terminator_crossings(const Mat4<Q>& A, const Vec4<Q>& pi, const Vec4<Q>& h) {
-  if (h.head<3>().isZero() || pi.head<3>().isZero()) return {};
-  const std::optional<HLines> f = h_lines(A, pi, h);
+  const std::optional<HLines> f = h_lines(A, pi, h);  // (none where either plane has no normal, or they are parallel)
   return f ? crossings(*f) : std::vector<Vec3<Q>>{};
 }
 
 std::optional<CrossingSplit> crossing_split(const Mat4<Q>& A, const Vec4<Q>& L, const Ball& ball) {
   const Vec4<Q> pi = A * L, h = reference_second_plane(L);
-  if (h.head<3>().isZero() || pi.head<3>().isZero()) return std::nullopt;
-  const std::optional<HLines> f = h_lines(A, pi, h);
+  const std::optional<HLines> f = h_lines(A, pi, h);  // (none where either plane has no normal, or they are parallel)
   if (!f || f->alpha == 0) return std::nullopt;
   CrossingSplit out;
   const Q delta = ball.reach * exact_pow2(-16);

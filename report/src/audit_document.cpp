@@ -153,9 +153,10 @@ json audit_json(const AuditReport& a) {
                   " ms; results kept behind a compiler barrier), single thread";
   doc["flag_check"] =
       "every floating row's items are checked as verify checks them (" + std::to_string(a.options.samples) +
-      " exact points, seed 1): an item whose geometric error there exceeds eval's accuracy target 1e-9 while eval did "
-      "not flag it inaccurate is listed in the row's missed_flags (a sample bounds the error from below: a flag proved "
-      "missing), and the audit exits 1";
+      " exact points, seed 1): an item whose geometric error there is finite and exceeds eval's accuracy target 1e-9 "
+      "while eval did not flag it inaccurate is listed in the row's missed_flags (a sample bounds the error from below: "
+      "a flag proved missing; an infinite error, a point off the result where its gradient vanishes, is no distance), "
+      "and the audit exits 1";
   doc["rows"] = rows;
   doc["pareto"] = a.pareto;
   doc["items"] = items_json(a);

@@ -58,9 +58,7 @@ std::string audit_candidate_html(const json& doc) {
          (r["log"].is_null() ? std::string() : ", <a href=\"" + sci(r["log"]) + "\">log</a>") + ".</p>\n";
   return b + "<p class=\"note\">" + html_escape(c["rule"].get<std::string>()) + ".</p>\n";
 }
-}  // namespace
 
-namespace {
 /// A ladder row's missed flags (audit.hpp LadderFacts::missed_flags), after its count of flagged items.
 std::string missed_flags_html(const json& row) {
   if (!row.contains("missed_flags") || row["missed_flags"].empty()) return "";

@@ -159,7 +159,7 @@ std::string CheckReport::summary() const {
   if (reference && !passed && !skipped && P_or_B)
     s << "  expected " << (kind == "shadow" ? "P = (L^T A L) A - (A L)(A L)^T" : "B = M^T A M")
       << " up to a positive factor (exact, rounded to double):\n" << fmt_matrix(*reference) << "\n";
-  if (mirror_reference && M_error && M_off)
+  if (M_off)  // (M given: mirror_reference and M_error are set with it)
     s << "  M's largest entry off the reflection: " << fmt_double(*M_error)
       << " (relative to max(1, |M|max)); expected M (exact, rounded to double):\n" << fmt_matrix(*mirror_reference) << "\n";
   for (const std::string& n : notes) s << "  note: " << n << "\n";
@@ -262,9 +262,9 @@ CheckReport check_shadow_exact(const Mat4<Q>& Aw, const Vec4<Q>& Lw, const Exact
   // (A L = 0, a cylinder lit along its axis, takes this path too: P, the polar plane and R are then zero,
   // which the zero problems judge; a candidate without any of the three has nothing to judge)
   // (CheckOptions::judge_without_points: also one without any real point, for a pass or fail verdict)
-  if (pts.points.empty() && (got.P || got.polar_plane || got.R) &&
-      (opt.judge_without_points || silhouette_empty<Q>(Aw, Lw) == Truth::no)) {
-    const bool zero = pi_ref.isZero(), none = !zero && silhouette_empty<Q>(Aw, Lw) != Truth::no;
+  const bool none = pts.points.empty() && silhouette_empty<Q>(Aw, Lw) != Truth::no;  // (no real point at all)
+  if (pts.points.empty() && (got.P || got.polar_plane || got.R) && (opt.judge_without_points || !none)) {
+    const bool zero = pi_ref.isZero();
     const QuadricCheck c = as_matrices(zero ? "all of A (A L = 0)" : none ? "without a real point" : "real only at infinity");
     rep.checks.push_back(c);
     rep.geometric_error = c.geometric_error;
